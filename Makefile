@@ -1,0 +1,174 @@
+# Conica — plain GNU make. All outputs go under $(BUILD).
+#   make            libraries and command-line tools
+#   make test       every suite (installs missing Debian packages first)
+#   make demo       the main job on bundled example data
+#   make bench      benchmark tables
+#   make install    PREFIX=/usr/local DESTDIR=
+.DEFAULT_GOAL := all
+.SUFFIXES:
+.DELETE_ON_ERROR:
+
+BUILD   ?= build
+PREFIX  ?= /usr/local
+DESTDIR ?=
+CC      ?= gcc
+CXX     ?= g++
+ifeq ($(origin CC),default)
+CC := gcc
+endif
+ifeq ($(origin CXX),default)
+CXX := g++
+endif
+PKG_CONFIG ?= pkg-config
+
+VERSION := 0.1.0
+
+# Hardware FMA where the CPU has it (seed 000, Section 2.3 relies on fma);
+# glibc's fma() is exact either way, only slower without it.
+ARCH ?= $(shell grep -qw fma /proc/cpuinfo 2>/dev/null && echo -mfma)
+OPT  ?= -O2
+WARN := -std=c11 -Wall -Wextra -Wpedantic -Wshadow -Wstrict-prototypes \
+        -Wmissing-prototypes -Wconversion -Werror
+CXXWARN := -std=c++17 -Wall -Wextra -Wshadow -Werror
+SAN  ?=
+CFLAGS   ?= $(OPT) -g $(ARCH)
+CFLAGS   += $(WARN) -fPIC -fvisibility=hidden $(SAN)
+CXXFLAGS ?= $(OPT) -g $(ARCH)
+CXXFLAGS += $(CXXWARN) $(SAN)
+CPPFLAGS += -Ilibcore/include -MMD -MP -D_POSIX_C_SOURCE=200809L
+LDFLAGS  += $(SAN)
+
+XML_CFLAGS := $(shell $(PKG_CONFIG) --cflags libxml-2.0 2>/dev/null)
+XML_LIBS   := $(shell $(PKG_CONFIG) --libs libxml-2.0 2>/dev/null || echo -lxml2)
+LAPACK_LIBS := -llapacke
+CORE_LIBS  := $(LAPACK_LIBS) -lm
+
+# ---------------------------------------------------------------- libcore
+CORE_SRCS := $(wildcard libcore/src/*.c)
+CORE_OBJS := $(CORE_SRCS:%.c=$(BUILD)/obj/%.o)
+CORE_A    := $(BUILD)/lib/libconica.a
+CORE_SO   := $(BUILD)/lib/libconica.so
+CORE_SONAME := libconica.so.0
+
+$(BUILD)/obj/libcore/src/%.o: CPPFLAGS += -Ilibcore/src -DCONICA_BUILDING
+
+# Shared helpers of every command-line tool (not part of the public library).
+CLI_SRCS := libcore/tools/cli.c
+CLI_OBJS := $(CLI_SRCS:%.c=$(BUILD)/obj/%.o)
+CLI_A    := $(BUILD)/lib/libconica_cli.a
+
+# The `conica` tool: one cmd_NAME.c per subcommand, found by name.
+CMD_SRCS  := $(sort $(wildcard libcore/tools/cmd_*.c))
+CMD_NAMES := $(patsubst libcore/tools/cmd_%.c,%,$(CMD_SRCS))
+CMD_DEF   := $(BUILD)/gen/commands.def
+CMD_LIST  := $(foreach c,$(CMD_NAMES),CONICA_CMD($(c)))
+$(shell mkdir -p $(BUILD)/gen && { echo '$(CMD_LIST)' | cmp -s - $(CMD_DEF) || echo '$(CMD_LIST)' > $(CMD_DEF); })
+CONICA_OBJS := $(BUILD)/obj/libcore/tools/conica.o $(CMD_SRCS:%.c=$(BUILD)/obj/%.o)
+$(BUILD)/obj/libcore/tools/%.o: CPPFLAGS += -Ilibcore/tools -I$(BUILD)/gen
+
+# Static libraries of the other modules, in link order (modules append).
+MODULE_LIBS :=
+BINS := $(BUILD)/bin/conica
+
+# ---------------------------------------------------------------- modules
+# Each module's make fragment adds its library, tools, tests and benches.
+include $(wildcard */module.mk */*/module.mk)
+
+ALL_LIBS = $(MODULE_LIBS) $(CLI_A) $(CORE_A)
+ALL_LDLIBS = $(XML_LIBS) $(CORE_LIBS)
+
+all: $(CORE_A) $(CORE_SO) $(BINS) $(BUILD)/conica.pc
+
+$(BUILD)/obj/%.o: %.c
+	@mkdir -p $(@D)
+	$(CC) $(CPPFLAGS) $(CFLAGS) -c $< -o $@
+
+$(BUILD)/obj/%.o: %.cpp
+	@mkdir -p $(@D)
+	$(CXX) $(CPPFLAGS) $(CXXFLAGS) -c $< -o $@
+
+$(CORE_A): $(CORE_OBJS)
+	@mkdir -p $(@D)
+	rm -f $@ && ar rcs $@ $^
+
+$(CORE_SO): $(CORE_OBJS)
+	@mkdir -p $(@D)
+	$(CC) -shared -Wl,-soname,$(CORE_SONAME) $(LDFLAGS) -o $@.$(VERSION) $^ $(CORE_LIBS)
+	ln -sf libconica.so.$(VERSION) $(BUILD)/lib/$(CORE_SONAME)
+	ln -sf libconica.so.$(VERSION) $@
+
+$(CLI_A): $(CLI_OBJS)
+	@mkdir -p $(@D)
+	rm -f $@ && ar rcs $@ $^
+
+$(BUILD)/bin/conica: $(CONICA_OBJS) $(ALL_LIBS)
+	@mkdir -p $(@D)
+	$(CC) $(LDFLAGS) -o $@ $(CONICA_OBJS) $(ALL_LIBS) $(ALL_LDLIBS)
+
+$(BUILD)/obj/libcore/tools/conica.o: $(CMD_DEF)
+
+$(BUILD)/conica.pc: Makefile
+	@mkdir -p $(@D)
+	printf '%s\n' 'prefix=$(PREFIX)' 'libdir=$${prefix}/lib' 'includedir=$${prefix}/include' '' \
+	  'Name: conica' 'Description: Conic-preserving curve subdivision and adaptive spline plotting' \
+	  'Version: $(VERSION)' 'Libs: -L$${libdir} -lconica' 'Libs.private: $(CORE_LIBS)' \
+	  'Cflags: -I$${includedir}' > $@
+
+# ---------------------------------------------------------------- tests
+RUNNER_SRCS := $(wildcard tests/runner/*.c)
+RUNNER_OBJS := $(RUNNER_SRCS:%.c=$(BUILD)/obj/%.o)
+RUNNER_A    := $(BUILD)/lib/libconica_test.a
+$(BUILD)/obj/tests/%.o: CPPFLAGS += -Itests/runner -Ilibcore/src -Ilibcore/tools
+$(RUNNER_A): $(RUNNER_OBJS)
+	@mkdir -p $(@D)
+	rm -f $@ && ar rcs $@ $^
+
+UNIT_SRCS  := $(sort $(wildcard tests/test_*.c))
+UNIT_BINS  := $(UNIT_SRCS:tests/%.c=$(BUILD)/tests/%)
+$(BUILD)/tests/%: $(BUILD)/obj/tests/%.o $(RUNNER_A) $(ALL_LIBS)
+	@mkdir -p $(@D)
+	$(CC) $(LDFLAGS) -o $@ $< $(RUNNER_A) $(ALL_LIBS) $(ALL_LDLIBS)
+
+# Suites that modules add (binaries or scripts the test driver runs).
+TEST_BINS += $(UNIT_BINS)
+tests: all $(TEST_BINS) $(TEST_EXTRA)
+
+deps:
+	scripts/deps.sh test
+
+test: deps
+	$(MAKE) --no-print-directory tests
+	scripts/run-tests.sh $(BUILD)
+
+# The unit and CLI suites again under AddressSanitizer + UBSan (clang).
+SAN_FLAGS := -fsanitize=address,undefined -fno-sanitize-recover=all -fno-omit-frame-pointer
+test-san:
+	$(MAKE) --no-print-directory BUILD=$(BUILD)/san CC=clang CXX=clang++ OPT=-O1 \
+	  SAN="$(SAN_FLAGS)" all $(patsubst $(BUILD)/%,$(BUILD)/san/%,$(UNIT_BINS))
+
+# ---------------------------------------------------------------- bench, demo
+bench: all $(BENCH_BINS)
+	scripts/bench.sh $(BUILD)
+
+demo:
+	scripts/deps.sh demo
+	$(MAKE) --no-print-directory all $(DEMO_DEPS)
+	scripts/demo.sh $(BUILD)
+
+# ---------------------------------------------------------------- install
+install: $(CORE_A) $(CORE_SO) $(BINS) $(BUILD)/conica.pc
+	install -d $(DESTDIR)$(PREFIX)/lib/pkgconfig $(DESTDIR)$(PREFIX)/include/conica $(DESTDIR)$(PREFIX)/bin
+	install -m 644 libcore/include/conica/*.h $(DESTDIR)$(PREFIX)/include/conica/
+	install -m 644 $(CORE_A) $(DESTDIR)$(PREFIX)/lib/
+	install -m 755 $(CORE_SO).$(VERSION) $(DESTDIR)$(PREFIX)/lib/
+	ln -sf libconica.so.$(VERSION) $(DESTDIR)$(PREFIX)/lib/$(CORE_SONAME)
+	ln -sf libconica.so.$(VERSION) $(DESTDIR)$(PREFIX)/lib/libconica.so
+	install -m 755 $(BINS) $(DESTDIR)$(PREFIX)/bin/
+	install -m 644 $(BUILD)/conica.pc $(DESTDIR)$(PREFIX)/lib/pkgconfig/
+
+clean:
+	rm -rf $(BUILD)
+
+.PHONY: all tests test test-san deps bench demo install clean
+
+-include $(shell find $(BUILD)/obj -name '*.d' 2>/dev/null)

@@ -1,0 +1,21 @@
+/* Internal helpers shared by libcore's translation units (conica__ prefix). */
+#ifndef CONICA_INTERNAL_H
+#define CONICA_INTERNAL_H
+
+#include "conica/common.h"
+
+#define CONICA_VERSION_STRING "0.1.0"
+
+#if defined(__GNUC__)
+#define CONICA__PRINTF(a, b) __attribute__((format(printf, a, b)))
+#else
+#define CONICA__PRINTF(a, b)
+#endif
+
+/* Fill *st (if not NULL) and return code. */
+conica_code conica__fail(conica_status *st, conica_code code, size_t line,
+                         size_t offset, const char *fmt, ...) CONICA__PRINTF(5, 6);
+/* Mark *st (if not NULL) as success. */
+void conica__ok(conica_status *st);
+
+#endif

@@ -1,0 +1,279 @@
+#include "cli.h"
+
+#include <errno.h>
+#include <limits.h>
+#include <math.h>
+#include <stdarg.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+static void vmessage(const char *prog, const char *kind, const char *where,
+                     const char *fmt, va_list ap)
+{
+    fprintf(stderr, "%s: %s: ", prog, kind);
+    if (where && *where)
+        fprintf(stderr, "%s: ", where);
+    vfprintf(stderr, fmt, ap);
+    fputc('\n', stderr);
+}
+
+int cli_error(const char *prog, const char *where, const char *fmt, ...)
+{
+    va_list ap;
+    va_start(ap, fmt);
+    vmessage(prog, "error", where, fmt, ap);
+    va_end(ap);
+    return CLI_EXIT_ERROR;
+}
+
+void cli_warning(const char *prog, const char *where, const char *fmt, ...)
+{
+    va_list ap;
+    va_start(ap, fmt);
+    vmessage(prog, "warning", where, fmt, ap);
+    va_end(ap);
+}
+
+int cli_usage_error(const char *prog, const char *fmt, ...)
+{
+    va_list ap;
+    va_start(ap, fmt);
+    vmessage(prog, "usage error", NULL, fmt, ap);
+    va_end(ap);
+    fprintf(stderr, "Try '%s --help' for more information.\n", prog);
+    return CLI_EXIT_USAGE;
+}
+
+int cli_read_file(const char *prog, const char *path, size_t max_bytes, char **buf, size_t *len)
+{
+    int is_stdin = path == NULL || strcmp(path, "-") == 0;
+    const char *name = is_stdin ? "<stdin>" : path;
+    FILE *f = is_stdin ? stdin : fopen(path, "rb");
+    size_t cap = 4096, n = 0;
+    char *data;
+
+    if (!f)
+        return cli_error(prog, name, "cannot open: %s", strerror(errno));
+    data = malloc(cap);
+    if (!data) {
+        if (!is_stdin)
+            fclose(f);
+        return cli_error(prog, name, "out of memory");
+    }
+    for (;;) {
+        size_t got;
+        if (cap - n < 2) {
+            size_t ncap = cap * 2;
+            char *p;
+            if (cap > max_bytes) {
+                free(data);
+                if (!is_stdin)
+                    fclose(f);
+                return cli_error(prog, name, "input larger than the limit of %zu bytes", max_bytes);
+            }
+            p = realloc(data, ncap);
+            if (!p) {
+                free(data);
+                if (!is_stdin)
+                    fclose(f);
+                return cli_error(prog, name, "out of memory");
+            }
+            data = p;
+            cap = ncap;
+        }
+        got = fread(data + n, 1, cap - n - 1, f);
+        n += got;
+        if (n > max_bytes) {
+            free(data);
+            if (!is_stdin)
+                fclose(f);
+            return cli_error(prog, name, "input larger than the limit of %zu bytes", max_bytes);
+        }
+        if (got == 0)
+            break;
+    }
+    if (ferror(f)) {
+        int e = errno;
+        free(data);
+        if (!is_stdin)
+            fclose(f);
+        return cli_error(prog, name, "read error: %s", strerror(e));
+    }
+    if (!is_stdin)
+        fclose(f);
+    data[n] = '\0';
+    *buf = data;
+    *len = n;
+    return 0;
+}
+
+int cli_output_open(const char *prog, const char *path, cli_output *out)
+{
+    static const char suffix[] = ".tmpXXXXXX";
+    size_t plen;
+    int fd;
+
+    out->f = NULL;
+    out->path = NULL;
+    out->tmp = NULL;
+    if (path == NULL || strcmp(path, "-") == 0) {
+        out->f = stdout;
+        return 0;
+    }
+    plen = strlen(path);
+    out->path = malloc(plen + 1);
+    out->tmp = malloc(plen + sizeof suffix);
+    if (!out->path || !out->tmp) {
+        free(out->path);
+        free(out->tmp);
+        out->path = out->tmp = NULL;
+        return cli_error(prog, path, "out of memory");
+    }
+    memcpy(out->path, path, plen + 1);
+    memcpy(out->tmp, path, plen);
+    memcpy(out->tmp + plen, suffix, sizeof suffix);
+    /* The temporary lives beside the target so rename() is atomic. */
+    fd = mkstemp(out->tmp);
+    if (fd < 0) {
+        int e = errno;
+        free(out->path);
+        free(out->tmp);
+        out->path = out->tmp = NULL;
+        return cli_error(prog, path, "cannot create output: %s", strerror(e));
+    }
+    out->f = fdopen(fd, "wb");
+    if (!out->f) {
+        int e = errno;
+        close(fd);
+        unlink(out->tmp);
+        free(out->path);
+        free(out->tmp);
+        out->path = out->tmp = NULL;
+        return cli_error(prog, path, "cannot open output: %s", strerror(e));
+    }
+    return 0;
+}
+
+int cli_output_commit(const char *prog, cli_output *out)
+{
+    int failed = 0, e = 0;
+
+    if (!out->f)
+        return cli_error(prog, out->path, "output not open");
+    if (!out->tmp) {
+        if (fflush(out->f) != 0 || ferror(out->f))
+            return cli_error(prog, "<stdout>", "write error: %s", strerror(errno));
+        out->f = NULL;
+        return 0;
+    }
+    if (fflush(out->f) != 0 || ferror(out->f) || fsync(fileno(out->f)) != 0) {
+        failed = 1;
+        e = errno;
+    }
+    if (fclose(out->f) != 0 && !failed) {
+        failed = 1;
+        e = errno;
+    }
+    out->f = NULL;
+    if (!failed) {
+        /* Keep the permissions a new file would get, not mkstemp's 0600. */
+        mode_t mask = umask(0);
+        umask(mask);
+        chmod(out->tmp, 0666 & ~mask);
+        if (rename(out->tmp, out->path) != 0) {
+            failed = 1;
+            e = errno;
+        }
+    }
+    if (failed) {
+        unlink(out->tmp);
+        cli_error(prog, out->path, "cannot write output: %s", strerror(e));
+    }
+    free(out->tmp);
+    free(out->path);
+    out->tmp = out->path = NULL;
+    return failed;
+}
+
+void cli_output_abort(cli_output *out)
+{
+    if (out->tmp) {
+        if (out->f)
+            fclose(out->f);
+        unlink(out->tmp);
+    }
+    free(out->tmp);
+    free(out->path);
+    out->f = NULL;
+    out->tmp = out->path = NULL;
+}
+
+int cli_parse_int(const char *s, long lo, long hi, long *out)
+{
+    long v = 0;
+    int neg = 0;
+    const char *p = s;
+
+    if (!s || !*s)
+        return 1;
+    if (*p == '+' || *p == '-')
+        neg = *p++ == '-';
+    if (!*p)
+        return 1;
+    for (; *p; p++) {
+        if (*p < '0' || *p > '9')
+            return 1;
+        if (v > (LONG_MAX - (*p - '0')) / 10)
+            return 1;
+        v = v * 10 + (*p - '0');
+    }
+    if (neg)
+        v = -v;
+    if (v < lo || v > hi)
+        return 1;
+    *out = v;
+    return 0;
+}
+
+int cli_parse_double(const char *s, double *out)
+{
+    /* Validate the grammar ourselves (digits, one '.', optional exponent:
+     * nothing locale-dependent, no hex, no inf/nan), then let strtod do the
+     * correctly rounded conversion: the tools never call setlocale(), so
+     * LC_NUMERIC is "C" and '.' is the decimal point. */
+    const char *p = s;
+    char *end;
+    double v;
+    int digits = 0;
+
+    if (!s || !*s)
+        return 1;
+    if (*p == '+' || *p == '-')
+        p++;
+    while (*p >= '0' && *p <= '9') { p++; digits++; }
+    if (*p == '.') {
+        p++;
+        while (*p >= '0' && *p <= '9') { p++; digits++; }
+    }
+    if (!digits)
+        return 1;
+    if (*p == 'e' || *p == 'E') {
+        p++;
+        if (*p == '+' || *p == '-')
+            p++;
+        if (!(*p >= '0' && *p <= '9'))
+            return 1;
+        while (*p >= '0' && *p <= '9')
+            p++;
+    }
+    if (*p)
+        return 1;
+    errno = 0;
+    v = strtod(s, &end);
+    if (*end || !isfinite(v))
+        return 1;
+    *out = v;
+    return 0;
+}

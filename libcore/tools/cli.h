@@ -1,0 +1,57 @@
+/* Helpers shared by every Conica command-line tool (conica, svgsmooth,
+ * scadprofile): whole-file input with a size limit, output through a
+ * temporary file renamed into place, and POSIX-style messages. */
+#ifndef CONICA_CLI_H
+#define CONICA_CLI_H
+
+#include <stddef.h>
+#include <stdio.h>
+
+#if defined(__GNUC__)
+#define CLI_PRINTF(a, b) __attribute__((format(printf, a, b)))
+#else
+#define CLI_PRINTF(a, b)
+#endif
+
+/* Default cap on an input file (input-controlled size). */
+#define CLI_DEFAULT_MAX_INPUT ((size_t)256 << 20)
+
+/* Exit statuses shared by every tool. */
+enum { CLI_EXIT_OK = 0, CLI_EXIT_ERROR = 1, CLI_EXIT_USAGE = 2 };
+
+/* `prog: error: where: what` on stderr (where may be NULL). Returns 1. */
+int cli_error(const char *prog, const char *where, const char *fmt, ...) CLI_PRINTF(3, 4);
+/* `prog: warning: where: what` on stderr. */
+void cli_warning(const char *prog, const char *where, const char *fmt, ...) CLI_PRINTF(3, 4);
+/* `prog: usage error: what` plus a hint to --help on stderr. Returns 2. */
+int cli_usage_error(const char *prog, const char *fmt, ...) CLI_PRINTF(2, 3);
+
+/* Read all of path ("-" or NULL = stdin) into a new NUL-terminated buffer
+ * (*len excludes the NUL). Fails with a message (file name included) when
+ * the file cannot be read or is larger than max_bytes. Caller frees *buf.
+ * Returns 0 on success, 1 after printing an error. */
+int cli_read_file(const char *prog, const char *path, size_t max_bytes, char **buf, size_t *len);
+
+/* Output that never leaves a half-written file: data goes to a temporary
+ * file in the target's directory and is renamed over the target only by
+ * cli_output_commit(). "-" or NULL writes to stdout directly. */
+typedef struct cli_output {
+    FILE *f;          /* where to write */
+    char *path;       /* final path, NULL for stdout */
+    char *tmp;        /* temporary path, NULL for stdout */
+} cli_output;
+
+/* Returns 0, or 1 after printing an error. */
+int cli_output_open(const char *prog, const char *path, cli_output *out);
+/* Flush, fsync and rename into place; on any write error the temporary is
+ * removed and the target is untouched. Returns 0, or 1 after an error. */
+int cli_output_commit(const char *prog, cli_output *out);
+/* Drop the temporary file (target untouched). Safe after commit. */
+void cli_output_abort(cli_output *out);
+
+/* Parse a whole decimal integer in [lo, hi]; returns 0 on success. */
+int cli_parse_int(const char *s, long lo, long hi, long *out);
+/* Parse a finite number without the C locale; returns 0 on success. */
+int cli_parse_double(const char *s, double *out);
+
+#endif

@@ -1,0 +1,43 @@
+#!/bin/sh
+# Install the Debian packages a make target needs, and nothing else.
+#   scripts/deps.sh build   compiler, LAPACKE, libxml2, Python headers
+#   scripts/deps.sh test    build + CGAL, GMP, OpenSCAD, Blender, rsvg, clang
+#   scripts/deps.sh demo    build + OpenSCAD, Blender, rsvg
+# Prints what it installs; does nothing when everything is present.
+set -eu
+
+build="gcc g++ make pkg-config liblapacke-dev libxml2-dev python3-dev"
+test="libcgal-dev libgmp-dev openscad blender librsvg2-bin clang libclang-rt-14-dev valgrind"
+demo="openscad blender librsvg2-bin"
+
+case "${1:-build}" in
+    build) want="$build" ;;
+    test) want="$build $test" ;;
+    demo) want="$build $demo" ;;
+    *) echo "deps.sh: error: unknown target '$1' (build, test or demo)" >&2; exit 2 ;;
+esac
+
+missing=""
+for p in $want; do
+    if command -v dpkg-query >/dev/null 2>&1 &&
+       dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed"; then
+        continue
+    fi
+    case " $missing " in *" $p "*) ;; *) missing="$missing $p" ;; esac
+done
+[ -z "$missing" ] && exit 0
+
+if ! command -v apt-get >/dev/null 2>&1; then
+    echo "deps.sh: error: apt-get not found; install these packages by hand:$missing" >&2
+    exit 1
+fi
+if [ "$(id -u)" -eq 0 ]; then sudo=""
+elif command -v sudo >/dev/null 2>&1; then sudo="sudo"
+else
+    echo "deps.sh: error: not root and no sudo; install as root:$missing" >&2
+    exit 1
+fi
+echo "deps.sh: installing:$missing"
+$sudo apt-get update -qq
+# shellcheck disable=SC2086
+DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq --no-install-recommends $missing
