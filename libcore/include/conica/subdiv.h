@@ -91,6 +91,31 @@ CONICA_API conica_code conica_subdivide(const conica_curve *in, const conica_sub
                                         conica_curve *out, conica_subdiv_info *info,
                                         conica_status *st);
 
+/**
+ * A curve in long double, the output of precise mode when the caller wants
+ * every bit of it (the CLI prints it with %.21Lg). Same layout as conica_curve.
+ */
+typedef struct conica_curvel {
+    size_t n, cap;
+    long double *xy;
+    long double *nxy;
+    int closed;
+} conica_curvel;
+
+/** @brief Make *c empty (safe to free). */
+CONICA_API void conica_curvel_init(conica_curvel *c);
+/** @brief Release *c's arrays. Accepts NULL. */
+CONICA_API void conica_curvel_free(conica_curvel *c);
+
+/**
+ * @brief As conica_subdivide(), computing in long double whatever
+ *        s->precise says, with the result kept in long double.
+ * @return the same codes as conica_subdivide()
+ */
+CONICA_API conica_code conica_subdividel(const conica_curve *in, const conica_subdiv_settings *s,
+                                         conica_curvel *out, conica_subdiv_info *info,
+                                         conica_status *st);
+
 #ifdef __cplusplus
 }
 #endif
