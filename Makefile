@@ -68,13 +68,14 @@ $(BUILD)/obj/libcore/tools/%.o: CPPFLAGS += -Ilibcore/tools -I$(BUILD)/gen
 
 # Static libraries of the other modules, in link order (modules append).
 MODULE_LIBS :=
+MODULE_LIBS_FIRST :=
 BINS := $(BUILD)/bin/conica
 
 # ---------------------------------------------------------------- modules
 # Each module's make fragment adds its library, tools, tests and benches.
 include $(wildcard */module.mk */*/module.mk)
 
-ALL_LIBS = $(MODULE_LIBS) $(CLI_A) $(CORE_A)
+ALL_LIBS = $(MODULE_LIBS_FIRST) $(MODULE_LIBS) $(CLI_A) $(CORE_A)
 ALL_LDLIBS = $(XML_LIBS) $(CORE_LIBS)
 
 all: $(CORE_A) $(CORE_SO) $(BINS) $(BUILD)/conica.pc
