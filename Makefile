@@ -137,19 +137,22 @@ tests: all $(TEST_BINS) $(TEST_EXTRA)
 deps:
 	scripts/deps.sh test
 
+NPROC := $(shell nproc 2>/dev/null || echo 2)
+
 test: deps
-	$(MAKE) --no-print-directory tests
+	$(MAKE) --no-print-directory -j$(NPROC) tests
+	$(MAKE) --no-print-directory -j$(NPROC) test-san
 	scripts/run-tests.sh $(BUILD)
 
 # The unit and CLI suites again under AddressSanitizer + UBSan (clang).
 SAN_FLAGS := -fsanitize=address,undefined -fno-sanitize-recover=all -fno-omit-frame-pointer
 test-san:
 	$(MAKE) --no-print-directory BUILD=$(BUILD)/san CC=clang CXX=clang++ OPT=-O1 \
-	  SAN="$(SAN_FLAGS)" all $(patsubst $(BUILD)/%,$(BUILD)/san/%,$(UNIT_BINS))
+	  SAN="$(SAN_FLAGS)" $(patsubst $(BUILD)/%,$(BUILD)/san/%,$(BINS) $(UNIT_BINS))
 
 # ---------------------------------------------------------------- bench, demo
 bench: all $(BENCH_BINS)
-	scripts/bench.sh $(BUILD)
+	scripts/bench.sh $(BUILD) $(BENCH_BINS)
 
 demo:
 	scripts/deps.sh demo
