@@ -1,0 +1,1334 @@
+/*
+ * _conica: the thin CPython extension behind the Blender add-on.
+ *
+ * It moves flat float data (what bpy's foreach_get fills and foreach_set
+ * accepts) in and out of libcore, which is linked in statically so the
+ * add-on is self-contained. Everything that touches many points runs in C
+ * with the GIL released: the plane fit of a 3D spline, the projection into
+ * the plane and back, the conic subdivision (seed 000, Section 1.1), the
+ * interpolation of per-point attributes (radius, tilt) and the Bezier
+ * handles along the conic tangents. Python only reads and writes Blender's
+ * data, so the add-on stays fast (the benchmark compares it with Blender's
+ * own curve.subdivide).
+ *
+ * Every libcore status becomes a Python exception (a subclass of
+ * ConicaError that also derives from the matching built-in exception)
+ * carrying libcore's message; bad input of any kind (wrong lengths, NaN,
+ * empty, too many levels, non-numbers) raises, never crashes.
+ */
+#define PY_SSIZE_T_CLEAN
+#include <Python.h>
+
+#include <float.h>
+#include <math.h>
+#include <stdint.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+
+#include "conica/common.h"
+#include "conica/curve.h"
+#include "conica/subdiv.h"
+
+#ifndef CONICA_SOABI
+#error "build with -DCONICA_SOABI=\"...\" (python3-config --extension-suffix)"
+#endif
+
+/* Largest flat input the module copies (values, not points): a Blender
+ * curve with more than 16 M points is far beyond interactive use. */
+#define CX_MAX_INPUT_VALUES ((size_t)1 << 26)
+/* Default and hard cap of output points per call: Blender stores every
+ * point as 4 floats plus radius, tilt, weight; 2^24 points is ~1 GB there. */
+#define CX_DEFAULT_MAX_POINTS ((size_t)1 << 22)
+#define CX_HARD_MAX_POINTS ((size_t)1 << 24)
+#define CX_MAX_ATTRS 8
+
+typedef struct cx_state {
+    PyObject *error;       /* ConicaError */
+    PyObject *arg_error;   /* ArgumentError(ConicaError, ValueError) */
+    PyObject *limit_error; /* LimitError(ConicaError, ValueError) */
+    PyObject *degenerate;  /* DegenerateError(ConicaError, ValueError) */
+    PyObject *nonfinite;   /* NonFiniteError(ConicaError, ValueError) */
+    PyObject *nonplanar;   /* NonPlanarError(ConicaError, ValueError) */
+    PyObject *numeric;     /* NumericError(ConicaError, RuntimeError) */
+    PyObject *nomem;       /* OutOfMemoryError(ConicaError, MemoryError) */
+    PyObject *unsupported; /* UnsupportedError(ConicaError, NotImplementedError) */
+    PyObject *array_type;  /* array.array */
+} cx_state;
+
+static cx_state *cx_get_state(PyObject *module)
+{
+    return (cx_state *)PyModule_GetState(module);
+}
+
+static PyObject *cx_exc_for(cx_state *s, conica_code code)
+{
+    switch (code) {
+    case CONICA_ERR_ARG: return s->arg_error;
+    case CONICA_ERR_LIMIT: return s->limit_error;
+    case CONICA_ERR_DEGENERATE: return s->degenerate;
+    case CONICA_ERR_NONFINITE: return s->nonfinite;
+    case CONICA_ERR_NUMERIC: return s->numeric;
+    case CONICA_ERR_NOMEM: return s->nomem;
+    case CONICA_ERR_UNSUPPORTED: return s->unsupported;
+    default: return s->error;
+    }
+}
+
+/* Raise the exception for a libcore status; returns NULL for chaining. */
+static PyObject *cx_raise(cx_state *s, conica_code code, const conica_status *st)
+{
+    const char *msg = (st && st->message[0]) ? st->message : conica_strerror(code);
+    PyObject *exc = cx_exc_for(s, code);
+    PyObject *val = Py_BuildValue("(s)", msg);
+    if (val == NULL)
+        return NULL;
+    PyObject *inst = PyObject_Call(exc, val, NULL);
+    Py_DECREF(val);
+    if (inst == NULL)
+        return NULL;
+    PyObject *pycode = PyLong_FromLong((long)code);
+    if (pycode == NULL || PyObject_SetAttrString(inst, "code", pycode) < 0) {
+        Py_XDECREF(pycode);
+        Py_DECREF(inst);
+        return NULL;
+    }
+    Py_DECREF(pycode);
+    PyErr_SetObject(exc, inst);
+    Py_DECREF(inst);
+    return NULL;
+}
+
+static PyObject *cx_raisef(PyObject *exc, const char *fmt, ...)
+{
+    char buf[320];
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(buf, sizeof buf, fmt, ap);
+    va_end(ap);
+    PyErr_SetString(exc, buf);
+    return NULL;
+}
+
+static double cx_now(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+}
+
+/* ------------------------------------------------------------ input/output */
+
+/* A float item format of the buffer protocol: 'f' or 'd', native order. */
+static int cx_float_format(const char *fmt, Py_ssize_t itemsize)
+{
+    if (fmt == NULL)
+        return 0; /* unsigned bytes: not floats */
+    if (*fmt == '@' || *fmt == '=')
+        fmt++;
+#if PY_LITTLE_ENDIAN
+    else if (*fmt == '<')
+        fmt++;
+#else
+    else if (*fmt == '>' || *fmt == '!')
+        fmt++;
+#endif
+    if (fmt[0] == 'd' && fmt[1] == '\0' && itemsize == 8)
+        return 'd';
+    if (fmt[0] == 'f' && fmt[1] == '\0' && itemsize == 4)
+        return 'f';
+    return 0;
+}
+
+/*
+ * Copy a flat float sequence or buffer into a new double array (free with
+ * PyMem_Free). Buffers (array('f'/'d'), memoryviews of them, Blender's
+ * foreach_get targets) are copied directly; any other sequence is read
+ * item by item with float(). Returns 0 and sets an exception on failure.
+ */
+static int cx_read_doubles(PyObject *obj, const char *what, double **out, size_t *n)
+{
+    *out = NULL;
+    *n = 0;
+    if (PyObject_CheckBuffer(obj)) {
+        Py_buffer view;
+        if (PyObject_GetBuffer(obj, &view, PyBUF_C_CONTIGUOUS | PyBUF_FORMAT) == 0) {
+            int kind = cx_float_format(view.format, view.itemsize);
+            if (kind == 0) {
+                PyErr_Format(PyExc_TypeError,
+                             "%s: buffer of format '%s' is not float32/float64 "
+                             "(use array('f') or array('d'))",
+                             what, view.format ? view.format : "B");
+                PyBuffer_Release(&view);
+                return 0;
+            }
+            size_t count = (size_t)(view.len / view.itemsize);
+            if (count > CX_MAX_INPUT_VALUES) {
+                PyErr_Format(PyExc_ValueError, "%s: %zu values exceed the limit of %zu", what,
+                             count, CX_MAX_INPUT_VALUES);
+                PyBuffer_Release(&view);
+                return 0;
+            }
+            double *d = PyMem_Malloc((count ? count : 1) * sizeof *d);
+            if (d == NULL) {
+                PyBuffer_Release(&view);
+                PyErr_NoMemory();
+                return 0;
+            }
+            if (kind == 'd') {
+                memcpy(d, view.buf, count * sizeof *d);
+            } else {
+                const float *f = view.buf;
+                for (size_t i = 0; i < count; i++)
+                    d[i] = (double)f[i];
+            }
+            PyBuffer_Release(&view);
+            *out = d;
+            *n = count;
+            return 1;
+        }
+        PyErr_Clear(); /* not contiguous: read it as a sequence */
+    }
+    if (PyUnicode_Check(obj)) {
+        PyErr_Format(PyExc_TypeError, "%s: expected a flat sequence of numbers, got str", what);
+        return 0;
+    }
+    PyObject *seq = PySequence_Fast(obj, "expected a flat sequence of numbers");
+    if (seq == NULL) {
+        PyErr_Format(PyExc_TypeError, "%s: expected a flat sequence of numbers, got %s", what,
+                     Py_TYPE(obj)->tp_name);
+        return 0;
+    }
+    Py_ssize_t len = PySequence_Fast_GET_SIZE(seq);
+    if ((size_t)len > CX_MAX_INPUT_VALUES) {
+        Py_DECREF(seq);
+        PyErr_Format(PyExc_ValueError, "%s: %zd values exceed the limit of %zu", what, len,
+                     CX_MAX_INPUT_VALUES);
+        return 0;
+    }
+    double *d = PyMem_Malloc((size_t)(len ? len : 1) * sizeof *d);
+    if (d == NULL) {
+        Py_DECREF(seq);
+        PyErr_NoMemory();
+        return 0;
+    }
+    PyObject **items = PySequence_Fast_ITEMS(seq);
+    for (Py_ssize_t i = 0; i < len; i++) {
+        double v = PyFloat_AsDouble(items[i]);
+        if (v == -1.0 && PyErr_Occurred()) {
+            PyErr_Clear();
+            PyErr_Format(PyExc_TypeError, "%s[%zd]: expected a number, got %s", what, i,
+                         Py_TYPE(items[i])->tp_name);
+            PyMem_Free(d);
+            Py_DECREF(seq);
+            return 0;
+        }
+        d[i] = v;
+    }
+    Py_DECREF(seq);
+    *out = d;
+    *n = (size_t)len;
+    return 1;
+}
+
+/* Index of the first non-finite value, or n. */
+static size_t cx_first_nonfinite(const double *v, size_t n)
+{
+    for (size_t i = 0; i < n; i++)
+        if (!isfinite(v[i]))
+            return i;
+    return n;
+}
+
+/* New array.array of typecode 'd' or 'f' holding n values of v (stride
+ * `dim` values per item, padded with `pad` to `stride` when stride > dim). */
+static PyObject *cx_make_array(cx_state *s, char typecode, const double *v, size_t items,
+                               int dim, int stride, double pad)
+{
+    size_t count = items * (size_t)stride;
+    size_t esize = typecode == 'f' ? sizeof(float) : sizeof(double);
+    PyObject *bytes = PyBytes_FromStringAndSize(NULL, (Py_ssize_t)(count * esize));
+    if (bytes == NULL)
+        return NULL;
+    char *raw = PyBytes_AS_STRING(bytes);
+    for (size_t i = 0; i < items; i++) {
+        for (int k = 0; k < stride; k++) {
+            double x = k < dim ? v[i * (size_t)dim + (size_t)k] : pad;
+            size_t at = (i * (size_t)stride + (size_t)k) * esize;
+            if (typecode == 'f') {
+                float f = (float)x;
+                memcpy(raw + at, &f, sizeof f);
+            } else {
+                memcpy(raw + at, &x, sizeof x);
+            }
+        }
+    }
+    char tc[2] = {typecode, '\0'};
+    PyObject *arr = PyObject_CallFunction(s->array_type, "sO", tc, bytes);
+    Py_DECREF(bytes);
+    return arr;
+}
+
+static int cx_typecode(PyObject *obj, char *out)
+{
+    if (obj == NULL) {
+        *out = 'd';
+        return 1;
+    }
+    const char *t = PyUnicode_Check(obj) ? PyUnicode_AsUTF8(obj) : NULL;
+    if (t == NULL || (strcmp(t, "d") != 0 && strcmp(t, "f") != 0)) {
+        PyErr_Clear();
+        PyErr_SetString(PyExc_ValueError, "typecode must be 'd' or 'f'");
+        return 0;
+    }
+    *out = t[0];
+    return 1;
+}
+
+/* ------------------------------------------------------------ plane fit */
+
+/*
+ * Eigen decomposition of a symmetric 3x3 matrix by cyclic Jacobi rotations
+ * (converges quadratically; 3x3 needs a handful of sweeps). Eigenvalues go
+ * to w (ascending), eigenvectors to the columns of v.
+ */
+static void cx_eigen_sym3(double a_in[3][3], double w[3], double v[3][3])
+{
+    double a[3][3];
+    memcpy(a, a_in, sizeof a);
+    for (int i = 0; i < 3; i++)
+        for (int j = 0; j < 3; j++)
+            v[i][j] = i == j ? 1.0 : 0.0;
+    for (int sweep = 0; sweep < 50; sweep++) {
+        double off = fabs(a[0][1]) + fabs(a[0][2]) + fabs(a[1][2]);
+        double diag = fabs(a[0][0]) + fabs(a[1][1]) + fabs(a[2][2]);
+        if (off == 0.0 || off <= 1e-300 || off < DBL_EPSILON * 1e-3 * diag)
+            break;
+        for (int p = 0; p < 2; p++) {
+            for (int q = p + 1; q < 3; q++) {
+                if (a[p][q] == 0.0)
+                    continue;
+                double theta = (a[q][q] - a[p][p]) / (2.0 * a[p][q]);
+                double t = (theta >= 0 ? 1.0 : -1.0) / (fabs(theta) + sqrt(theta * theta + 1.0));
+                double c = 1.0 / sqrt(t * t + 1.0), sn = t * c;
+                for (int k = 0; k < 3; k++) { /* A <- A J */
+                    double akp = a[k][p], akq = a[k][q];
+                    a[k][p] = c * akp - sn * akq;
+                    a[k][q] = sn * akp + c * akq;
+                }
+                for (int k = 0; k < 3; k++) { /* A <- J^T A */
+                    double apk = a[p][k], aqk = a[q][k];
+                    a[p][k] = c * apk - sn * aqk;
+                    a[q][k] = sn * apk + c * aqk;
+                }
+                for (int k = 0; k < 3; k++) {
+                    double vkp = v[k][p], vkq = v[k][q];
+                    v[k][p] = c * vkp - sn * vkq;
+                    v[k][q] = sn * vkp + c * vkq;
+                }
+            }
+        }
+    }
+    int idx[3] = {0, 1, 2};
+    for (int i = 0; i < 3; i++)
+        for (int j = i + 1; j < 3; j++)
+            if (a[idx[j]][idx[j]] < a[idx[i]][idx[i]]) {
+                int t = idx[i];
+                idx[i] = idx[j];
+                idx[j] = t;
+            }
+    double vv[3][3];
+    for (int j = 0; j < 3; j++) {
+        w[j] = a[idx[j]][idx[j]];
+        for (int i = 0; i < 3; i++)
+            vv[i][j] = v[i][idx[j]];
+    }
+    memcpy(v, vv, sizeof vv);
+}
+
+typedef struct cx_plane {
+    double origin[3], normal[3], u[3], v[3];
+    double deviation; /* largest distance of a point from the plane */
+    double size;      /* bounding-box diagonal */
+} cx_plane;
+
+/*
+ * Best-fit plane of n 3D points: through the centroid, normal along the
+ * eigenvector of the smallest eigenvalue of the covariance matrix (total
+ * least squares). Coordinates are taken relative to the centroid first so
+ * the result does not depend on where the spline sits.
+ */
+static void cx_fit_plane(const double *p, size_t n, cx_plane *pl)
+{
+    double c[3] = {0, 0, 0}, lo[3], hi[3];
+    for (int k = 0; k < 3; k++) {
+        lo[k] = hi[k] = p[k];
+    }
+    for (size_t i = 0; i < n; i++)
+        for (int k = 0; k < 3; k++) {
+            double x = p[3 * i + (size_t)k];
+            c[k] += x;
+            if (x < lo[k]) lo[k] = x;
+            if (x > hi[k]) hi[k] = x;
+        }
+    for (int k = 0; k < 3; k++)
+        c[k] /= (double)n;
+    /* Second pass: the mean of (p - c) removes the centroid's rounding. */
+    double d[3] = {0, 0, 0};
+    for (size_t i = 0; i < n; i++)
+        for (int k = 0; k < 3; k++)
+            d[k] += p[3 * i + (size_t)k] - c[k];
+    for (int k = 0; k < 3; k++)
+        c[k] += d[k] / (double)n;
+    double cov[3][3] = {{0}};
+    for (size_t i = 0; i < n; i++) {
+        double q[3] = {p[3 * i] - c[0], p[3 * i + 1] - c[1], p[3 * i + 2] - c[2]};
+        for (int r = 0; r < 3; r++)
+            for (int s = 0; s < 3; s++)
+                cov[r][s] += q[r] * q[s];
+    }
+    double w[3], v[3][3];
+    cx_eigen_sym3(cov, w, v);
+    for (int k = 0; k < 3; k++) {
+        pl->origin[k] = c[k];
+        pl->normal[k] = v[k][0];
+        pl->u[k] = v[k][2];
+    }
+    /* v = normal x u: a right-handed frame, so a curve counter-clockwise
+     * seen from +normal stays counter-clockwise in (u, v). */
+    pl->v[0] = pl->normal[1] * pl->u[2] - pl->normal[2] * pl->u[1];
+    pl->v[1] = pl->normal[2] * pl->u[0] - pl->normal[0] * pl->u[2];
+    pl->v[2] = pl->normal[0] * pl->u[1] - pl->normal[1] * pl->u[0];
+    double dev = 0.0;
+    for (size_t i = 0; i < n; i++) {
+        double q = 0.0;
+        for (int k = 0; k < 3; k++)
+            q += (p[3 * i + (size_t)k] - c[k]) * pl->normal[k];
+        if (fabs(q) > dev)
+            dev = fabs(q);
+    }
+    pl->deviation = dev;
+    pl->size = sqrt((hi[0] - lo[0]) * (hi[0] - lo[0]) + (hi[1] - lo[1]) * (hi[1] - lo[1]) +
+                    (hi[2] - lo[2]) * (hi[2] - lo[2]));
+}
+
+static void cx_to_plane(const cx_plane *pl, const double *p3, size_t n, double *p2, int is_vector)
+{
+    for (size_t i = 0; i < n; i++) {
+        double q[3];
+        for (int k = 0; k < 3; k++)
+            q[k] = p3[3 * i + (size_t)k] - (is_vector ? 0.0 : pl->origin[k]);
+        p2[2 * i] = q[0] * pl->u[0] + q[1] * pl->u[1] + q[2] * pl->u[2];
+        p2[2 * i + 1] = q[0] * pl->v[0] + q[1] * pl->v[1] + q[2] * pl->v[2];
+    }
+}
+
+static void cx_from_plane(const cx_plane *pl, const double *p2, size_t n, double *p3, int is_vector)
+{
+    for (size_t i = 0; i < n; i++)
+        for (int k = 0; k < 3; k++)
+            p3[3 * i + (size_t)k] = (is_vector ? 0.0 : pl->origin[k]) + p2[2 * i] * pl->u[k] +
+                                    p2[2 * i + 1] * pl->v[k];
+}
+
+/* ------------------------------------------------------------ subdivision */
+
+/* Growable 2D point-normal buffer for joining pieces split at corners. */
+typedef struct cx_buf {
+    size_t n, cap;
+    double *xy, *nxy;
+} cx_buf;
+
+static int cx_buf_push(cx_buf *b, const double *xy, const double *nxy, size_t count)
+{
+    if (b->n + count > b->cap) {
+        size_t cap = b->cap ? b->cap : 64;
+        while (cap < b->n + count)
+            cap *= 2;
+        double *x = realloc(b->xy, 2 * cap * sizeof *x);
+        if (x == NULL)
+            return 0;
+        b->xy = x;
+        double *nn = realloc(b->nxy, 2 * cap * sizeof *nn);
+        if (nn == NULL)
+            return 0;
+        b->nxy = nn;
+        b->cap = cap;
+    }
+    memcpy(b->xy + 2 * b->n, xy, 2 * count * sizeof *xy);
+    memcpy(b->nxy + 2 * b->n, nxy, 2 * count * sizeof *nxy);
+    b->n += count;
+    return 1;
+}
+
+static double cx_angle_between(double ax, double ay, double bx, double by)
+{
+    double cr = ax * by - ay * bx, dt = ax * bx + ay * by;
+    return fabs(atan2(cr, dt));
+}
+
+/* Everything a subdivision call needs, in 2D plane coordinates. */
+typedef struct cx_job {
+    /* inputs */
+    size_t n;
+    int closed;
+    const double *xy;      /* 2n */
+    const double *nin;     /* 2n normals for the edge arriving at a point, or NULL */
+    const double *nout;    /* 2n normals for the edge leaving a point, or NULL */
+    double corner_angle;   /* radians; <= 0: no corners */
+    conica_subdiv_settings set;
+    /* outputs */
+    cx_buf out;
+    size_t *inflections;
+    size_t ninflections;
+    size_t corners;
+    double seconds;
+    conica_status st;
+} cx_job;
+
+/* Is vertex i a corner? From the normals when given (the tangent kink at a
+ * Bezier anchor), from the polygon's turning angle otherwise. */
+static int cx_is_corner(const cx_job *j, size_t i)
+{
+    if (j->corner_angle <= 0.0)
+        return 0;
+    if (j->nin && j->nout)
+        return cx_angle_between(j->nin[2 * i], j->nin[2 * i + 1], j->nout[2 * i],
+                                j->nout[2 * i + 1]) > j->corner_angle;
+    if (!j->closed && (i == 0 || i + 1 == j->n))
+        return 0;
+    size_t a = (i + j->n - 1) % j->n, b = (i + 1) % j->n;
+    double ex = j->xy[2 * i] - j->xy[2 * a], ey = j->xy[2 * i + 1] - j->xy[2 * a + 1];
+    double fx = j->xy[2 * b] - j->xy[2 * i], fy = j->xy[2 * b + 1] - j->xy[2 * i + 1];
+    return cx_angle_between(ex, ey, fx, fy) > j->corner_angle;
+}
+
+static conica_code cx_nomem(cx_job *j)
+{
+    j->st.code = CONICA_ERR_NOMEM;
+    snprintf(j->st.message, sizeof j->st.message, "out of memory");
+    return CONICA_ERR_NOMEM;
+}
+
+/* Subdivide the open or closed chain of input vertices idx[0..m-1]. */
+static conica_code cx_run_piece(cx_job *j, const size_t *idx, size_t m, int closed, int first)
+{
+    double *pxy = malloc(2 * m * sizeof *pxy);
+    double *pn = j->nin || j->nout ? malloc(2 * m * sizeof *pn) : NULL;
+    if (pxy == NULL || ((j->nin || j->nout) && pn == NULL)) {
+        free(pxy);
+        free(pn);
+        return cx_nomem(j);
+    }
+    for (size_t k = 0; k < m; k++) {
+        size_t i = idx[k];
+        pxy[2 * k] = j->xy[2 * i];
+        pxy[2 * k + 1] = j->xy[2 * i + 1];
+        if (pn) {
+            /* At a piece end the one-sided normal applies: the arriving
+             * one at the last vertex, the leaving one at the first. */
+            const double *src;
+            if (!closed && k == 0)
+                src = j->nout ? j->nout : j->nin;
+            else if (!closed && k + 1 == m)
+                src = j->nin ? j->nin : j->nout;
+            else
+                src = NULL;
+            if (src) {
+                pn[2 * k] = src[2 * i];
+                pn[2 * k + 1] = src[2 * i + 1];
+            } else { /* both sides: the bisecting direction */
+                const double *a = j->nin ? j->nin : j->nout, *b = j->nout ? j->nout : j->nin;
+                double la = hypot(a[2 * i], a[2 * i + 1]), lb = hypot(b[2 * i], b[2 * i + 1]);
+                la = la > 0 ? la : 1.0;
+                lb = lb > 0 ? lb : 1.0;
+                pn[2 * k] = a[2 * i] / la + b[2 * i] / lb;
+                pn[2 * k + 1] = a[2 * i + 1] / la + b[2 * i + 1] / lb;
+            }
+        }
+    }
+    conica_curve in, out;
+    conica_curve_init(&in);
+    conica_curve_init(&out);
+    conica_subdiv_info info;
+    conica_subdiv_info_init(&info);
+    conica_code rc = conica_curve_set(pxy, pn, m, closed, &in, &j->st);
+    free(pxy);
+    free(pn);
+    if (rc == CONICA_OK) {
+        double t0 = cx_now();
+        rc = conica_subdivide(&in, &j->set, &out, &info, &j->st);
+        j->seconds += cx_now() - t0;
+    }
+    conica_curve_free(&in);
+    if (rc != CONICA_OK) {
+        conica_subdiv_info_free(&info);
+        return rc;
+    }
+    size_t skip = first ? 0 : 1; /* the shared corner vertex is already there */
+    size_t base = j->out.n;
+    if (out.n > skip && !cx_buf_push(&j->out, out.xy + 2 * skip, out.nxy + 2 * skip, out.n - skip)) {
+        conica_curve_free(&out);
+        conica_subdiv_info_free(&info);
+        return cx_nomem(j);
+    }
+    if (info.inflections > 0 && info.inflection_index) {
+        size_t *ni = realloc(j->inflections, (j->ninflections + info.inflections) * sizeof *ni);
+        if (ni == NULL) {
+            conica_curve_free(&out);
+            conica_subdiv_info_free(&info);
+            return cx_nomem(j);
+        }
+        j->inflections = ni;
+        for (size_t k = 0; k < info.inflections; k++)
+            if (info.inflection_index[k] >= skip)
+                j->inflections[j->ninflections++] = base + info.inflection_index[k] - skip;
+    }
+    conica_curve_free(&out);
+    conica_subdiv_info_free(&info);
+    return CONICA_OK;
+}
+
+/* Run the whole job: split at corners, subdivide the pieces, join them and
+ * rotate a closed result back so it starts at input vertex 0. Runs without
+ * the GIL (no Python calls in here). */
+static conica_code cx_run(cx_job *j)
+{
+    size_t n = j->n;
+    size_t *idx = malloc((n + 1) * sizeof *idx);
+    size_t *corner = malloc((n + 1) * sizeof *corner);
+    if (idx == NULL || corner == NULL) {
+        free(idx);
+        free(corner);
+        j->st.code = CONICA_ERR_NOMEM;
+        snprintf(j->st.message, sizeof j->st.message, "out of memory");
+        return CONICA_ERR_NOMEM;
+    }
+    size_t nc = 0;
+    for (size_t i = 0; i < n; i++)
+        if (cx_is_corner(j, i))
+            corner[nc++] = i;
+    j->corners = nc;
+    conica_code rc = CONICA_OK;
+    if (nc == 0) {
+        for (size_t i = 0; i < n; i++)
+            idx[i] = i;
+        rc = cx_run_piece(j, idx, n, j->closed, 1);
+    } else {
+        /* Open pieces between consecutive corners (and the ends of an
+         * open curve); a closed curve is walked from its first corner. */
+        size_t start = j->closed ? corner[0] : 0;
+        size_t total = j->closed ? n : n - 1; /* edges */
+        size_t m = 0, first = 1;
+        idx[m++] = start;
+        for (size_t e = 1; e <= total && rc == CONICA_OK; e++) {
+            size_t i = (start + e) % n;
+            idx[m++] = i;
+            int end = (e == total) || cx_is_corner(j, i);
+            if (end) {
+                rc = cx_run_piece(j, idx, m, 0, (int)first);
+                first = 0;
+                m = 0;
+                idx[m++] = i;
+            }
+        }
+        if (rc == CONICA_OK && j->closed && j->out.n > 1) {
+            /* Drop the repeated start vertex, then rotate to vertex 0. */
+            j->out.n--;
+            size_t z = 0;
+            const double x0 = j->xy[0], y0 = j->xy[1];
+            while (z < j->out.n && !(j->out.xy[2 * z] == x0 && j->out.xy[2 * z + 1] == y0))
+                z++;
+            if (z > 0 && z < j->out.n) {
+                size_t N = j->out.n;
+                double *rx = malloc(2 * N * sizeof *rx), *rn = malloc(2 * N * sizeof *rn);
+                if (rx == NULL || rn == NULL) {
+                    free(rx);
+                    free(rn);
+                    rc = CONICA_ERR_NOMEM;
+                    j->st.code = rc;
+                    snprintf(j->st.message, sizeof j->st.message, "out of memory");
+                } else {
+                    for (size_t k = 0; k < N; k++) {
+                        size_t from = (k + z) % N;
+                        rx[2 * k] = j->out.xy[2 * from];
+                        rx[2 * k + 1] = j->out.xy[2 * from + 1];
+                        rn[2 * k] = j->out.nxy[2 * from];
+                        rn[2 * k + 1] = j->out.nxy[2 * from + 1];
+                    }
+                    free(j->out.xy);
+                    free(j->out.nxy);
+                    j->out.xy = rx;
+                    j->out.nxy = rn;
+                    for (size_t k = 0; k < j->ninflections; k++)
+                        j->inflections[k] = (j->inflections[k] % N + N - z) % N;
+                }
+            }
+        }
+    }
+    free(idx);
+    free(corner);
+    return rc;
+}
+
+/*
+ * Interpolate m attributes per input vertex onto the output: old vertices
+ * are kept bit-for-bit by the scheme (seed 000, Section 1.1), so each input
+ * vertex is found again in the output in order; the points in between get
+ * values linear in the chord length between their two anchors.
+ * Returns 0 when an input vertex cannot be found (should not happen).
+ */
+static int cx_interp_attrs(const double *inxy, size_t n, int closed, const double *attr, int m,
+                           const double *oxy, size_t N, double *oattr)
+{
+    size_t *anchor = malloc((n + 1) * sizeof *anchor);
+    if (anchor == NULL)
+        return 0;
+    size_t k = 0;
+    for (size_t i = 0; i < n; i++) {
+        while (k < N && !(oxy[2 * k] == inxy[2 * i] && oxy[2 * k + 1] == inxy[2 * i + 1]))
+            k++;
+        if (k == N) {
+            free(anchor);
+            return 0;
+        }
+        anchor[i] = k++;
+    }
+    anchor[n] = closed ? N : anchor[n - 1];
+    for (size_t i = 0; i < n; i++) {
+        size_t a = anchor[i], b = anchor[i + 1];
+        size_t inext = (i + 1) % n;
+        if (!closed && i + 1 == n) {
+            for (int q = 0; q < m; q++)
+                oattr[a * (size_t)m + (size_t)q] = attr[i * (size_t)m + (size_t)q];
+            continue;
+        }
+        double total = 0.0;
+        for (size_t t = a; t < b; t++) {
+            size_t u = (t + 1) % N;
+            total += hypot(oxy[2 * u] - oxy[2 * t], oxy[2 * u + 1] - oxy[2 * t + 1]);
+        }
+        double run = 0.0;
+        for (size_t t = a; t < b; t++) {
+            double f = total > 0 ? run / total : (double)(t - a) / (double)(b - a);
+            for (int q = 0; q < m; q++) {
+                double v0 = attr[i * (size_t)m + (size_t)q], v1 = attr[inext * (size_t)m + (size_t)q];
+                oattr[t * (size_t)m + (size_t)q] = v0 + f * (v1 - v0);
+            }
+            size_t u = (t + 1) % N;
+            run += hypot(oxy[2 * u] - oxy[2 * t], oxy[2 * u + 1] - oxy[2 * t + 1]);
+        }
+    }
+    free(anchor);
+    return 1;
+}
+
+/*
+ * Cubic Bezier handles along the conic tangents. The curve was refined one
+ * level further than asked: the even points are the result, each odd point
+ * m is the scheme's edge point of the conic arc between its neighbours.
+ * Written as a rational quadratic Bezier (p0, C, p1; weight w), with C the
+ * intersection of the tangent lines, the arc's midpoint satisfies
+ * m - M = w/(1+w) (C - M) with M the chord midpoint; the cubic through the
+ * same ends and tangents that matches the arc's midpoint has handles
+ * p0 + 4/3 w/(1+w) (C - p0) (for a circle this is the classical
+ * 4/3 tan(theta/4) r). Where the tangents do not meet ahead of the chord
+ * (inflection, straight piece) the handles are a third of the chord along
+ * the tangents.
+ */
+static void cx_handles(const double *fxy, const double *fn, size_t N, int closed, double *left,
+                       double *right)
+{
+    size_t segs = closed ? N : N - 1;
+    size_t F = closed ? 2 * N : 2 * N - 1;
+    for (size_t i = 0; i < N; i++) { /* defaults for open ends */
+        left[2 * i] = right[2 * i] = fxy[4 * i];
+        left[2 * i + 1] = right[2 * i + 1] = fxy[4 * i + 1];
+    }
+    for (size_t s = 0; s < segs; s++) {
+        size_t a = 2 * s, mi = 2 * s + 1, b = (2 * s + 2) % F;
+        double p0x = fxy[2 * a], p0y = fxy[2 * a + 1], p1x = fxy[2 * b], p1y = fxy[2 * b + 1];
+        double mx = fxy[2 * mi], my = fxy[2 * mi + 1];
+        double t0x = -fn[2 * a + 1], t0y = fn[2 * a], t1x = -fn[2 * b + 1], t1y = fn[2 * b];
+        double cx = p1x - p0x, cy = p1y - p0y, chord = hypot(cx, cy);
+        /* orient the tangents along the chord */
+        if (t0x * cx + t0y * cy < 0) { t0x = -t0x; t0y = -t0y; }
+        if (t1x * cx + t1y * cy < 0) { t1x = -t1x; t1y = -t1y; }
+        double l0 = hypot(t0x, t0y), l1 = hypot(t1x, t1y);
+        double h0x, h0y, h1x, h1y;
+        int done = 0;
+        if (l0 > 0) { t0x /= l0; t0y /= l0; }
+        if (l1 > 0) { t1x /= l1; t1y /= l1; }
+        if (l0 > 0 && l1 > 0 && chord > 0) {
+            /* p0 + a t0 = p1 - b t1  ->  a t0 + b t1 = p1 - p0 */
+            double det = t0x * t1y - t0y * t1x;
+            if (fabs(det) > 1e-12) {
+                double aa = (cx * t1y - cy * t1x) / det;
+                double bb = (t0x * cy - t0y * cx) / det;
+                if (aa > 0 && bb > 0 && aa < 4 * chord && bb < 4 * chord) {
+                    double Cx = p0x + aa * t0x, Cy = p0y + aa * t0y;
+                    double Mx = 0.5 * (p0x + p1x), My = 0.5 * (p0y + p1y);
+                    double dcm = hypot(Cx - Mx, Cy - My);
+                    double sfac = dcm > 0 ? hypot(mx - Mx, my - My) / dcm : 0.5;
+                    if (sfac > 1.0) sfac = 1.0;
+                    double k = 4.0 / 3.0 * sfac;
+                    h0x = p0x + k * (Cx - p0x); h0y = p0y + k * (Cy - p0y);
+                    h1x = p1x + k * (Cx - p1x); h1y = p1y + k * (Cy - p1y);
+                    done = 1;
+                }
+            }
+        }
+        if (!done) {
+            /* a third of the chord along the (unit) tangents, or along the
+             * chord itself where a tangent is missing */
+            double c3 = chord / 3.0;
+            if (l0 > 0 && l1 > 0) {
+                h0x = p0x + c3 * t0x; h0y = p0y + c3 * t0y;
+                h1x = p1x - c3 * t1x; h1y = p1y - c3 * t1y;
+            } else {
+                h0x = p0x + cx / 3; h0y = p0y + cy / 3;
+                h1x = p1x - cx / 3; h1y = p1y - cy / 3;
+            }
+        }
+        size_t ia = s, ib = (s + 1) % N;
+        right[2 * ia] = h0x; right[2 * ia + 1] = h0y;
+        left[2 * ib] = h1x; left[2 * ib + 1] = h1y;
+    }
+    /* open ends: mirror the one handle so the end tangent is kept */
+    if (!closed && N >= 2) {
+        left[0] = 2 * fxy[0] - right[0];
+        left[1] = 2 * fxy[1] - right[1];
+        size_t e = N - 1;
+        right[2 * e] = 2 * fxy[4 * e] - left[2 * e];
+        right[2 * e + 1] = 2 * fxy[4 * e + 1] - left[2 * e + 1];
+    }
+}
+
+static int cx_parse_normal_method(const char *s, conica_normal_method *out)
+{
+    if (strcmp(s, "area") == 0) { *out = CONICA_NORMALS_AREA; return 1; }
+    if (strcmp(s, "circle") == 0) { *out = CONICA_NORMALS_CIRCLE; return 1; }
+    return 0;
+}
+
+PyDoc_STRVAR(subdivide_doc,
+"subdivide(points, normals=None, *, dim=2, closed=False, levels=3, precise=False,\n"
+"          estimate=False, normal_method='area', inflections=True, normals_out=None,\n"
+"          tangents=False, corner_angle=0.0, attrs=None, nattrs=0, handles=False,\n"
+"          plane_tol=1e-6, abs_tol=0.0, stride=0, typecode='d',\n"
+"          max_points=4194304)\n"
+"--\n\n"
+"Conic-preserving subdivision of one spline (seed 000, Section 1.1).\n\n"
+"points: flat x,y (dim=2) or x,y,z (dim=3) values, a buffer of float32/float64\n"
+"or any sequence of numbers. A 3D spline is processed in its best-fit plane;\n"
+"it must be planar within plane_tol * size + abs_tol (NonPlanarError).\n"
+"normals: one vector per point (dim values each) or None (estimated);\n"
+"normals_out: normals of the edge leaving each point when they differ from\n"
+"those arriving (Bezier corners); tangents=True: the vectors are tangents\n"
+"(direction of travel) and are turned into normals in the plane.\n"
+"corner_angle (radians, 0 = off): vertices whose tangents or edges turn by more\n"
+"are kept as corners (the pieces between are subdivided as open curves).\n"
+"attrs: nattrs values per point (radius, tilt, ...) interpolated onto the output.\n"
+"handles=True also returns Bezier handles along the conic tangents.\n"
+"stride > dim pads every output point with 1.0 (stride 4 = Blender's POLY 'co').\n\n"
+"Returns (points, normals, attrs or None, inflections, info) or, with handles=True,\n"
+"(points, normals, attrs, inflections, info, left_handles, right_handles).\n"
+"info is a dict: points, corners, inflections, seconds (libcore), plane data.");
+
+static PyObject *cx_subdivide(PyObject *self, PyObject *args, PyObject *kw)
+{
+    static char *kwlist[] = {"points", "normals", "dim", "closed", "levels", "precise",
+                             "estimate", "normal_method", "inflections", "normals_out",
+                             "tangents", "corner_angle", "attrs", "nattrs", "handles",
+                             "plane_tol", "abs_tol", "stride", "typecode", "max_points", NULL};
+    cx_state *S = cx_get_state(self);
+    PyObject *opoints, *onormals = Py_None, *onormals_out = Py_None, *oattrs = Py_None;
+    PyObject *otype = NULL;
+    int dim = 2, closed = 0, levels = 3, precise = 0, estimate = 0, inflections = 1;
+    int tangents = 0, nattrs = 0, handles = 0, stride = 0;
+    const char *method = "area";
+    double corner_angle = 0.0, plane_tol = 1e-6, abs_tol = 0.0;
+    Py_ssize_t max_points = (Py_ssize_t)CX_DEFAULT_MAX_POINTS;
+    if (!PyArg_ParseTupleAndKeywords(args, kw, "O|O$ipipppspOpdOipddiOn:subdivide", kwlist,
+                                     &opoints, &onormals, &dim, &closed, &levels, &precise,
+                                     &estimate, &method, &inflections, &onormals_out, &tangents,
+                                     &corner_angle, &oattrs, &nattrs, &handles, &plane_tol,
+                                     &abs_tol, &stride, &otype, &max_points))
+        return NULL;
+    char typecode;
+    if (!cx_typecode(otype, &typecode))
+        return NULL;
+    if (dim != 2 && dim != 3)
+        return cx_raisef(S->arg_error, "dim must be 2 or 3, got %d", dim);
+    if (stride == 0)
+        stride = dim;
+    if (stride < dim || stride > 4)
+        return cx_raisef(S->arg_error, "stride must be between dim (%d) and 4, got %d", dim,
+                         stride);
+    if (levels < 0 || levels > CONICA_SUBDIV_MAX_LEVELS)
+        return cx_raisef(S->limit_error, "levels must be 0..%d, got %d",
+                         CONICA_SUBDIV_MAX_LEVELS, levels);
+    if (max_points < 1 || (size_t)max_points > CX_HARD_MAX_POINTS)
+        return cx_raisef(S->limit_error, "max_points must be 1..%zu, got %zd",
+                         CX_HARD_MAX_POINTS, max_points);
+    if (nattrs < 0 || nattrs > CX_MAX_ATTRS)
+        return cx_raisef(S->arg_error, "nattrs must be 0..%d, got %d", CX_MAX_ATTRS, nattrs);
+    if ((oattrs == Py_None) != (nattrs == 0))
+        return cx_raisef(S->arg_error, "attrs and nattrs > 0 go together");
+    if (!isfinite(corner_angle) || corner_angle < 0)
+        return cx_raisef(S->arg_error, "corner_angle must be a finite angle >= 0");
+    if (!isfinite(plane_tol) || plane_tol < 0 || !isfinite(abs_tol) || abs_tol < 0)
+        return cx_raisef(S->arg_error, "plane_tol and abs_tol must be finite and >= 0");
+    conica_normal_method nm;
+    if (!cx_parse_normal_method(method, &nm))
+        return cx_raisef(S->arg_error, "normal_method must be 'area' or 'circle', got '%s'",
+                         method);
+    if (onormals == Py_None && onormals_out != Py_None)
+        return cx_raisef(S->arg_error, "normals_out needs normals");
+
+    PyObject *result = NULL;
+    double *pts = NULL, *nrm = NULL, *nrm_out = NULL, *attrs = NULL;
+    double *xy = NULL, *nin2 = NULL, *nout2 = NULL;
+    double *fin_xy = NULL, *fin_n = NULL, *fin_attr = NULL, *hl = NULL, *hr = NULL;
+    double *o3 = NULL, *on3 = NULL, *hl3 = NULL, *hr3 = NULL;
+    size_t npts_v = 0, nn = 0, nno = 0, na = 0;
+    cx_job job;
+    memset(&job, 0, sizeof job);
+
+    if (!cx_read_doubles(opoints, "points", &pts, &npts_v))
+        goto done;
+    if (npts_v % (size_t)dim != 0) {
+        cx_raisef(S->arg_error, "points: %zu values is not a multiple of dim=%d", npts_v, dim);
+        goto done;
+    }
+    size_t n = npts_v / (size_t)dim;
+    if (n < 2 || (closed && n < 3)) {
+        cx_raisef(S->degenerate, "a%s curve needs at least %d points, got %zu",
+                  closed ? " closed" : "n open", closed ? 3 : 2, n);
+        goto done;
+    }
+    size_t bad = cx_first_nonfinite(pts, npts_v);
+    if (bad < npts_v) {
+        cx_raisef(S->nonfinite, "point %zu has a non-finite coordinate", bad / (size_t)dim);
+        goto done;
+    }
+    if (onormals != Py_None) {
+        if (!cx_read_doubles(onormals, "normals", &nrm, &nn))
+            goto done;
+        if (nn != npts_v) {
+            cx_raisef(S->arg_error, "normals: %zu values for %zu points of dim %d", nn, n, dim);
+            goto done;
+        }
+        if ((bad = cx_first_nonfinite(nrm, nn)) < nn) {
+            cx_raisef(S->nonfinite, "normal %zu is not finite", bad / (size_t)dim);
+            goto done;
+        }
+    }
+    if (onormals_out != Py_None) {
+        if (!cx_read_doubles(onormals_out, "normals_out", &nrm_out, &nno))
+            goto done;
+        if (nno != npts_v) {
+            cx_raisef(S->arg_error, "normals_out: %zu values for %zu points of dim %d", nno, n,
+                      dim);
+            goto done;
+        }
+        if ((bad = cx_first_nonfinite(nrm_out, nno)) < nno) {
+            cx_raisef(S->nonfinite, "normals_out %zu is not finite", bad / (size_t)dim);
+            goto done;
+        }
+    }
+    if (nattrs > 0) {
+        if (!cx_read_doubles(oattrs, "attrs", &attrs, &na))
+            goto done;
+        if (na != n * (size_t)nattrs) {
+            cx_raisef(S->arg_error, "attrs: %zu values for %zu points x %d attributes", na, n,
+                      nattrs);
+            goto done;
+        }
+        if ((bad = cx_first_nonfinite(attrs, na)) < na) {
+            cx_raisef(S->nonfinite, "attribute of point %zu is not finite", bad / (size_t)nattrs);
+            goto done;
+        }
+    }
+    int run_levels = levels + (handles ? 1 : 0);
+    if (run_levels > CONICA_SUBDIV_MAX_LEVELS) {
+        cx_raisef(S->limit_error, "levels %d (+1 for handles) exceed %d", levels,
+                  CONICA_SUBDIV_MAX_LEVELS);
+        goto done;
+    }
+    size_t expect = conica_subdiv_count(n, closed, run_levels);
+    if (expect == 0 || expect > (size_t)max_points * (handles ? 2u : 1u) + 1) {
+        cx_raisef(S->limit_error,
+                  "%zu points at %d levels would give more than max_points=%zd points", n,
+                  levels, max_points);
+        goto done;
+    }
+
+    xy = malloc(2 * n * sizeof *xy);
+    nin2 = nrm ? malloc(2 * n * sizeof *nin2) : NULL;
+    nout2 = nrm_out ? malloc(2 * n * sizeof *nout2) : NULL;
+    if (xy == NULL || (nrm && nin2 == NULL) || (nrm_out && nout2 == NULL)) {
+        PyErr_NoMemory();
+        goto done;
+    }
+    cx_plane pl;
+    memset(&pl, 0, sizeof pl);
+    conica_code rc = CONICA_OK;
+    int nonplanar = 0;
+    Py_BEGIN_ALLOW_THREADS
+    if (dim == 3) {
+        cx_fit_plane(pts, n, &pl);
+        if (pl.deviation > plane_tol * pl.size + abs_tol) {
+            nonplanar = 1;
+        } else {
+            cx_to_plane(&pl, pts, n, xy, 0);
+            if (nrm)
+                cx_to_plane(&pl, nrm, n, nin2, 1);
+            if (nrm_out)
+                cx_to_plane(&pl, nrm_out, n, nout2, 1);
+        }
+    } else {
+        memcpy(xy, pts, 2 * n * sizeof *xy);
+        if (nrm)
+            memcpy(nin2, nrm, 2 * n * sizeof *nin2);
+        if (nrm_out)
+            memcpy(nout2, nrm_out, 2 * n * sizeof *nout2);
+    }
+    if (!nonplanar && tangents) {
+        /* tangent (tx, ty) -> normal (ty, -tx): right of the direction of
+         * travel, libcore's orientation (curve.h) */
+        double *vs[2] = {nin2, nout2};
+        for (int q = 0; q < 2; q++)
+            if (vs[q])
+                for (size_t i = 0; i < n; i++) {
+                    double tx = vs[q][2 * i], ty = vs[q][2 * i + 1];
+                    vs[q][2 * i] = ty;
+                    vs[q][2 * i + 1] = -tx;
+                }
+    }
+    if (!nonplanar) {
+        job.n = n;
+        job.closed = closed;
+        job.xy = xy;
+        job.nin = nin2;
+        job.nout = nout2;
+        job.corner_angle = corner_angle;
+        job.set = conica_subdiv_defaults();
+        job.set.levels = run_levels;
+        job.set.precise = precise;
+        job.set.estimate_normals = estimate || nrm == NULL;
+        job.set.normal_method = nm;
+        job.set.insert_inflections = inflections;
+        job.set.max_points = (size_t)max_points * (handles ? 2u : 1u) + 1;
+        rc = cx_run(&job);
+    }
+    Py_END_ALLOW_THREADS
+    if (nonplanar) {
+        cx_raisef(S->nonplanar,
+                  "spline is not planar: its points are up to %.3g from their best-fit plane, "
+                  "more than %.3g (%.3g of its size %.3g)",
+                  pl.deviation, plane_tol * pl.size + abs_tol, plane_tol, pl.size);
+        goto done;
+    }
+    if (rc != CONICA_OK) {
+        cx_raise(S, rc, &job.st);
+        goto done;
+    }
+
+    /* Decimate when one extra level was run for the handles. */
+    size_t N = job.out.n;
+    size_t F = N;
+    if (handles) {
+        N = closed ? F / 2 : (F + 1) / 2;
+        fin_xy = malloc(2 * N * sizeof *fin_xy);
+        fin_n = malloc(2 * N * sizeof *fin_n);
+        hl = malloc(2 * N * sizeof *hl);
+        hr = malloc(2 * N * sizeof *hr);
+        if (!fin_xy || !fin_n || !hl || !hr) {
+            PyErr_NoMemory();
+            goto done;
+        }
+        for (size_t i = 0; i < N; i++) {
+            memcpy(fin_xy + 2 * i, job.out.xy + 4 * i, 2 * sizeof(double));
+            memcpy(fin_n + 2 * i, job.out.nxy + 4 * i, 2 * sizeof(double));
+        }
+        cx_handles(job.out.xy, job.out.nxy, N, closed, hl, hr);
+    }
+    const double *rxy = handles ? fin_xy : job.out.xy;
+    const double *rn = handles ? fin_n : job.out.nxy;
+    if (nattrs > 0) {
+        fin_attr = malloc((N ? N : 1) * (size_t)nattrs * sizeof *fin_attr);
+        if (fin_attr == NULL) {
+            PyErr_NoMemory();
+            goto done;
+        }
+        if (!cx_interp_attrs(xy, n, closed, attrs, nattrs, rxy, N, fin_attr)) {
+            cx_raisef(S->numeric, "could not find the input vertices in the output");
+            goto done;
+        }
+    }
+    if (dim == 3) {
+        o3 = malloc(3 * N * sizeof *o3);
+        on3 = malloc(3 * N * sizeof *on3);
+        if (handles) {
+            hl3 = malloc(3 * N * sizeof *hl3);
+            hr3 = malloc(3 * N * sizeof *hr3);
+        }
+        if (!o3 || !on3 || (handles && (!hl3 || !hr3))) {
+            PyErr_NoMemory();
+            goto done;
+        }
+        cx_from_plane(&pl, rxy, N, o3, 0);
+        cx_from_plane(&pl, rn, N, on3, 1);
+        if (handles) {
+            cx_from_plane(&pl, hl, N, hl3, 0);
+            cx_from_plane(&pl, hr, N, hr3, 0);
+        }
+    }
+    {
+        /* inflection indices refer to the run output; map to the result */
+        size_t keep = 0;
+        for (size_t k = 0; k < job.ninflections; k++) {
+            size_t v = job.inflections[k];
+            if (handles) {
+                if (v % 2)
+                    continue;
+                v /= 2;
+            }
+            job.inflections[keep++] = v;
+        }
+        job.ninflections = keep;
+    }
+    PyObject *ap = cx_make_array(S, typecode, dim == 3 ? o3 : rxy, N, dim, stride, 1.0);
+    PyObject *an = cx_make_array(S, typecode, dim == 3 ? on3 : rn, N, dim, dim, 0.0);
+    PyObject *aa = nattrs > 0 ? cx_make_array(S, typecode, fin_attr, N, nattrs, nattrs, 0.0)
+                              : (Py_INCREF(Py_None), Py_None);
+    PyObject *infl = PyTuple_New((Py_ssize_t)job.ninflections);
+    PyObject *info = Py_BuildValue(
+        "{s:n,s:n,s:n,s:d,s:d,s:d,s:(ddd),s:(ddd)}", "points", (Py_ssize_t)N, "corners",
+        (Py_ssize_t)job.corners, "inflections", (Py_ssize_t)job.ninflections, "seconds",
+        job.seconds, "plane_deviation", pl.deviation, "size", pl.size, "plane_origin",
+        pl.origin[0], pl.origin[1], pl.origin[2], "plane_normal", pl.normal[0], pl.normal[1],
+        pl.normal[2]);
+    PyObject *al = NULL, *ar = NULL;
+    if (handles) {
+        al = cx_make_array(S, typecode, dim == 3 ? hl3 : hl, N, dim, dim, 0.0);
+        ar = cx_make_array(S, typecode, dim == 3 ? hr3 : hr, N, dim, dim, 0.0);
+    }
+    if (ap && an && aa && infl && info && (!handles || (al && ar))) {
+        for (size_t k = 0; k < job.ninflections; k++)
+            PyTuple_SET_ITEM(infl, (Py_ssize_t)k, PyLong_FromSize_t(job.inflections[k]));
+        if (handles)
+            result = PyTuple_Pack(7, ap, an, aa, infl, info, al, ar);
+        else
+            result = PyTuple_Pack(5, ap, an, aa, infl, info);
+    }
+    Py_XDECREF(ap);
+    Py_XDECREF(an);
+    Py_XDECREF(aa);
+    Py_XDECREF(infl);
+    Py_XDECREF(info);
+    Py_XDECREF(al);
+    Py_XDECREF(ar);
+
+done:
+    PyMem_Free(pts);
+    PyMem_Free(nrm);
+    PyMem_Free(nrm_out);
+    PyMem_Free(attrs);
+    free(xy);
+    free(nin2);
+    free(nout2);
+    free(job.out.xy);
+    free(job.out.nxy);
+    free(job.inflections);
+    free(fin_xy);
+    free(fin_n);
+    free(fin_attr);
+    free(hl);
+    free(hr);
+    free(o3);
+    free(on3);
+    free(hl3);
+    free(hr3);
+    return result;
+}
+
+/* ------------------------------------------------------------ plane fit API */
+
+PyDoc_STRVAR(fit_plane_doc,
+"fit_plane(points) -> (origin, normal, u, v, deviation, size)\n"
+"--\n\n"
+"Best-fit plane of flat x,y,z points (total least squares through the\n"
+"centroid; smallest eigenvector of the 3x3 covariance by Jacobi rotations).\n"
+"u, v span the plane (right-handed with normal); deviation is the largest\n"
+"distance of a point from the plane, size the bounding-box diagonal.");
+
+static PyObject *cx_fit_plane_py(PyObject *self, PyObject *arg)
+{
+    cx_state *S = cx_get_state(self);
+    double *p;
+    size_t nv;
+    if (!cx_read_doubles(arg, "points", &p, &nv))
+        return NULL;
+    if (nv % 3 != 0 || nv == 0) {
+        PyMem_Free(p);
+        return cx_raisef(S->arg_error, "points: %zu values is not a positive multiple of 3", nv);
+    }
+    size_t bad = cx_first_nonfinite(p, nv);
+    if (bad < nv) {
+        PyMem_Free(p);
+        return cx_raisef(S->nonfinite, "point %zu has a non-finite coordinate", bad / 3);
+    }
+    cx_plane pl;
+    Py_BEGIN_ALLOW_THREADS
+    cx_fit_plane(p, nv / 3, &pl);
+    Py_END_ALLOW_THREADS
+    PyMem_Free(p);
+    return Py_BuildValue("(ddd)(ddd)(ddd)(ddd)dd", pl.origin[0], pl.origin[1], pl.origin[2],
+                         pl.normal[0], pl.normal[1], pl.normal[2], pl.u[0], pl.u[1], pl.u[2],
+                         pl.v[0], pl.v[1], pl.v[2], pl.deviation, pl.size);
+}
+
+/* ------------------------------------------------------------ module */
+
+PyDoc_STRVAR(version_doc, "version() -> libcore's version string");
+
+static PyObject *cx_version(PyObject *self, PyObject *unused)
+{
+    (void)self;
+    (void)unused;
+    return PyUnicode_FromString(conica_version());
+}
+
+static PyMethodDef cx_methods[] = {
+    {"subdivide", (PyCFunction)(void (*)(void))cx_subdivide, METH_VARARGS | METH_KEYWORDS,
+     subdivide_doc},
+    {"fit_plane", cx_fit_plane_py, METH_O, fit_plane_doc},
+    {"version", cx_version, METH_NOARGS, version_doc},
+    {NULL, NULL, 0, NULL}};
+
+static int cx_traverse(PyObject *m, visitproc visit, void *arg)
+{
+    cx_state *s = cx_get_state(m);
+    Py_VISIT(s->error);
+    Py_VISIT(s->arg_error);
+    Py_VISIT(s->limit_error);
+    Py_VISIT(s->degenerate);
+    Py_VISIT(s->nonfinite);
+    Py_VISIT(s->nonplanar);
+    Py_VISIT(s->numeric);
+    Py_VISIT(s->nomem);
+    Py_VISIT(s->unsupported);
+    Py_VISIT(s->array_type);
+    return 0;
+}
+
+static int cx_clear(PyObject *m)
+{
+    cx_state *s = cx_get_state(m);
+    Py_CLEAR(s->error);
+    Py_CLEAR(s->arg_error);
+    Py_CLEAR(s->limit_error);
+    Py_CLEAR(s->degenerate);
+    Py_CLEAR(s->nonfinite);
+    Py_CLEAR(s->nonplanar);
+    Py_CLEAR(s->numeric);
+    Py_CLEAR(s->nomem);
+    Py_CLEAR(s->unsupported);
+    Py_CLEAR(s->array_type);
+    return 0;
+}
+
+static void cx_free(void *m)
+{
+    cx_clear((PyObject *)m);
+}
+
+static struct PyModuleDef cx_module = {
+    PyModuleDef_HEAD_INIT,
+    "_conica",
+    "Conic-preserving subdivision and adaptive spline plotting (libconica) for Blender.",
+    sizeof(cx_state),
+    cx_methods,
+    NULL,
+    cx_traverse,
+    cx_clear,
+    cx_free};
+
+/* Create `name` deriving from ConicaError and `builtin`, add it to m. */
+static PyObject *cx_add_exc(PyObject *m, const char *name, PyObject *base, PyObject *builtin,
+                            const char *doc)
+{
+    char full[96];
+    snprintf(full, sizeof full, "_conica.%s", name);
+    PyObject *bases = builtin ? PyTuple_Pack(2, base, builtin) : PyTuple_Pack(1, base);
+    if (bases == NULL)
+        return NULL;
+    PyObject *e = PyErr_NewExceptionWithDoc(full, doc, bases, NULL);
+    Py_DECREF(bases);
+    if (e == NULL)
+        return NULL;
+    Py_INCREF(e);
+    if (PyModule_AddObject(m, name, e) < 0) {
+        Py_DECREF(e);
+        Py_DECREF(e);
+        return NULL;
+    }
+    return e;
+}
+
+PyMODINIT_FUNC PyInit__conica(void);
+
+PyMODINIT_FUNC PyInit__conica(void)
+{
+    PyObject *m = PyModule_Create(&cx_module);
+    if (m == NULL)
+        return NULL;
+    cx_state *s = cx_get_state(m);
+    PyObject *arraymod = PyImport_ImportModule("array");
+    if (arraymod == NULL)
+        goto fail;
+    s->array_type = PyObject_GetAttrString(arraymod, "array");
+    Py_DECREF(arraymod);
+    if (s->array_type == NULL)
+        goto fail;
+    s->error = PyErr_NewExceptionWithDoc("_conica.ConicaError",
+                                         "Base class of every error libconica reports; "
+                                         "`code` holds libconica's status code.",
+                                         PyExc_Exception, NULL);
+    if (s->error == NULL)
+        goto fail;
+    Py_INCREF(s->error);
+    if (PyModule_AddObject(m, "ConicaError", s->error) < 0) {
+        Py_DECREF(s->error);
+        goto fail;
+    }
+    if (!(s->arg_error = cx_add_exc(m, "ArgumentError", s->error, PyExc_ValueError,
+                                    "An invalid argument (size, setting).")) ||
+        !(s->limit_error = cx_add_exc(m, "LimitError", s->error, PyExc_ValueError,
+                                      "A size limit (levels, points) would be exceeded.")) ||
+        !(s->degenerate = cx_add_exc(m, "DegenerateError", s->error, PyExc_ValueError,
+                                     "Degenerate geometry (too few or coincident points).")) ||
+        !(s->nonfinite = cx_add_exc(m, "NonFiniteError", s->error, PyExc_ValueError,
+                                    "NaN or infinite input.")) ||
+        !(s->nonplanar = cx_add_exc(m, "NonPlanarError", s->error, PyExc_ValueError,
+                                    "A 3D spline that is not planar within the tolerance.")) ||
+        !(s->numeric = cx_add_exc(m, "NumericError", s->error, PyExc_RuntimeError,
+                                  "A numerical method failed.")) ||
+        !(s->nomem = cx_add_exc(m, "OutOfMemoryError", s->error, PyExc_MemoryError,
+                                "Out of memory.")) ||
+        !(s->unsupported = cx_add_exc(m, "UnsupportedError", s->error,
+                                      PyExc_NotImplementedError, "Valid but unsupported input.")))
+        goto fail;
+    if (PyModule_AddStringConstant(m, "SOABI", CONICA_SOABI) < 0 ||
+        PyModule_AddObject(m, "PY_VERSION",
+                           Py_BuildValue("(ii)", PY_MAJOR_VERSION, PY_MINOR_VERSION)) < 0 ||
+        PyModule_AddIntConstant(m, "MAX_LEVELS", CONICA_SUBDIV_MAX_LEVELS) < 0 ||
+        PyModule_AddIntConstant(m, "MAX_POINTS", (long)CX_HARD_MAX_POINTS) < 0)
+        goto fail;
+    return m;
+fail:
+    Py_DECREF(m);
+    return NULL;
+}

@@ -1,0 +1,57 @@
+# blender_addon: the _conica CPython extension and the installable add-on zip.
+#
+#   make blender-addon   ->  $(BUILD)/conica-blender.zip
+#
+# Built against the Python that Debian's Blender embeds (the system 3.11),
+# so python3-config is taken from /usr/bin, never from PATH (a pyenv or
+# venv python3 may be another 3.11 build). libconica is linked in
+# statically and its symbols hidden (--exclude-libs), so the add-on needs
+# no libconica on the user's machine. LAPACKE, which libcore uses for its
+# SVD fit, is linked statically too; the LAPACK/BLAS it calls stay dynamic
+# (--as-needed): Debian's blender package itself depends on liblapack3 and
+# libblas3, so every Blender that can load this module already has them.
+BLENDER_PYCONFIG ?= /usr/bin/python3-config
+BLENDER_PY_INC   := $(shell $(BLENDER_PYCONFIG) --includes 2>/dev/null)
+BLENDER_PY_EXT   := $(shell $(BLENDER_PYCONFIG) --extension-suffix 2>/dev/null)
+BLENDER_PY_EXT   := $(if $(BLENDER_PY_EXT),$(BLENDER_PY_EXT),.cpython-311-x86_64-linux-gnu.so)
+BLENDER_SOABI    := $(patsubst .%.so,%,$(BLENDER_PY_EXT))
+
+BLENDER_STAGE := $(BUILD)/blender/conica
+BLENDER_EXT   := $(BLENDER_STAGE)/_conica$(BLENDER_PY_EXT)
+BLENDER_ZIP   := $(BUILD)/conica-blender.zip
+BLENDER_PKG_SRCS := $(wildcard blender_addon/conica/*.py blender_addon/conica/*.toml)
+BLENDER_EXT_OBJ := $(BUILD)/obj/blender_addon/ext/_conica.o
+
+# Python.h is included as a system header (-isystem): its inline functions
+# trip -Wconversion/-Wpedantic inside CPython's own headers, which we cannot
+# change; our own code still compiles with the full project warning set.
+$(BLENDER_EXT_OBJ): CPPFLAGS += $(patsubst -I%,-isystem %,$(BLENDER_PY_INC)) \
+    -DCONICA_SOABI='"$(BLENDER_SOABI)"'
+
+$(BLENDER_EXT): $(BLENDER_EXT_OBJ) $(CORE_A)
+	@mkdir -p $(@D)
+	$(CC) -shared $(LDFLAGS) -o $@ $(BLENDER_EXT_OBJ) $(CORE_A) \
+	  -Wl,--exclude-libs,ALL -Wl,--no-undefined-version \
+	  -Wl,-Bstatic -llapacke -Wl,-Bdynamic -Wl,--as-needed -llapack -lblas -lm -Wl,--no-as-needed
+
+$(BLENDER_STAGE)/%: blender_addon/conica/%
+	@mkdir -p $(@D)
+	cp $< $@
+
+$(BLENDER_ZIP): $(BLENDER_EXT) $(BLENDER_PKG_SRCS:blender_addon/conica/%=$(BLENDER_STAGE)/%)
+	rm -f $@.tmp
+	cd $(BUILD)/blender && $(BLENDER_PYCONFIG:-config=) -c 'import sys, zipfile, os; \
+	  z = zipfile.ZipFile(sys.argv[1], "w", zipfile.ZIP_DEFLATED); \
+	  [z.write(os.path.join(d, f)) for d, _, fs in sorted(os.walk("conica")) for f in sorted(fs) \
+	   if not f.endswith(".pyc")]; z.close()' $(abspath $@.tmp)
+	mv $@.tmp $@
+
+blender-addon: $(BLENDER_ZIP)
+
+TEST_EXTRA += $(BLENDER_ZIP)
+DEMO_DEPS  += $(BLENDER_ZIP)
+
+.PHONY: blender-addon
+
+# scripts/bench-blender.sh (run by `make bench`) loads the zip.
+bench: $(BLENDER_ZIP)
