@@ -1,0 +1,130 @@
+/* Visual diagnostics shared by `conica combs`, `conica errors` and
+ * bench/bench_ablation (issue 9): curvature combs (seed 000, Section 2.2,
+ * Code 3), conic and normal errors (Section 3.2, eqs. (13)-(14)) and a
+ * small SVG writer (viewBox, y flipped, compact fixed-point numbers that do
+ * not depend on the C locale). Internal to the command-line tools. */
+#ifndef CONICA_PLOTSVG_H
+#define CONICA_PLOTSVG_H
+
+#include <stddef.h>
+#include <stdio.h>
+
+#include "conica/curve.h"
+
+/* Auto comb scale: the largest tooth is this fraction of the curve's size
+ * (the larger side of its bounding box). */
+#define PLOTSVG_COMB_FRACTION 0.15
+/* Default cap on drawn teeth (every vertex still shapes the comb outline);
+ * keeps an SVG of a level-12 curve small. */
+#define PLOTSVG_DEFAULT_MAX_TEETH 2000
+/* Upper bound a user may ask for with --max-teeth. */
+#define PLOTSVG_MAX_TEETH_LIMIT 1000000
+
+/* ------------------------------------------------------------ curvature */
+
+/* Curvature 1/R of the circle through a, b, c (seed 000, Code 3, in
+ * double); 0 when two of the points coincide. */
+double plotsvg_curvature(const double a[2], const double b[2], const double c[2]);
+
+/* kappa[i] at every vertex from its two neighbours (closed: all vertices;
+ * open: the two end vertices get NAN, they have no osculating circle).
+ * With signed_comb, kappa is negative where the curve bends towards its
+ * normal nxy[i] (so a comb drawn along the normal flips side at an
+ * inflection); otherwise it is the seed's unsigned 1/R. Returns the
+ * largest |kappa| (0 if none). */
+double plotsvg_curvatures(const double *xy, const double *nxy, size_t n, int closed,
+                          int signed_comb, double *kappa);
+
+/* Largest side of the bounding box of n points (0 for fewer than 2). */
+double plotsvg_size(const double *xy, size_t n);
+
+/* Comb tooth tips tips[i] = p_i + scale * kappa_i * n_i (seed 000, Section
+ * 2.2); a tooth longer than max_len (if > 0) is cut to max_len so that one
+ * wild spike does not flatten the picture. NAN kappa gives a NAN tip. */
+void plotsvg_comb_tips(const double *xy, const double *nxy, const double *kappa, size_t n,
+                       double scale, double max_len, double *tips);
+
+/* Spread of the comb: max over vertices of |kappa_i - kappa_{i-1}| divided
+ * by the largest |kappa|; 0 for a circle, large for a wiggly comb. */
+double plotsvg_comb_roughness(const double *kappa, size_t n, int closed);
+
+/* --------------------------------------------------------------- errors */
+
+/* A conic in the order of seed 000, eq. (3):
+ * f(x,y) = q20 x^2 + q02 y^2 + 2 q11 xy + 2 q10 x + 2 q01 y + q00. */
+typedef struct plotsvg_conic {
+    double q20, q02, q11, q10, q01, q00;
+} plotsvg_conic;
+
+/* Mean and max of |f(p)| / |grad f(p)| over the points (eqs. (13)-(14)),
+ * evaluated in long double. Points where the gradient vanishes count as
+ * infinite error. */
+void plotsvg_conic_error(const plotsvg_conic *q, const double *xy, size_t n, double *mean,
+                         double *max);
+void plotsvg_conic_errorl(const plotsvg_conic *q, const long double *xy, size_t n, double *mean,
+                          double *max);
+
+/* Mean and max angle in degrees between each normal of c and the normal
+ * estimated from c's points alone (area-weighted, seed 000 Section 3.2).
+ * The estimate's orientation is matched to c's by the sign of the summed
+ * dot products. Returns 0, or -1 if estimation fails (degenerate curve). */
+int plotsvg_normal_error(const conica_curve *c, double *mean_deg, double *max_deg);
+
+/* ------------------------------------------------------------ SVG writer */
+
+/* World -> picture map: px = x0 + s*x, py = y0 - s*y (y flipped so the
+ * picture is not mirrored). */
+typedef struct plotsvg_frame {
+    double x0, y0, s;
+} plotsvg_frame;
+
+/* Frame fitting the world box {minx, miny, maxx, maxy} centred in the
+ * picture rectangle (px, py, pw, ph), aspect kept. */
+plotsvg_frame plotsvg_fit(const double box[4], double px, double py, double pw, double ph);
+
+/* Grow box {minx, miny, maxx, maxy} by the finite points (box starts as
+ * {+inf, +inf, -inf, -inf} from plotsvg_box_empty). */
+void plotsvg_box_empty(double box[4]);
+void plotsvg_box_add(double box[4], const double *xy, size_t n);
+
+/* Document start and end; width/height in px, viewBox 0 0 width height. */
+void plotsvg_begin(FILE *f, double width, double height, const char *title);
+void plotsvg_end(FILE *f);
+
+/* One <path> through n points (closed adds Z); non-finite points break the
+ * line. attrs is raw attribute text (style), e.g. `stroke="#000"`. */
+void plotsvg_path(FILE *f, const plotsvg_frame *fr, const double *xy, size_t n, int closed,
+                  const char *attrs);
+
+/* One <path> of segments base[i] -> tip[i], at most max_teeth of them
+ * (evenly strided), skipping non-finite tips. */
+void plotsvg_teeth(FILE *f, const plotsvg_frame *fr, const double *base, const double *tips,
+                   size_t n, size_t max_teeth, const char *attrs);
+
+/* <text> at picture coordinates, XML-escaped. anchor: start|middle|end. */
+void plotsvg_text(FILE *f, double x, double y, double size, const char *anchor,
+                  const char *text);
+
+/* A comb panel: control polygon (dashed grey), refined curve, teeth and the
+ * joined comb outline (tips connected), into the picture rectangle. */
+void plotsvg_comb_panel(FILE *f, double px, double py, double pw, double ph,
+                        const conica_curve *control, const conica_curve *refined,
+                        const double *tips, size_t max_teeth, const char *title);
+
+/* One series of a chart. */
+typedef struct plotsvg_series {
+    const char *label;
+    const double *x, *y;
+    size_t n;
+    const char *color;
+    int dashed;
+} plotsvg_series;
+
+/* Line chart with a log-scale y axis (decade ticks) and linear x axis in the
+ * rectangle (px, py, pw, ph); non-positive or non-finite y values are left
+ * out (the line breaks there). */
+void plotsvg_logchart(FILE *f, double px, double py, double pw, double ph, const char *title,
+                      const char *xlabel, const char *ylabel, const plotsvg_series *s,
+                      size_t ns);
+
+#endif

@@ -1,0 +1,759 @@
+// CGAL checks of the two geometric promises of seed 000 (issue 4):
+//  1. a convex control polygon gives a convex curve (every level k = 1..6 is
+//     simple and convex with the input's orientation; open convex arcs keep
+//     one turning direction);
+//  2. a non-convex polygon is split at inflection points (seed 000, eqs. (9)-
+//     (10)): one point exactly at each edge whose outer neighbours p_{i-1},
+//     p_{i+2} lie strictly on different sides of the edge line, placed at the
+//     edge midpoint, and the refined pieces between consecutive inflection
+//     points turn one way only; turning-sign changes never grow with k.
+// Plus: the closed contours the exporters write (scadprofile, svgsmooth) are
+// simple with the orientation they claim.
+//
+// Every sidedness/convexity/simplicity decision is made by CGAL's exact
+// predicates (Epick), never by our own floating-point code. The test
+// [.broken] runs the inflection checks with insert_inflections = 0 and must
+// fail: tests/cli/cgal_broken.sh asserts that, proving the checks can fail.
+
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/Polygon_2.h>
+#include <CGAL/convex_hull_2.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <cstdlib>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <sys/wait.h>
+#include <vector>
+
+#include "conica/curve.h"
+#include "conica/subdiv.h"
+#include "conica_test.h"
+
+typedef CGAL::Exact_predicates_inexact_constructions_kernel K;
+typedef K::Point_2 Point;
+typedef CGAL::Polygon_2<K> Polygon;
+
+namespace {
+
+const double kPi = 3.14159265358979323846;
+const int kMaxLevel = 6; // issue 4: check every level k = 1..6
+// Where the seed puts an inflection point (eq. (9): the edge midpoint), up to
+// the rounding of (a+b)/2 however the engine spells it: relative to the edge.
+const double kMidpointRelTol = 1e-13;
+// Cap on the detailed failure lines one family prints (the count is exact).
+const int kMaxDetails = 8;
+const char *const kDataDir = "../shared/data/conis/input";
+
+// ----------------------------------------------------------------- random
+// splitmix64: the same sequence on every platform and standard library
+// (std::uniform_real_distribution is implementation-defined).
+struct Rng {
+    uint64_t s;
+    explicit Rng(uint64_t seed) : s(seed) {}
+    uint64_t next() {
+        uint64_t z = (s += 0x9E3779B97F4A7C15ull);
+        z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
+        z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
+        return z ^ (z >> 31);
+    }
+    double uniform() { return double(next() >> 11) * (1.0 / 9007199254740992.0); }
+    double uniform(double lo, double hi) { return lo + (hi - lo) * uniform(); }
+    int range(int lo, int hi) { return lo + int(next() % uint64_t(hi - lo + 1)); }
+};
+
+// ----------------------------------------------------------------- shapes
+struct Shape {
+    std::string name;
+    std::vector<double> xy;  // interleaved
+    std::vector<double> nxy; // empty: estimate normals
+    bool closed = true;
+    size_t n() const { return xy.size() / 2; }
+};
+
+// Owns a conica_curve + info pair for one subdivision result.
+struct Refined {
+    conica_curve c;
+    conica_subdiv_info info;
+    conica_code rc;
+    conica_status st;
+    Refined() {
+        conica_curve_init(&c);
+        conica_subdiv_info_init(&info);
+        rc = CONICA_OK;
+        st = conica_status();
+    }
+    ~Refined() {
+        conica_curve_free(&c);
+        conica_subdiv_info_free(&info);
+    }
+    Refined(const Refined &) = delete;
+    Refined &operator=(const Refined &) = delete;
+    Point p(size_t i) const { return Point(c.xy[2 * i], c.xy[2 * i + 1]); }
+};
+
+void refine(const Shape &s, int levels, const conica_subdiv_settings &base, Refined &r) {
+    conica_curve in;
+    conica_curve_init(&in);
+    r.rc = conica_curve_set(s.xy.data(), s.nxy.empty() ? nullptr : s.nxy.data(), s.n(),
+                            s.closed ? 1 : 0, &in, &r.st);
+    if (r.rc == CONICA_OK) {
+        conica_subdiv_settings set = base;
+        set.levels = levels;
+        r.rc = conica_subdivide(&in, &set, &r.c, &r.info, &r.st);
+    }
+    conica_curve_free(&in);
+}
+
+std::vector<Point> points_of(const Shape &s) {
+    std::vector<Point> v;
+    for (size_t i = 0; i < s.n(); i++)
+        v.push_back(Point(s.xy[2 * i], s.xy[2 * i + 1]));
+    return v;
+}
+
+std::vector<Point> points_of(const Refined &r) {
+    std::vector<Point> v;
+    for (size_t i = 0; i < r.c.n; i++)
+        v.push_back(r.p(i));
+    return v;
+}
+
+Shape reversed(const Shape &s) {
+    Shape t = s;
+    t.name += " (reversed)";
+    size_t n = s.n();
+    for (size_t i = 0; i < n; i++)
+        for (int d = 0; d < 2; d++) {
+            t.xy[2 * i + size_t(d)] = s.xy[2 * (n - 1 - i) + size_t(d)];
+            if (!s.nxy.empty())
+                t.nxy[2 * i + size_t(d)] = s.nxy[2 * (n - 1 - i) + size_t(d)];
+        }
+    return t;
+}
+
+// n samples of an ellipse (centre c, semi-axes a, b, rotation rot) at the
+// given angles, with the exact outward unit normals (gradient of the conic).
+Shape ellipse_samples(const std::string &name, double cx, double cy, double a, double b,
+                      double rot, const std::vector<double> &angles, bool closed) {
+    Shape s;
+    s.name = name;
+    s.closed = closed;
+    double cr = std::cos(rot), sr = std::sin(rot);
+    for (double t : angles) {
+        double lx = a * std::cos(t), ly = b * std::sin(t);
+        double gx = lx / (a * a), gy = ly / (b * b), gl = std::hypot(gx, gy);
+        s.xy.push_back(cx + cr * lx - sr * ly);
+        s.xy.push_back(cy + sr * lx + cr * ly);
+        s.nxy.push_back((cr * gx - sr * gy) / gl);
+        s.nxy.push_back((sr * gx + cr * gy) / gl);
+    }
+    return s;
+}
+
+// Angles around the whole ellipse with random gaps; a gap is at most 0.8 pi
+// so no edge spans half the conic (there the nearest root of eq. (8) may be
+// on the far arc, which is the seed's choice, not a convexity failure).
+std::vector<double> random_angles(Rng &g, int n) {
+    std::vector<double> gaps(size_t(n), 0.0);
+    double sum = 0.0;
+    for (double &x : gaps) {
+        x = 1.0 + g.uniform();
+        sum += x;
+    }
+    std::vector<double> t;
+    double acc = g.uniform(0.0, 2.0 * kPi);
+    for (double x : gaps) {
+        t.push_back(acc);
+        acc += x / sum * 2.0 * kPi;
+    }
+    return t;
+}
+
+Shape random_ellipse_polygon(Rng &g, int n, bool exact_normals, int id) {
+    double a = g.uniform(0.5, 50.0);
+    double b = a * g.uniform(0.2, 1.0);
+    Shape s = ellipse_samples("random ellipse #" + std::to_string(id) + " n=" + std::to_string(n),
+                              g.uniform(-100.0, 100.0), g.uniform(-100.0, 100.0), a, b,
+                              g.uniform(0.0, kPi), random_angles(g, n), true);
+    if (!exact_normals) {
+        s.nxy.clear();
+        s.name += " (estimated normals)";
+    }
+    if (g.uniform() < 0.5)
+        s = reversed(s);
+    return s;
+}
+
+// Convex hull (CGAL) of points scattered in an annulus: an arbitrary convex
+// polygon, not sampled from any conic; normals estimated.
+Shape random_hull_polygon(Rng &g, int want, int id) {
+    for (;;) {
+        std::vector<Point> pts, hull;
+        double scale = g.uniform(0.1, 100.0);
+        double cx = g.uniform(-50.0, 50.0), cy = g.uniform(-50.0, 50.0);
+        double squash = g.uniform(0.3, 1.0);
+        for (int i = 0; i < want + want / 2; i++) {
+            double t = g.uniform(0.0, 2.0 * kPi), r = scale * g.uniform(0.8, 1.0);
+            pts.push_back(Point(cx + r * std::cos(t), cy + squash * r * std::sin(t)));
+        }
+        CGAL::convex_hull_2(pts.begin(), pts.end(), std::back_inserter(hull));
+        if (hull.size() < 4)
+            continue;
+        Shape s;
+        s.name = "random hull #" + std::to_string(id) + " n=" + std::to_string(hull.size());
+        for (const Point &p : hull) {
+            s.xy.push_back(p.x());
+            s.xy.push_back(p.y());
+        }
+        return g.uniform() < 0.5 ? reversed(s) : s;
+    }
+}
+
+Shape regular_polygon(int n, bool exact_normals) {
+    std::vector<double> t;
+    for (int i = 0; i < n; i++)
+        t.push_back(2.0 * kPi * i / n);
+    Shape s = ellipse_samples("regular " + std::to_string(n) + "-gon", 3.0, -2.0, 7.0, 7.0, 0.3,
+                              t, true);
+    if (!exact_normals) {
+        s.nxy.clear();
+        s.name += " (estimated normals)";
+    }
+    return s;
+}
+
+// A star with m spikes: radii alternate between an outer and an inner value
+// (both jittered), angles evenly spaced with jitter. Normals estimated.
+Shape random_star(Rng &g, int m, int id) {
+    Shape s;
+    s.name = "random star #" + std::to_string(id) + " spikes=" + std::to_string(m);
+    double scale = g.uniform(0.5, 200.0);
+    double cx = g.uniform(-300.0, 300.0), cy = g.uniform(-300.0, 300.0);
+    for (int i = 0; i < 2 * m; i++) {
+        double t = (i + g.uniform(-0.25, 0.25)) * kPi / m;
+        double r = scale * ((i % 2 == 0) ? g.uniform(0.8, 1.2) : g.uniform(0.25, 0.6));
+        s.xy.push_back(cx + r * std::cos(t));
+        s.xy.push_back(cy + r * std::sin(t));
+    }
+    return g.uniform() < 0.5 ? reversed(s) : s;
+}
+
+Shape from_list(const std::string &name, std::initializer_list<double> xy) {
+    Shape s;
+    s.name = name;
+    s.xy.assign(xy.begin(), xy.end());
+    return s;
+}
+
+// Letter-like outlines (closed, non-convex, normals estimated).
+std::vector<Shape> letter_shapes() {
+    std::vector<Shape> v;
+    v.push_back(from_list("letter S", {0, 0,  4, 0,  5, 1,  5, 3,  4, 4,  1.5, 4.5, 1.5, 5.5,
+                                       4.5, 5.5, 4.5, 6.5, 1, 6.5, 0, 5.5, 0, 4, 1, 3,
+                                       3.5, 2.5, 3.5, 1.2, 0.3, 1.2}));
+    v.push_back(from_list("letter C", {5, 1, 3, 0.2, 1, 0.8, 0, 3, 1, 5.2, 3, 5.8, 5, 5,
+                                       4.6, 4.2, 3, 4.7, 1.8, 4.2, 1.3, 3, 1.8, 1.8, 3, 1.3,
+                                       4.6, 1.8}));
+    v.push_back(from_list("letter W", {0, 6, 1, 0, 2.2, 0, 3, 3.1, 3.8, 0, 5, 0, 6, 6, 5, 6,
+                                       4.4, 1.9, 3.5, 5, 2.5, 5, 1.6, 1.9, 1, 6}));
+    v.push_back(from_list("letter G", {6, 4.5, 5, 6, 2, 6.2, 0.2, 4, 0.2, 2, 2, 0, 5, 0,
+                                       6.2, 1.5, 6.2, 3.2, 3.5, 3.2, 3.5, 2.3, 5, 2.1,
+                                       4.5, 1.1, 2.5, 1.1, 1.3, 2.4, 1.3, 3.8, 2.5, 5,
+                                       4.6, 5, 5.2, 4}));
+    return v;
+}
+
+// Read one point-normal file of the reference (our parser, helper-3's).
+bool load_data(const std::string &file, Shape &out, std::string &why) {
+    std::ifstream f(std::string(kDataDir) + "/" + file, std::ios::binary);
+    if (!f) {
+        why = "cannot open";
+        return false;
+    }
+    std::stringstream ss;
+    ss << f.rdbuf();
+    std::string text = ss.str();
+    conica_curve c;
+    conica_curve_init(&c);
+    conica_status st = conica_status();
+    if (conica_curve_parse(text.data(), text.size(), &c, &st) != CONICA_OK) {
+        why = st.message;
+        return false;
+    }
+    out.name = file;
+    out.xy.assign(c.xy, c.xy + 2 * c.n);
+    out.nxy.clear();
+    if (c.nxy)
+        out.nxy.assign(c.nxy, c.nxy + 2 * c.n);
+    // seed data README: every curve is closed except 5pointOpenCircle
+    out.closed = file.find("Open") == std::string::npos;
+    conica_curve_free(&c);
+    return true;
+}
+
+std::vector<std::string> data_files() {
+    return {"5pointOpenCircle.txt", "ExLetG_sub0.txt", "ExStar_sub0.txt", "ExStep_sub0.txt",
+            "ex6_sub0E.txt",        "ex6_sub0F.txt",   "example1.txt",    "example10.txt",
+            "example11.txt",        "example12.txt",   "example13.txt",   "example2.txt",
+            "example3.txt",         "example4.txt",    "example5.txt",    "example6.txt",
+            "example7.txt",         "example8.txt",    "example9.txt",    "lG2.txt",
+            "tau_example2.txt",     "tau_sub0.txt",    "tst.txt"};
+}
+
+bool data_present() {
+    std::ifstream f(std::string(kDataDir) + "/example1.txt");
+    return bool(f);
+}
+
+// ------------------------------------------------------- exact predicates
+int orient(const Point &a, const Point &b, const Point &c) {
+    return int(CGAL::orientation(a, b, c));
+}
+
+// Turn sign at every vertex (closed: all; open: interior ones), exact.
+std::vector<int> turn_signs(const std::vector<Point> &p, bool closed) {
+    std::vector<int> s;
+    size_t n = p.size();
+    if (n < 3)
+        return s;
+    if (closed) {
+        for (size_t i = 0; i < n; i++)
+            s.push_back(orient(p[(i + n - 1) % n], p[i], p[(i + 1) % n]));
+    } else {
+        for (size_t i = 1; i + 1 < n; i++)
+            s.push_back(orient(p[i - 1], p[i], p[i + 1]));
+    }
+    return s;
+}
+
+// Changes of turning sign along the curve, collinear vertices skipped.
+int sign_changes(const std::vector<int> &s, bool closed) {
+    std::vector<int> nz;
+    for (int x : s)
+        if (x != 0)
+            nz.push_back(x);
+    int c = 0;
+    for (size_t i = 1; i < nz.size(); i++)
+        c += nz[i] != nz[i - 1];
+    if (closed && nz.size() > 1)
+        c += nz.front() != nz.back();
+    return c;
+}
+
+// Edges (i, i+1) of a closed polygon where p_{i-1} and p_{i+2} lie strictly
+// on different sides of the edge line (seed 000, before eq. (9)).
+std::vector<size_t> inflection_edges(const std::vector<Point> &p) {
+    std::vector<size_t> e;
+    size_t n = p.size();
+    if (n < 4)
+        return e;
+    for (size_t i = 0; i < n; i++) {
+        const Point &a = p[i], &b = p[(i + 1) % n];
+        int s0 = orient(a, b, p[(i + n - 1) % n]), s1 = orient(a, b, p[(i + 2) % n]);
+        if (s0 * s1 < 0)
+            e.push_back(i);
+    }
+    return e;
+}
+
+// A sign change with only collinear vertices between two opposite turns
+// has no edge with strictly separated outer neighbours: the seed inserts no
+// point there, so "pieces turn one way" is not promised for such input.
+bool changes_only_at_edges(const std::vector<int> &s) {
+    size_t n = s.size();
+    for (size_t i = 0; i < n; i++) {
+        if (s[i] == 0)
+            continue;
+        size_t j = (i + 1) % n;
+        while (j != i && s[j] == 0)
+            j = (j + 1) % n;
+        if (j != (i + 1) % n && s[j] != s[i])
+            return false;
+    }
+    return true;
+}
+
+// ----------------------------------------------------------- bookkeeping
+struct Tally {
+    std::string family;
+    long shapes = 0, polygons = 0, failures = 0;
+    std::vector<std::string> details;
+    void fail(const std::string &what) {
+        failures++;
+        if (int(details.size()) < kMaxDetails)
+            details.push_back(what);
+    }
+    std::string report() const {
+        std::string r = family + ": " + std::to_string(failures) + " failure(s)";
+        for (const std::string &d : details)
+            r += "\n    " + d;
+        if (failures > long(details.size()))
+            r += "\n    ...";
+        return r;
+    }
+    void print() const {
+        std::printf("cgal: %-34s %4ld shapes, %5ld refined polygons checked, %ld failures\n",
+                    family.c_str(), shapes, polygons, failures);
+        std::fflush(stdout);
+    }
+};
+
+std::string where(const Shape &s, int k) {
+    return s.name + " k=" + std::to_string(k);
+}
+
+// Convexity promise on a closed convex input: every level simple, convex,
+// with the input's orientation.
+void check_convex_closed(const Shape &s, const conica_subdiv_settings &set, Tally &t) {
+    std::vector<Point> ip = points_of(s);
+    Polygon input(ip.begin(), ip.end());
+    CGAL::Orientation want = input.orientation();
+    t.shapes++;
+    for (int k = 1; k <= kMaxLevel; k++) {
+        Refined r;
+        refine(s, k, set, r);
+        if (r.rc != CONICA_OK) {
+            t.fail(where(s, k) + ": conica_subdivide failed: " + r.st.message);
+            continue;
+        }
+        std::vector<Point> op = points_of(r);
+        Polygon out(op.begin(), op.end());
+        t.polygons++;
+        if (!out.is_simple())
+            t.fail(where(s, k) + ": output not simple");
+        else if (!out.is_convex())
+            t.fail(where(s, k) + ": output not convex");
+        else if (out.orientation() != want)
+            t.fail(where(s, k) + ": orientation changed");
+    }
+}
+
+// Open convex arc: every interior vertex turns the same way as the input.
+void check_convex_open(const Shape &s, const conica_subdiv_settings &set, Tally &t) {
+    std::vector<int> s0 = turn_signs(points_of(s), false);
+    int want = 0;
+    for (int x : s0)
+        if (x != 0)
+            want = x;
+    t.shapes++;
+    for (int k = 1; k <= kMaxLevel; k++) {
+        Refined r;
+        refine(s, k, set, r);
+        if (r.rc != CONICA_OK) {
+            t.fail(where(s, k) + ": conica_subdivide failed: " + r.st.message);
+            continue;
+        }
+        t.polygons++;
+        std::vector<int> sk = turn_signs(points_of(r), false);
+        long bad = std::count_if(sk.begin(), sk.end(), [&](int x) { return x != want; });
+        if (bad)
+            t.fail(where(s, k) + ": " + std::to_string(bad) + " of " +
+                   std::to_string(sk.size()) + " vertices turn the wrong way or not at all");
+    }
+}
+
+// Inflection splitting on a closed input (seed 000, eqs. (9)-(10)).
+void check_inflections(const Shape &s, const conica_subdiv_settings &set, Tally &t) {
+    std::vector<Point> p = points_of(s);
+    size_t n = p.size();
+    std::vector<size_t> expect = inflection_edges(p);
+    std::vector<int> s0 = turn_signs(p, true);
+    bool pieces_promised = changes_only_at_edges(s0);
+    t.shapes++;
+
+    // 1. Level 1: its even vertices are the control polygon after insertion.
+    {
+        Refined r;
+        refine(s, 1, set, r);
+        if (r.rc != CONICA_OK) {
+            t.fail(where(s, 1) + ": conica_subdivide failed: " + r.st.message);
+            return;
+        }
+        size_t m = r.c.n / 2;
+        if (r.c.n != 2 * (n + expect.size())) {
+            t.fail(where(s, 1) + ": " + std::to_string(r.c.n) + " points, expected " +
+                   std::to_string(2 * (n + expect.size())) + " (" +
+                   std::to_string(expect.size()) + " inflection edges by CGAL, " +
+                   std::to_string(r.info.inflections) + " inserted)");
+            return;
+        }
+        // Locate input vertex 0 among the control vertices (no rotation assumed).
+        size_t off = m;
+        for (size_t j = 0; j < m; j++)
+            if (r.c.xy[4 * j] == s.xy[0] && r.c.xy[4 * j + 1] == s.xy[1]) {
+                off = j;
+                break;
+            }
+        if (off == m) {
+            t.fail(where(s, 1) + ": input vertex 0 not kept bit-for-bit");
+            return;
+        }
+        std::vector<size_t> found_edges, found_index;
+        size_t next_in = 0;
+        for (size_t q = 0; q < m; q++) {
+            size_t j = (off + q) % m;
+            double x = r.c.xy[4 * j], y = r.c.xy[4 * j + 1];
+            if (next_in < n && x == s.xy[2 * next_in] && y == s.xy[2 * next_in + 1]) {
+                next_in++;
+                continue;
+            }
+            if (next_in == 0) {
+                t.fail(where(s, 1) + ": inserted point before vertex 0");
+                return;
+            }
+            size_t e = next_in - 1; // inserted on edge (e, e+1)
+            found_edges.push_back(e);
+            found_index.push_back(2 * j);
+            const Point &a = p[e], &b = p[(e + 1) % n];
+            double mx = 0.5 * (a.x() + b.x()), my = 0.5 * (a.y() + b.y());
+            double len = std::hypot(b.x() - a.x(), b.y() - a.y());
+            double dev = std::hypot(x - mx, y - my);
+            if (!(dev <= kMidpointRelTol * len)) {
+                char buf[160];
+                std::snprintf(buf, sizeof buf, ": inflection on edge %zu is %.3g edge lengths "
+                              "from the midpoint (eq. (9))", e, dev / len);
+                t.fail(where(s, 1) + buf);
+            }
+            double nx = r.c.nxy ? r.c.nxy[4 * j] : 0.0, ny = r.c.nxy ? r.c.nxy[4 * j + 1] : 0.0;
+            if (!(std::isfinite(nx) && std::isfinite(ny) && std::hypot(nx, ny) > 0.5))
+                t.fail(where(s, 1) + ": inflection normal missing or not unit (eq. (10))");
+        }
+        if (next_in != n) {
+            t.fail(where(s, 1) + ": input vertices not all kept in order");
+            return;
+        }
+        if (found_edges != expect) {
+            std::string a, b;
+            for (size_t e : expect)
+                a += " " + std::to_string(e);
+            for (size_t e : found_edges)
+                b += " " + std::to_string(e);
+            t.fail(where(s, 1) + ": inflection points on edges {" + b +
+                   " } but CGAL finds separated neighbours at edges {" + a + " }");
+        }
+        std::vector<size_t> listed(r.info.inflection_index,
+                                   r.info.inflection_index + (r.info.inflection_index
+                                                                  ? r.info.inflections : 0));
+        std::sort(listed.begin(), listed.end());
+        std::sort(found_index.begin(), found_index.end());
+        if (listed != found_index)
+            t.fail(where(s, 1) + ": info.inflection_index does not list the inserted points");
+    }
+
+    // 2. Levels 1..6: one-way pieces between inflection points, and the
+    // number of turning-sign changes never grows.
+    int prev_changes = sign_changes(s0, true);
+    for (int k = 1; k <= kMaxLevel; k++) {
+        Refined r;
+        refine(s, k, set, r);
+        if (r.rc != CONICA_OK) {
+            t.fail(where(s, k) + ": conica_subdivide failed: " + r.st.message);
+            return;
+        }
+        t.polygons++;
+        std::vector<Point> op = points_of(r);
+        std::vector<int> sk = turn_signs(op, true);
+        int ch = sign_changes(sk, true);
+        if (ch > prev_changes)
+            t.fail(where(s, k) + ": turning-sign changes grew from " +
+                   std::to_string(prev_changes) + " to " + std::to_string(ch));
+        prev_changes = ch;
+        if (!pieces_promised)
+            continue;
+        std::vector<size_t> cut;
+        if (r.info.inflection_index)
+            cut.assign(r.info.inflection_index, r.info.inflection_index + r.info.inflections);
+        std::sort(cut.begin(), cut.end());
+        size_t N = op.size();
+        bool bad_index = false;
+        for (size_t c : cut)
+            bad_index |= c >= N;
+        if (bad_index) {
+            t.fail(where(s, k) + ": inflection index out of range");
+            continue;
+        }
+        if (cut.empty()) {
+            if (sign_changes(sk, true) != 0)
+                t.fail(where(s, k) + ": no inflection point, yet the curve changes turning");
+            continue;
+        }
+        for (size_t a = 0; a < cut.size(); a++) {
+            size_t from = cut[a], to = cut[(a + 1) % cut.size()];
+            int dir = 0;
+            long wrong = 0;
+            for (size_t i = (from + 1) % N; i != to; i = (i + 1) % N) {
+                if (sk[i] == 0)
+                    continue;
+                if (dir == 0)
+                    dir = sk[i];
+                else if (sk[i] != dir)
+                    wrong++;
+            }
+            if (wrong)
+                t.fail(where(s, k) + ": piece between inflection points " +
+                       std::to_string(from) + " and " + std::to_string(to) + " turns both ways (" +
+                       std::to_string(wrong) + " vertices)");
+        }
+    }
+}
+
+conica_subdiv_settings defaults() {
+    return conica_subdiv_defaults();
+}
+
+// All non-convex closed inputs of the inflection checks.
+std::vector<Shape> nonconvex_inputs(bool &have_data) {
+    std::vector<Shape> v;
+    Rng g(0xC0817A11ull);
+    for (int i = 0; i < 60; i++)
+        v.push_back(random_star(g, g.range(3, 12), i));
+    for (const Shape &s : letter_shapes()) {
+        v.push_back(s);
+        v.push_back(reversed(s));
+    }
+    have_data = data_present();
+    if (have_data) {
+        for (const std::string &f : data_files()) {
+            Shape s;
+            std::string why;
+            if (!load_data(f, s, why) || !s.closed)
+                continue;
+            std::vector<Point> p = points_of(s);
+            Polygon poly(p.begin(), p.end());
+            if (!poly.is_convex())
+                v.push_back(s);
+        }
+    }
+    return v;
+}
+
+void run_inflection_suite(const conica_subdiv_settings &set, Tally &t) {
+    bool have_data = false;
+    std::vector<Shape> shapes = nonconvex_inputs(have_data);
+    if (!have_data)
+        std::printf("cgal: notice: %s absent, reference examples skipped\n", kDataDir);
+    for (const Shape &s : shapes)
+        check_inflections(s, set, t);
+    t.print();
+}
+
+} // namespace
+
+TEST_CASE("convexity: random convex polygons, exact and estimated normals", "[cgal][convex]") {
+    Tally t;
+    t.family = "random convex polygons";
+    Rng g(0x5EED0001ull);
+    conica_subdiv_settings set = defaults();
+    for (int i = 0; i < 40; i++) {
+        int n = g.range(4, 50);
+        Shape exact = random_ellipse_polygon(g, n, true, i);
+        check_convex_closed(exact, set, t);
+        Shape est = exact;
+        est.nxy.clear();
+        est.name += " (estimated normals)";
+        check_convex_closed(est, set, t);
+        check_convex_closed(random_hull_polygon(g, n, i), set, t);
+    }
+    t.print();
+    INFO(t.report());
+    CHECK(t.polygons == 120 * kMaxLevel);
+    CHECK(t.failures == 0);
+}
+
+TEST_CASE("convexity: regular polygons", "[cgal][convex]") {
+    Tally t;
+    t.family = "regular polygons";
+    conica_subdiv_settings set = defaults();
+    for (int n = 3; n <= 24; n++)
+        for (int exact = 0; exact < 2; exact++) {
+            Shape s = regular_polygon(n, exact != 0);
+            check_convex_closed(s, set, t);
+            check_convex_closed(reversed(s), set, t);
+        }
+    t.print();
+    INFO(t.report());
+    CHECK(t.failures == 0);
+}
+
+TEST_CASE("convexity: open convex arcs keep one turning direction", "[cgal][convex]") {
+    Tally t;
+    t.family = "open convex arcs";
+    Rng g(0x5EED0002ull);
+    conica_subdiv_settings set = defaults();
+    for (int i = 0; i < 30; i++) {
+        int n = g.range(4, 50);
+        double span = g.uniform(0.3, 1.5) * kPi, t0 = g.uniform(0.0, 2.0 * kPi);
+        std::vector<double> ang;
+        for (int j = 0; j < n; j++)
+            ang.push_back(t0 + span * (j + 0.3 * g.uniform(-1.0, 1.0) * (j > 0 && j < n - 1)) /
+                                   (n - 1));
+        double a = g.uniform(0.5, 50.0);
+        Shape s = ellipse_samples("random arc #" + std::to_string(i) + " n=" + std::to_string(n),
+                                  g.uniform(-100.0, 100.0), g.uniform(-100.0, 100.0), a,
+                                  a * g.uniform(0.2, 1.0), g.uniform(0.0, kPi), ang, false);
+        check_convex_open(s, set, t);
+        check_convex_open(reversed(s), set, t);
+        Shape est = s;
+        est.nxy.clear();
+        est.name += " (estimated normals)";
+        check_convex_open(est, set, t);
+    }
+    if (data_present()) {
+        Shape s;
+        std::string why;
+        REQUIRE(load_data("5pointOpenCircle.txt", s, why));
+        check_convex_open(s, set, t);
+    }
+    t.print();
+    INFO(t.report());
+    CHECK(t.failures == 0);
+}
+
+TEST_CASE("convexity: convex examples of the reference data", "[cgal][convex][data]") {
+    if (!data_present())
+        SKIP("../shared/data/conis/input absent: reference examples not checked");
+    Tally t;
+    t.family = "reference convex examples";
+    conica_subdiv_settings set = defaults();
+    for (const std::string &f : data_files()) {
+        Shape s;
+        std::string why;
+        INFO(f);
+        REQUIRE(load_data(f, s, why));
+        std::vector<Point> p = points_of(s);
+        Polygon poly(p.begin(), p.end());
+        if (!s.closed || !poly.is_simple() || !poly.is_convex())
+            continue;
+        check_convex_closed(s, set, t);
+    }
+    t.print();
+    INFO(t.report());
+    CHECK(t.shapes > 0);
+    CHECK(t.failures == 0);
+}
+
+TEST_CASE("inflections: inserted where CGAL says, pieces turn one way", "[cgal][inflection]") {
+    Tally t;
+    t.family = "inflection splitting";
+    run_inflection_suite(defaults(), t);
+    INFO(t.report());
+    CHECK(t.shapes >= 68);
+    CHECK(t.failures == 0);
+}
+
+// The same checks with inflection insertion disabled: must FAIL (run by
+// tests/cli/cgal_broken.sh, which expects exit code 42).
+TEST_CASE("broken variant: no inflection insertion fails the checks", "[.broken]") {
+    Tally t;
+    t.family = "inflection splitting (broken)";
+    conica_subdiv_settings set = defaults();
+    set.insert_inflections = 0;
+    run_inflection_suite(set, t);
+    INFO(t.report());
+    CHECK(t.failures == 0);
+}
