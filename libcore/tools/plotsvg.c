@@ -114,12 +114,15 @@ static long double conic_dist(const plotsvg_conic *q, long double x, long double
     return fabsl(f) / g;
 }
 
-void plotsvg_conic_error(const plotsvg_conic *q, const double *xy, size_t n, double *mean,
-                         double *max)
+/* One loop for both point types: exactly one of xyd, xyl is non-NULL. */
+static void conic_error(const plotsvg_conic *q, const double *xyd, const long double *xyl,
+                        size_t n, double *mean, double *max)
 {
     long double sum = 0.0L, mx = 0.0L;
     for (size_t i = 0; i < n; i++) {
-        long double e = conic_dist(q, xy[2 * i], xy[2 * i + 1]);
+        long double x = xyd ? xyd[2 * i] : xyl[2 * i];
+        long double y = xyd ? xyd[2 * i + 1] : xyl[2 * i + 1];
+        long double e = conic_dist(q, x, y);
         sum += e;
         if (e > mx)
             mx = e;
@@ -128,18 +131,16 @@ void plotsvg_conic_error(const plotsvg_conic *q, const double *xy, size_t n, dou
     *max = (double)mx;
 }
 
+void plotsvg_conic_error(const plotsvg_conic *q, const double *xy, size_t n, double *mean,
+                         double *max)
+{
+    conic_error(q, xy, NULL, n, mean, max);
+}
+
 void plotsvg_conic_errorl(const plotsvg_conic *q, const long double *xy, size_t n, double *mean,
                           double *max)
 {
-    long double sum = 0.0L, mx = 0.0L;
-    for (size_t i = 0; i < n; i++) {
-        long double e = conic_dist(q, xy[2 * i], xy[2 * i + 1]);
-        sum += e;
-        if (e > mx)
-            mx = e;
-    }
-    *mean = n ? (double)(sum / (long double)n) : 0.0;
-    *max = (double)mx;
+    conic_error(q, NULL, xy, n, mean, max);
 }
 
 int plotsvg_normal_error(const conica_curve *c, double *mean_deg, double *max_deg)
