@@ -1,0 +1,459 @@
+/* Point-normal curves: storage, normal estimation, and the reference
+ * implementation's text format (`v x y` / `vn nx ny` lines). */
+#include "conica/curve.h"
+
+#include <locale.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "internal.h"
+#include "numparse.h"
+
+/* CONICA_NORMALS_CIRCLE falls back to the area-weighted normal when the
+ * three points are this close to collinear: |cross(a, b)| <= tol*|a||b|,
+ * i.e. the sine of the turning angle is below tol (the circle's radius is
+ * then beyond ~1/tol edge lengths and its centre is mostly rounding). */
+#define CONICA__CIRCLE_COLLINEAR_SIN 1e-12
+
+void conica_curve_init(conica_curve *c)
+{
+    if (!c)
+        return;
+    c->n = 0;
+    c->cap = 0;
+    c->xy = NULL;
+    c->nxy = NULL;
+    c->closed = 0;
+}
+
+void conica_curve_free(conica_curve *c)
+{
+    if (!c)
+        return;
+    free(c->xy);
+    free(c->nxy);
+    conica_curve_init(c);
+}
+
+/* Replace *out's arrays by xy/nxy (taken over). */
+static void curve_take(conica_curve *out, double *xy, double *nxy, size_t n, int closed)
+{
+    free(out->xy);
+    free(out->nxy);
+    out->xy = xy;
+    out->nxy = nxy;
+    out->n = n;
+    out->cap = n;
+    out->closed = closed;
+}
+
+conica_code conica_curve_set(const double *xy, const double *nxy, size_t n, int closed,
+                             conica_curve *out, conica_status *st)
+{
+    double *pxy = NULL, *pn = NULL;
+
+    if (!out || (n > 0 && !xy))
+        return conica__fail(st, CONICA_ERR_ARG, 0, 0, "conica_curve_set: NULL argument");
+    if (n > ((size_t)-1) / (2 * sizeof(double)))
+        return conica__fail(st, CONICA_ERR_ARG, 0, 0, "conica_curve_set: %zu points is too many", n);
+    if (n > 0) {
+        pxy = malloc(2 * n * sizeof *pxy);
+        if (!pxy)
+            return conica__fail(st, CONICA_ERR_NOMEM, 0, 0, "out of memory for %zu points", n);
+        memcpy(pxy, xy, 2 * n * sizeof *pxy);
+        if (nxy) {
+            pn = malloc(2 * n * sizeof *pn);
+            if (!pn) {
+                free(pxy);
+                return conica__fail(st, CONICA_ERR_NOMEM, 0, 0, "out of memory for %zu normals", n);
+            }
+            memcpy(pn, nxy, 2 * n * sizeof *pn);
+        }
+    }
+    curve_take(out, pxy, pn, n, closed != 0);
+    conica__ok(st);
+    return CONICA_OK;
+}
+
+/* ------------------------------------------------------------------ normals */
+
+static int same_point(const double *xy, size_t i, size_t j)
+{
+    return xy[2 * i] == xy[2 * j] && xy[2 * i + 1] == xy[2 * j + 1];
+}
+
+/* Nearest vertex before (dir = -1) or after (dir = +1) i that differs from
+ * it, skipping zero-length edges; wraps on closed curves. Returns n when
+ * there is none (an open end, or every point coincides). */
+static size_t distinct_neighbour(const conica_curve *c, size_t i, int dir)
+{
+    size_t n = c->n, j = i, steps;
+    for (steps = 1; steps < n; steps++) {
+        if (dir < 0) {
+            if (j == 0) {
+                if (!c->closed)
+                    return n;
+                j = n - 1;
+            } else
+                j--;
+        } else {
+            if (j == n - 1) {
+                if (!c->closed)
+                    return n;
+                j = 0;
+            } else
+                j++;
+        }
+        if (!same_point(c->xy, i, j))
+            return j;
+    }
+    return n;
+}
+
+/* Twice the signed area of the polygon (closed by the chord for an open
+ * curve), taken about the first point so that the result does not depend
+ * on where the curve sits. Positive = counter-clockwise = turns left. */
+static double signed_area2(const conica_curve *c)
+{
+    double ox = c->xy[0], oy = c->xy[1], a = 0.0;
+    size_t i;
+    for (i = 1; i + 1 < c->n; i++) {
+        double x0 = c->xy[2 * i] - ox, y0 = c->xy[2 * i + 1] - oy;
+        double x1 = c->xy[2 * i + 2] - ox, y1 = c->xy[2 * i + 3] - oy;
+        a += x0 * y1 - x1 * y0;
+    }
+    return a;
+}
+
+conica_code conica_curve_estimate_normals(conica_curve *c, conica_normal_method method,
+                                          conica_status *st)
+{
+    double *nn, orient;
+    size_t i, n;
+
+    if (!c || (c->n > 0 && !c->xy))
+        return conica__fail(st, CONICA_ERR_ARG, 0, 0, "estimate_normals: NULL curve");
+    if (method != CONICA_NORMALS_AREA && method != CONICA_NORMALS_CIRCLE)
+        return conica__fail(st, CONICA_ERR_ARG, 0, 0, "estimate_normals: unknown method %d",
+                            (int)method);
+    n = c->n;
+    if (n < 2)
+        return conica__fail(st, CONICA_ERR_DEGENERATE, 0, 0,
+                            "a curve needs at least 2 points to estimate normals (it has %zu)", n);
+    for (i = 0; i < 2 * n; i++)
+        if (!isfinite(c->xy[i]))
+            return conica__fail(st, CONICA_ERR_NONFINITE, 0, i / 2,
+                                "point %zu is not finite", i / 2 + 1);
+    if (distinct_neighbour(c, 0, +1) == n && distinct_neighbour(c, 0, -1) == n)
+        return conica__fail(st, CONICA_ERR_DEGENERATE, 0, 0,
+                            "all %zu points coincide: no normals can be estimated", n);
+
+    /* One orientation for the whole curve: edge perpendiculars (e.y, -e.x)
+     * point to the right of travel, which is outward for a counter-clockwise
+     * curve; flip them all for a clockwise one (the reference does the same:
+     * its ExStep example is clockwise and gets outward normals). */
+    orient = signed_area2(c) < 0.0 ? -1.0 : 1.0;
+
+    nn = malloc(2 * n * sizeof *nn);
+    if (!nn)
+        return conica__fail(st, CONICA_ERR_NOMEM, 0, 0, "out of memory for %zu normals", n);
+
+    for (i = 0; i < n; i++) {
+        size_t p = distinct_neighbour(c, i, -1), q = distinct_neighbour(c, i, +1);
+        double px = c->xy[2 * i], py = c->xy[2 * i + 1];
+        double ax = 0, ay = 0, bx = 0, by = 0, mx, my, len;
+        if (p < n) {
+            ax = c->xy[2 * p] - px;
+            ay = c->xy[2 * p + 1] - py;
+        }
+        if (q < n) {
+            bx = c->xy[2 * q] - px;
+            by = c->xy[2 * q + 1] - py;
+        }
+        /* Area weighting: the sum of the two unnormalised edge normals is
+         * perp(next - prev); an open end has only its one edge. */
+        mx = orient * (by - ay);
+        my = -orient * (bx - ax);
+        len = hypot(mx, my);
+        if (!(len > 0.0)) {
+            /* A hairpin (prev == next): the tip's normal is along the
+             * incoming edge. */
+            mx = -ax;
+            my = -ay;
+            len = hypot(mx, my);
+        }
+        if (method == CONICA_NORMALS_CIRCLE && p < n && q < n) {
+            /* Circle through prev, i, next, in a frame centred on i: its
+             * centre is (cx, cy)/d; the normal points from it to i. */
+            double aa = ax * ax + ay * ay, bb = bx * bx + by * by;
+            double d = 2.0 * (ax * by - ay * bx);
+            if (fabs(d) > 2.0 * CONICA__CIRCLE_COLLINEAR_SIN * sqrt(aa) * sqrt(bb)) {
+                double cx = (by * aa - ay * bb) / d, cy = (ax * bb - bx * aa) / d;
+                double cl = hypot(cx, cy);
+                if (cl > 0.0 && isfinite(cl)) {
+                    double ux = -cx / cl, uy = -cy / cl;
+                    /* Keep the orientation chosen above. */
+                    if (ux * mx + uy * my < 0.0) {
+                        ux = -ux;
+                        uy = -uy;
+                    }
+                    mx = ux;
+                    my = uy;
+                    len = 1.0;
+                }
+            }
+        }
+        nn[2 * i] = mx / len;
+        nn[2 * i + 1] = my / len;
+    }
+    free(c->nxy);
+    c->nxy = nn;
+    conica__ok(st);
+    return CONICA_OK;
+}
+
+/* ------------------------------------------------------------------ parser */
+
+static int is_blank(char ch)
+{
+    return ch == ' ' || ch == '\t' || ch == '\r' || ch == '\v' || ch == '\f';
+}
+
+/* One line of input: [b, e) without its newline. */
+typedef struct line_view {
+    const char *b, *e;
+    size_t no;      /* 1-based line number */
+    size_t offset;  /* byte offset of b in the buffer */
+} line_view;
+
+enum line_kind { LINE_SKIP, LINE_V, LINE_VN, LINE_OTHER };
+
+/* Classify a line by its first word; *rest points after the keyword. */
+static enum line_kind classify(const line_view *ln, const char **rest)
+{
+    const char *p = ln->b;
+    while (p < ln->e && is_blank(*p))
+        p++;
+    if (p == ln->e || *p == '#' || *p == '%')
+        return LINE_SKIP;
+    if (*p == 'v') {
+        if (p + 1 == ln->e || is_blank(p[1])) {
+            *rest = p + 1;
+            return LINE_V;
+        }
+        if (p[1] == 'n' && (p + 2 == ln->e || is_blank(p[2]))) {
+            *rest = p + 2;
+            return LINE_VN;
+        }
+    }
+    *rest = p;
+    return LINE_OTHER;
+}
+
+/* Advance *ln to the next line of buf; returns 0 at the end. */
+static int next_line(const char *buf, size_t len, size_t *pos, line_view *ln)
+{
+    const char *nl;
+    if (*pos >= len)
+        return 0;
+    ln->b = buf + *pos;
+    ln->offset = *pos;
+    nl = memchr(ln->b, '\n', len - *pos);
+    ln->e = nl ? nl : buf + len;
+    *pos = (size_t)(ln->e - buf) + (nl ? 1 : 0);
+    ln->no++;
+    return 1;
+}
+
+/* Parse exactly two numbers from [p, ln->e) into v[0..1]. */
+static conica_code parse_pair(const line_view *ln, const char *p, const char *what, double *v,
+                              conica_status *st)
+{
+    int k;
+    for (k = 0; k < 2; k++) {
+        const char *tok;
+        size_t used = 0;
+        int r;
+        double x = 0.0;
+        if (p < ln->e && !is_blank(*p))
+            goto junk;
+        while (p < ln->e && is_blank(*p))
+            p++;
+        if (p == ln->e)
+            return conica__fail(st, CONICA_ERR_PARSE, ln->no, (size_t)(p - ln->b) + ln->offset,
+                                "'%s' line has %d number%s, expected 2", what, k,
+                                k == 1 ? "" : "s");
+        tok = p;
+        r = conica__parse_double(p, (size_t)(ln->e - p), &x, &used);
+        if (r == CONICA__NUM_NONFINITE)
+            return conica__fail(st, CONICA_ERR_NONFINITE, ln->no, (size_t)(tok - ln->b) + ln->offset,
+                                "'%.*s' is not a finite number", (int)(used < 40 ? used : 40), tok);
+        if (r != CONICA__NUM_OK)
+            goto junk;
+        p += used;
+        if (p < ln->e && !is_blank(*p))
+            goto junk;
+        v[k] = x;
+        continue;
+    junk: {
+            const char *q = p;
+            while (q > ln->b && !is_blank(q[-1]))
+                q--;
+            p = q;
+            while (q < ln->e && !is_blank(*q))
+                q++;
+            return conica__fail(st, CONICA_ERR_PARSE, ln->no, (size_t)(p - ln->b) + ln->offset,
+                                "'%.*s' is not a number", (int)((q - p) < 40 ? (q - p) : 40), p);
+        }
+    }
+    while (p < ln->e && is_blank(*p))
+        p++;
+    if (p != ln->e)
+        return conica__fail(st, CONICA_ERR_PARSE, ln->no, (size_t)(p - ln->b) + ln->offset,
+                            "'%s' line has more than 2 numbers (3D data is not supported)", what);
+    return CONICA_OK;
+}
+
+conica_code conica_curve_parse(const char *buf, size_t len, conica_curve *out, conica_status *st)
+{
+    line_view ln;
+    size_t pos = 0, nv = 0, nvn = 0, iv = 0, ivn = 0, last_vn_line = 0;
+    double *xy = NULL, *nxy = NULL;
+    conica_code rc;
+
+    if (!out || (len > 0 && !buf))
+        return conica__fail(st, CONICA_ERR_ARG, 0, 0, "conica_curve_parse: NULL argument");
+
+    /* Pass 1: classify every line and count, so that the arrays are
+     * allocated once and the point cap is checked before any allocation. */
+    memset(&ln, 0, sizeof ln);
+    while (next_line(buf, len, &pos, &ln)) {
+        const char *rest;
+        switch (classify(&ln, &rest)) {
+        case LINE_SKIP:
+            break;
+        case LINE_V:
+            if (++nv > CONICA_CURVE_MAX_INPUT_POINTS)
+                return conica__fail(st, CONICA_ERR_LIMIT, ln.no, ln.offset,
+                                    "more than %zu points (CONICA_CURVE_MAX_INPUT_POINTS)",
+                                    (size_t)CONICA_CURVE_MAX_INPUT_POINTS);
+            break;
+        case LINE_VN:
+            if (++nvn > CONICA_CURVE_MAX_INPUT_POINTS)
+                return conica__fail(st, CONICA_ERR_LIMIT, ln.no, ln.offset,
+                                    "more than %zu normals (CONICA_CURVE_MAX_INPUT_POINTS)",
+                                    (size_t)CONICA_CURVE_MAX_INPUT_POINTS);
+            last_vn_line = ln.no;
+            break;
+        case LINE_OTHER: {
+            /* The reference skips such lines silently; we say so instead,
+             * because a mistyped line would otherwise vanish from the curve. */
+            const char *q = rest;
+            while (q < ln.e && !is_blank(*q))
+                q++;
+            return conica__fail(st, CONICA_ERR_PARSE, ln.no, (size_t)(rest - ln.b) + ln.offset,
+                                "unknown line starting with '%.*s' (expected 'v x y', 'vn nx ny', "
+                                "or a '#'/'%%' comment)",
+                                (int)((q - rest) < 20 ? (q - rest) : 20), rest);
+        }
+        }
+    }
+    if (nv == 0)
+        return conica__fail(st, CONICA_ERR_PARSE, ln.no, len, "no 'v x y' lines: the input has no points");
+    if (nvn != 0 && nvn != nv)
+        return conica__fail(st, CONICA_ERR_PARSE, last_vn_line, 0,
+                            "%zu 'vn' lines for %zu 'v' lines (normals pair with points by order: "
+                            "give one per point, or none)",
+                            nvn, nv);
+
+    xy = malloc(2 * nv * sizeof *xy);
+    if (nvn)
+        nxy = malloc(2 * nvn * sizeof *nxy);
+    if (!xy || (nvn && !nxy)) {
+        free(xy);
+        free(nxy);
+        return conica__fail(st, CONICA_ERR_NOMEM, 0, 0, "out of memory for %zu points", nv);
+    }
+
+    /* Pass 2: read the numbers. */
+    pos = 0;
+    memset(&ln, 0, sizeof ln);
+    while (next_line(buf, len, &pos, &ln)) {
+        const char *rest;
+        enum line_kind k = classify(&ln, &rest);
+        if (k == LINE_V) {
+            rc = parse_pair(&ln, rest, "v", xy + 2 * iv, st);
+            if (rc != CONICA_OK)
+                goto fail;
+            iv++;
+        } else if (k == LINE_VN) {
+            double *nv2 = nxy + 2 * ivn;
+            rc = parse_pair(&ln, rest, "vn", nv2, st);
+            if (rc != CONICA_OK)
+                goto fail;
+            if (nv2[0] == 0.0 && nv2[1] == 0.0) {
+                rc = conica__fail(st, CONICA_ERR_DEGENERATE, ln.no, ln.offset,
+                                  "zero normal 'vn 0 0' has no direction");
+                goto fail;
+            }
+            ivn++;
+        }
+    }
+    curve_take(out, xy, nxy, nv, 1);
+    conica__ok(st);
+    return CONICA_OK;
+
+fail:
+    free(xy);
+    free(nxy);
+    return rc;
+}
+
+/* ------------------------------------------------------------------ writer */
+
+/* "%.17g" of x into buf with '.' as the decimal point whatever LC_NUMERIC
+ * says: printf obeys the locale, and a library caller (a GUI, Python) may
+ * have set one with a decimal comma. */
+static void format_double(char *buf, size_t size, double x)
+{
+    const char *dp = localeconv()->decimal_point;
+    char *p;
+    snprintf(buf, size, "%.17g", x);
+    if (!dp || (dp[0] == '.' && dp[1] == '\0') || dp[0] == '\0')
+        return;
+    p = strstr(buf, dp);
+    if (p) {
+        size_t dl = strlen(dp);
+        *p = '.';
+        memmove(p + 1, p + dl, strlen(p + dl) + 1);
+    }
+}
+
+static int write_pair(FILE *f, const char *key, const double *v)
+{
+    char a[64], b[64];
+    format_double(a, sizeof a, v[0]);
+    format_double(b, sizeof b, v[1]);
+    return fprintf(f, "%s %s %s\n", key, a, b) < 0;
+}
+
+conica_code conica_curve_write(FILE *f, const conica_curve *c, conica_status *st)
+{
+    size_t i;
+    if (!f || !c || (c->n > 0 && !c->xy))
+        return conica__fail(st, CONICA_ERR_ARG, 0, 0, "conica_curve_write: NULL argument");
+    /* %.17g: 17 significant digits identify every double exactly. */
+    for (i = 0; i < c->n; i++)
+        if (write_pair(f, "v", c->xy + 2 * i))
+            return conica__fail(st, CONICA_ERR_IO, 0, i, "write error");
+    if (c->nxy)
+        for (i = 0; i < c->n; i++)
+            if (write_pair(f, "vn", c->nxy + 2 * i))
+                return conica__fail(st, CONICA_ERR_IO, 0, i, "write error");
+    if (ferror(f))
+        return conica__fail(st, CONICA_ERR_IO, 0, 0, "write error");
+    conica__ok(st);
+    return CONICA_OK;
+}
