@@ -1,8 +1,28 @@
 #include "plotsvg.h"
 
+#include "cli.h"
+
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
+
+int plotsvg_load_curve(const char *prog, const char *path, int closed, conica_curve *c)
+{
+    char *buf;
+    size_t len;
+    conica_status st;
+    if (cli_read_file(prog, path, CLI_DEFAULT_MAX_INPUT, &buf, &len))
+        return 1;
+    if (conica_curve_parse(buf, len, c, &st) != CONICA_OK) {
+        char where[1100];
+        snprintf(where, sizeof where, "%s:%zu", strcmp(path, "-") ? path : "<stdin>", st.line);
+        free(buf);
+        return cli_error(prog, where, "%s", st.message);
+    }
+    free(buf);
+    c->closed = closed;
+    return 0;
+}
 
 /* ------------------------------------------------------------ curvature */
 
@@ -174,6 +194,68 @@ int plotsvg_normal_error(const conica_curve *c, double *mean_deg, double *max_de
     *max_deg = mx;
     conica_curve_free(&est);
     return 0;
+}
+
+int plotsvg_variant(const char *name, conica_subdiv_settings *s)
+{
+    conica_subdiv_settings d = conica_subdiv_defaults();
+    d.levels = s->levels;
+    if (!strcmp(name, "base")) {
+        d.normalize_normals = 1;
+        d.plain_quadratic = 1;
+    } else if (!strcmp(name, "norm-skip")) {
+        d.normalize_normals = 0;
+        d.plain_quadratic = 1;
+    } else if (!strcmp(name, "precise")) {
+        d.precise = 1;
+    } else if (strcmp(name, "final") != 0) {
+        return -1;
+    }
+    *s = d;
+    return 0;
+}
+
+conica_code plotsvg_measure(const conica_curve *in, const conica_subdiv_settings *s,
+                            const plotsvg_conic *q, plotsvg_errors *e, conica_status *st)
+{
+    conica_curve out;
+    conica_code rc;
+    conica_curve_init(&out);
+    e->e_mean = e->e_max = e->n_mean = e->n_max = NAN;
+    if (s->precise) {
+        /* keep every bit of the long double result for eqs. (13)-(14) */
+        conica_curvel outl;
+        conica_curvel_init(&outl);
+        rc = conica_subdividel(in, s, &outl, NULL, st);
+        if (rc == CONICA_OK && q)
+            plotsvg_conic_errorl(q, outl.xy, outl.n, &e->e_mean, &e->e_max);
+        if (rc == CONICA_OK) {
+            rc = CONICA_ERR_NOMEM;
+            out.xy = malloc(2 * outl.n * sizeof *out.xy);
+            out.nxy = malloc(2 * outl.n * sizeof *out.nxy);
+            if (out.xy && out.nxy && outl.nxy) {
+                for (size_t i = 0; i < 2 * outl.n; i++) {
+                    out.xy[i] = (double)outl.xy[i];
+                    out.nxy[i] = (double)outl.nxy[i];
+                }
+                out.n = out.cap = outl.n;
+                out.closed = outl.closed;
+                rc = CONICA_OK;
+            }
+        }
+        conica_curvel_free(&outl);
+    } else {
+        rc = conica_subdivide(in, s, &out, NULL, st);
+        if (rc == CONICA_OK && q)
+            plotsvg_conic_error(q, out.xy, out.n, &e->e_mean, &e->e_max);
+    }
+    if (rc == CONICA_OK) {
+        e->points = out.n;
+        if (plotsvg_normal_error(&out, &e->n_mean, &e->n_max) != 0)
+            e->n_mean = e->n_max = NAN;
+    }
+    conica_curve_free(&out);
+    return rc;
 }
 
 /* ------------------------------------------------------------ SVG writer */

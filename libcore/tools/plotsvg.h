@@ -10,6 +10,7 @@
 #include <stdio.h>
 
 #include "conica/curve.h"
+#include "conica/subdiv.h"
 
 /* Auto comb scale: the largest tooth is this fraction of the curve's size
  * (the larger side of its bounding box). */
@@ -19,6 +20,11 @@
 #define PLOTSVG_DEFAULT_MAX_TEETH 2000
 /* Upper bound a user may ask for with --max-teeth. */
 #define PLOTSVG_MAX_TEETH_LIMIT 1000000
+
+/* Read and parse the point-normal file path ('-' = stdin) into *c with the
+ * given closed flag; errors go to stderr as `prog: error: FILE:LINE: what`.
+ * Returns 0, or 1 after printing an error. */
+int plotsvg_load_curve(const char *prog, const char *path, int closed, conica_curve *c);
 
 /* ------------------------------------------------------------ curvature */
 
@@ -69,6 +75,26 @@ void plotsvg_conic_errorl(const plotsvg_conic *q, const long double *xy, size_t 
  * The estimate's orientation is matched to c's by the sign of the summed
  * dot products. Returns 0, or -1 if estimation fails (degenerate curve). */
 int plotsvg_normal_error(const conica_curve *c, double *mean_deg, double *max_deg);
+
+/* The numerics ablation of seed 000, Section 3.2, as run-time settings of
+ * the one implementation: "base" (double, normals normalised every level,
+ * plain quadratic formula), "norm-skip" (no normalisation, plain formula),
+ * "final" (our defaults: no normalisation, Kahan/FMA root), "precise" (final
+ * in long double). Returns 0, or -1 for an unknown name. */
+int plotsvg_variant(const char *name, conica_subdiv_settings *s);
+
+/* What one subdivision level measures. */
+typedef struct plotsvg_errors {
+    size_t points;         /* n_k */
+    double e_mean, e_max;  /* eqs. (13)-(14); NAN without a conic */
+    double n_mean, n_max;  /* normal angle error, degrees */
+} plotsvg_errors;
+
+/* Subdivide in (s->levels levels; long double output when s->precise) and
+ * measure it against the conic q (may be NULL). Returns the subdivision's
+ * code; st carries its message. */
+conica_code plotsvg_measure(const conica_curve *in, const conica_subdiv_settings *s,
+                            const plotsvg_conic *q, plotsvg_errors *e, conica_status *st);
 
 /* ------------------------------------------------------------ SVG writer */
 
