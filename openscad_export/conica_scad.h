@@ -1,0 +1,247 @@
+/**
+ * @file conica_scad.h
+ * @brief OpenSCAD export of Conica: 2D profiles (contours with holes) as
+ *        OpenSCAD modules, with validation, hole arrangement, compact
+ *        round-trip number printing and tolerance-driven point reduction.
+ *
+ * Conventions as in conica/common.h: inputs, outputs, then an optional
+ * conica_status; outputs untouched on failure; `_init` then `_free`.
+ *
+ * Example (one closed contour, written as module `gear`):
+ * @code
+ *   conica_scad_profile prof;
+ *   conica_scad_profile_init(&prof);
+ *   size_t g;
+ *   conica_scad_add_group(&prof, "outline", CONICA_SCAD_FILL_NONZERO, 0, &g, NULL);
+ *   conica_scad_add_contour(&prof, g, xy, n, NULL);
+ *   conica_status st;
+ *   conica_scad_layout lay;
+ *   conica_scad_layout_init(&lay);
+ *   if (conica_scad_validate(&prof, 0, NULL, &st) == CONICA_OK &&
+ *       conica_scad_arrange(&prof, &lay, &st) == CONICA_OK) {
+ *       conica_scad_write_options o = conica_scad_write_defaults();
+ *       o.module = "gear";
+ *       conica_scad_write(stdout, &prof, &lay, &o, &st);
+ *   }
+ *   conica_scad_layout_free(&lay);
+ *   conica_scad_profile_free(&prof);
+ * @endcode
+ */
+#ifndef CONICA_SCAD_H
+#define CONICA_SCAD_H
+
+#include <stdio.h>
+
+#include "conica/common.h"
+#include "conica/curve.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/** Caps on input-controlled sizes. */
+#define CONICA_SCAD_MAX_CONTOURS ((size_t)1 << 20)     /**< contours in one profile */
+#define CONICA_SCAD_MAX_POINTS ((size_t)1 << 26)       /**< points in one profile */
+#define CONICA_SCAD_DEFAULT_MAX_DENSE ((size_t)1 << 22) /**< dense points while refining to a tolerance */
+#define CONICA_SCAD_MAX_MODULE_NAME 64                 /**< characters of a module name */
+
+/**
+ * A contour whose signed area is at most this fraction of its bounding
+ * box's squared diagonal is treated as having zero area (a polygon folded
+ * onto a line computes to rounding noise, not to 0).
+ */
+#define CONICA_SCAD_ZERO_AREA_REL 1e-14
+
+/** Fill rule of a group of contours (SVG's `fill-rule`). */
+typedef enum conica_scad_fill {
+    CONICA_SCAD_FILL_NONZERO = 0,
+    CONICA_SCAD_FILL_EVENODD = 1
+} conica_scad_fill;
+
+/** A group of contours filled together (one SVG element). */
+typedef struct conica_scad_group {
+    char name[64];        /**< for messages (element id or file name), NUL-terminated */
+    conica_scad_fill fill;
+    size_t line;          /**< source line for messages, 0 if none */
+} conica_scad_group;
+
+/** A closed contour (the last point connects to the first; not repeated). */
+typedef struct conica_scad_contour {
+    size_t group;   /**< index into conica_scad_profile.groups */
+    size_t n;       /**< points */
+    double *xy;     /**< 2n coordinates, owned */
+} conica_scad_contour;
+
+/** A set of contours to be written as one polygon. Owns everything. */
+typedef struct conica_scad_profile {
+    size_t ncontours, ccap;
+    conica_scad_contour *contours;
+    size_t ngroups, gcap;
+    conica_scad_group *groups;
+} conica_scad_profile;
+
+/** @brief Make *p empty (safe to free). */
+CONICA_API void conica_scad_profile_init(conica_scad_profile *p);
+/** @brief Release everything *p owns. Accepts NULL. */
+CONICA_API void conica_scad_profile_free(conica_scad_profile *p);
+
+/**
+ * @brief Add a group (name is truncated to 63 bytes; NULL gives "").
+ * @param[out] index receives the new group's index (may be NULL)
+ * @return CONICA_OK, CONICA_ERR_ARG, CONICA_ERR_LIMIT, CONICA_ERR_NOMEM
+ */
+CONICA_API conica_code conica_scad_add_group(conica_scad_profile *p, const char *name,
+                                             conica_scad_fill fill, size_t line, size_t *index,
+                                             conica_status *st);
+
+/**
+ * @brief Copy a closed contour of n points into group `group`.
+ * @return CONICA_OK, CONICA_ERR_ARG (bad group, n == 0), CONICA_ERR_NONFINITE,
+ *         CONICA_ERR_LIMIT, CONICA_ERR_NOMEM
+ */
+CONICA_API conica_code conica_scad_add_contour(conica_scad_profile *p, size_t group,
+                                               const double *xy, size_t n, conica_status *st);
+
+/** Kinds of validation failures. */
+typedef enum conica_scad_problem {
+    CONICA_SCAD_OK = 0,
+    CONICA_SCAD_TOO_FEW_POINTS,   /**< fewer than 3 points */
+    CONICA_SCAD_DUPLICATE_POINT,  /**< two consecutive points are equal */
+    CONICA_SCAD_ZERO_AREA,        /**< no enclosed area */
+    CONICA_SCAD_SELF_INTERSECTION,/**< two segments of one contour meet */
+    CONICA_SCAD_CONTOURS_CROSS,   /**< segments of two contours meet */
+    CONICA_SCAD_NEGATIVE_X        /**< x < 0 with rotate_extrude */
+} conica_scad_problem;
+
+/** Where validation failed (indices are 0-based; messages are 1-based). */
+typedef struct conica_scad_violation {
+    conica_scad_problem problem;
+    size_t contour_a, segment_a;  /**< segment i runs from point i to point i+1 (mod n) */
+    size_t contour_b, segment_b;
+    double x, y;                  /**< a point near the problem */
+} conica_scad_violation;
+
+/**
+ * @brief Check that the profile can be written as an OpenSCAD polygon that
+ *        means what its fill rules say: each contour has >= 3 points, no
+ *        equal consecutive points, non-zero area, no two segments meet
+ *        (within a contour or between contours; exact orientation tests on
+ *        a uniform grid, about O(n) for evenly spread segments), and, with
+ *        `rotate_extrude` non-zero, no point with x < 0.
+ * @param[out] v  first problem found (may be NULL); problem CONICA_SCAD_OK when valid
+ * @param[out] st message naming the group, contour and segment pair
+ * @return CONICA_OK, CONICA_ERR_DEGENERATE (invalid profile), CONICA_ERR_ARG, CONICA_ERR_NOMEM
+ */
+CONICA_API conica_code conica_scad_validate(const conica_scad_profile *p, int rotate_extrude,
+                                            conica_scad_violation *v, conica_status *st);
+
+/** One path of the output polygon. */
+typedef struct conica_scad_path {
+    size_t contour;   /**< index into the profile */
+    int hole;         /**< non-zero: a hole (written clockwise), else outer (counter-clockwise) */
+    int reversed;     /**< the contour's points are written in reverse order */
+    size_t parent;    /**< enclosing kept path's contour, or SIZE_MAX */
+} conica_scad_path;
+
+/** Output order of the contours: outers first, then holes. */
+typedef struct conica_scad_layout {
+    size_t npaths;
+    conica_scad_path *paths;
+    size_t dropped;   /**< contours that separate no filled from unfilled region */
+    size_t outers, holes;
+    int convexity;    /**< estimated crossings of a straight ray / 2 (>= 1) */
+} conica_scad_layout;
+
+/** @brief Make *l empty (safe to free). */
+CONICA_API void conica_scad_layout_init(conica_scad_layout *l);
+/** @brief Release *l's array. Accepts NULL. */
+CONICA_API void conica_scad_layout_free(conica_scad_layout *l);
+
+/**
+ * @brief Decide outer contours and holes by containment and each group's
+ *        fill rule (union over groups), drop contours that do not bound the
+ *        filled region, orient outers counter-clockwise and holes
+ *        clockwise. Needs a profile without crossings (conica_scad_validate).
+ * @return CONICA_OK, CONICA_ERR_ARG, CONICA_ERR_NOMEM
+ */
+CONICA_API conica_code conica_scad_arrange(const conica_scad_profile *p, conica_scad_layout *out,
+                                           conica_status *st);
+
+/** Writer options; start from conica_scad_write_defaults(). */
+typedef struct conica_scad_write_options {
+    const char *module;     /**< identifier [A-Za-z_][A-Za-z0-9_]* (default "profile") */
+    const char *header;     /**< comment text (may hold newlines), or NULL */
+    int extrude;            /**< non-zero: emit NAME_extruded(height, center) */
+    double extrude_height;  /**< its default height */
+    int revolve;            /**< non-zero: emit NAME_revolved(angle) */
+    double revolve_angle;   /**< its default angle (degrees, (0, 360]) */
+    int instantiate;        /**< non-zero (default): end with a top-level call so the file renders alone */
+} conica_scad_write_options;
+
+/** @brief Defaults: module "profile", no wrappers, instantiate. */
+CONICA_API conica_scad_write_options conica_scad_write_defaults(void);
+
+/** @brief Non-zero when s is a valid OpenSCAD identifier for a module name. */
+CONICA_API int conica_scad_valid_name(const char *s);
+
+/**
+ * @brief Write `function NAME_points()`, `function NAME_paths()`,
+ *        `module NAME()` and the requested wrappers.
+ * @return CONICA_OK, CONICA_ERR_ARG, CONICA_ERR_IO
+ */
+CONICA_API conica_code conica_scad_write(FILE *f, const conica_scad_profile *p,
+                                         const conica_scad_layout *l,
+                                         const conica_scad_write_options *o, conica_status *st);
+
+/**
+ * @brief Shortest of %.15g/%.16g/%.17g that reads back to exactly v
+ *        (so 0.1 prints as 0.1, 1 as 1, and -0 as 0).
+ * @param[out] buf at least 32 bytes
+ * @return the length written
+ */
+CONICA_API size_t conica_scad_format_double(double v, char *buf, size_t cap);
+
+/**
+ * @brief Fewest points, taken from a dense polyline whose vertices lie on
+ *        the curve, such that every dense vertex is within `tol` of the
+ *        chord that skips it (greedy longest chord, galloping + bisection,
+ *        every accepted chord checked in full; closed curves try several
+ *        starting points).
+ * @param[in]  xy      n dense points
+ * @param[in]  closed  non-zero for a closed curve
+ * @param[in]  tol     > 0
+ * @param[out] out     new array of 2 * *nout doubles (free with free())
+ * @return CONICA_OK, CONICA_ERR_ARG, CONICA_ERR_NOMEM
+ */
+CONICA_API conica_code conica_scad_thin(const double *xy, size_t n, int closed, double tol,
+                                        double **out, size_t *nout, conica_status *st);
+
+/** What conica_scad_refine() did. */
+typedef struct conica_scad_refine_info {
+    int levels;            /**< subdivision levels of the dense curve */
+    size_t dense_points;   /**< its points */
+    double dense_error;    /**< estimated distance of the dense polyline from the limit curve */
+    size_t points;         /**< points kept */
+} conica_scad_refine_info;
+
+/**
+ * @brief A closed point-normal curve refined by conic subdivision until the
+ *        dense polyline is within tol/16 of the limit curve (estimated from
+ *        its three-point sagittas), then thinned to the fewest points with
+ *        chords within the rest of the tolerance (conica_scad_thin).
+ * @param[in]  in          closed input curve (normals optional)
+ * @param[in]  tol         > 0, in the curve's units
+ * @param[in]  max_dense   cap on dense points (0: CONICA_SCAD_DEFAULT_MAX_DENSE)
+ * @param[out] out         new array of 2 * *nout doubles (free with free())
+ * @param[out] info        optional
+ * @return CONICA_OK, CONICA_ERR_ARG, CONICA_ERR_LIMIT, or a conica_subdivide() error
+ */
+CONICA_API conica_code conica_scad_refine(const conica_curve *in, double tol, size_t max_dense,
+                                          double **out, size_t *nout,
+                                          conica_scad_refine_info *info, conica_status *st);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif

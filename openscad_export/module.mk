@@ -1,0 +1,21 @@
+# openscad_export: the .scad writer library (libconica_scad.a) and `scadprofile`.
+SCAD_LIB_SRCS := $(filter-out openscad_export/scadprofile.c,$(wildcard openscad_export/*.c))
+SCAD_LIB_OBJS := $(SCAD_LIB_SRCS:%.c=$(BUILD)/obj/%.o)
+SCAD_A        := $(BUILD)/lib/libconica_scad.a
+
+# Must precede the SVG library in link order (scadprofile uses both).
+MODULE_LIBS_FIRST += $(SCAD_A)
+
+$(BUILD)/obj/openscad_export/%.o: CPPFLAGS += -Iopenscad_export -Ilibcore/src -Isvg_tools -Ilibcore/tools $(XML_CFLAGS)
+$(BUILD)/obj/tests/test_scad.o: CPPFLAGS += -Iopenscad_export
+
+$(SCAD_A): $(SCAD_LIB_OBJS)
+	@mkdir -p $(@D)
+	rm -f $@ && ar rcs $@ $^
+
+ifneq ($(wildcard openscad_export/scadprofile.c),)
+BINS += $(BUILD)/bin/scadprofile
+$(BUILD)/bin/scadprofile: $(BUILD)/obj/openscad_export/scadprofile.o $(SCAD_A) $(CLI_A) $(CORE_A)
+	@mkdir -p $(@D)
+	$(CC) $(LDFLAGS) -o $@ $(BUILD)/obj/openscad_export/scadprofile.o $(ALL_LIBS) $(ALL_LDLIBS)
+endif

@@ -1,0 +1,171 @@
+/* Profile storage, status helpers and the exact orientation predicate. */
+#include "scad_internal.h"
+
+#include <math.h>
+#include <stdint.h>
+#include <stdlib.h>
+#include <string.h>
+
+void conica_scad_profile_init(conica_scad_profile *p)
+{
+    if (p)
+        memset(p, 0, sizeof *p);
+}
+
+void conica_scad_profile_free(conica_scad_profile *p)
+{
+    if (!p)
+        return;
+    for (size_t i = 0; i < p->ncontours; i++)
+        free(p->contours[i].xy);
+    free(p->contours);
+    free(p->groups);
+    memset(p, 0, sizeof *p);
+}
+
+conica_code conica_scad_add_group(conica_scad_profile *p, const char *name, conica_scad_fill fill,
+                                  size_t line, size_t *index, conica_status *st)
+{
+    if (!p || (fill != CONICA_SCAD_FILL_NONZERO && fill != CONICA_SCAD_FILL_EVENODD))
+        return conica__fail(st, CONICA_ERR_ARG, 0, 0, "invalid argument");
+    if (p->ngroups >= CONICA_SCAD_MAX_CONTOURS)
+        return conica__fail(st, CONICA_ERR_LIMIT, 0, 0, "more than %zu groups",
+                                 (size_t)CONICA_SCAD_MAX_CONTOURS);
+    if (p->ngroups == p->gcap) {
+        size_t ncap = p->gcap ? 2 * p->gcap : 8;
+        conica_scad_group *g = realloc(p->groups, ncap * sizeof *g);
+        if (!g)
+            return conica__fail(st, CONICA_ERR_NOMEM, 0, 0, "out of memory");
+        p->groups = g;
+        p->gcap = ncap;
+    }
+    conica_scad_group *g = &p->groups[p->ngroups];
+    memset(g, 0, sizeof *g);
+    if (name) {
+        size_t len = strlen(name);
+        if (len >= sizeof g->name)
+            len = sizeof g->name - 1;
+        memcpy(g->name, name, len);
+        g->name[len] = '\0';
+    }
+    g->fill = fill;
+    g->line = line;
+    if (index)
+        *index = p->ngroups;
+    p->ngroups++;
+    conica__ok(st);
+    return CONICA_OK;
+}
+
+conica_code conica_scad_add_contour(conica_scad_profile *p, size_t group, const double *xy,
+                                    size_t n, conica_status *st)
+{
+    size_t total = 0;
+    if (!p || !xy || n == 0 || group >= p->ngroups)
+        return conica__fail(st, CONICA_ERR_ARG, 0, 0, "invalid argument");
+    for (size_t i = 0; i < 2 * n; i++)
+        if (!isfinite(xy[i]))
+            return conica__fail(st, CONICA_ERR_NONFINITE, 0, i / 2,
+                                     "point %zu is not finite", i / 2 + 1);
+    for (size_t i = 0; i < p->ncontours; i++)
+        total += p->contours[i].n;
+    if (p->ncontours >= CONICA_SCAD_MAX_CONTOURS || n > CONICA_SCAD_MAX_POINTS - total)
+        return conica__fail(st, CONICA_ERR_LIMIT, 0, 0,
+                                 "profile larger than %zu contours or %zu points",
+                                 (size_t)CONICA_SCAD_MAX_CONTOURS, (size_t)CONICA_SCAD_MAX_POINTS);
+    if (p->ncontours == p->ccap) {
+        size_t ncap = p->ccap ? 2 * p->ccap : 8;
+        conica_scad_contour *c = realloc(p->contours, ncap * sizeof *c);
+        if (!c)
+            return conica__fail(st, CONICA_ERR_NOMEM, 0, 0, "out of memory");
+        p->contours = c;
+        p->ccap = ncap;
+    }
+    double *copy = malloc(2 * n * sizeof *copy);
+    if (!copy)
+        return conica__fail(st, CONICA_ERR_NOMEM, 0, 0, "out of memory");
+    memcpy(copy, xy, 2 * n * sizeof *copy);
+    p->contours[p->ncontours].group = group;
+    p->contours[p->ncontours].n = n;
+    p->contours[p->ncontours].xy = copy;
+    p->ncontours++;
+    conica__ok(st);
+    return CONICA_OK;
+}
+
+/* ---------------------------------------------------------- orientation */
+
+/* Knuth's TwoSum: s + e == a + b exactly. */
+static void two_sum(double a, double b, double *s, double *e)
+{
+    double x = a + b, bv = x - a, av = x - bv;
+    *s = x;
+    *e = (a - av) + (b - bv);
+}
+
+/* Shewchuk's grow-expansion with zero elimination, in place: adds b to the
+ * non-overlapping expansion e[0..m) (increasing magnitude). */
+static size_t grow(double *e, size_t m, double b)
+{
+    double q = b;
+    size_t k = 0;
+    for (size_t i = 0; i < m; i++) {
+        double h;
+        two_sum(q, e[i], &q, &h);
+        if (h != 0.0)
+            e[k++] = h;
+    }
+    if (q != 0.0 || k == 0)
+        e[k++] = q;
+    return k;
+}
+
+int conica__scad_orient(const double *a, const double *b, const double *c)
+{
+    /* det = (ax-cx)(by-cy) - (ay-cy)(bx-cx); Shewchuk's ccwerrboundA filter. */
+    double l = (a[0] - c[0]) * (b[1] - c[1]);
+    double r = (a[1] - c[1]) * (b[0] - c[0]);
+    double det = l - r;
+    double bound = 3.3306690738754716e-16 * (fabs(l) + fabs(r));
+    if (det > bound)
+        return 1;
+    if (-det > bound)
+        return -1;
+    if (l == 0.0 && r == 0.0)
+        return 0;
+    /* Exact: det = ax by - ax cy - cx by - ay bx + ay cx + cy bx, each
+     * product split into hi + lo with fma (exact for finite, non-underflowing
+     * values), the twelve terms summed as an expansion; its sign is the sign
+     * of its largest component. */
+    const double pa[6] = {a[0], -a[0], -c[0], -a[1], a[1], c[1]};
+    const double pb[6] = {b[1], c[1], b[1], b[0], c[0], b[0]};
+    double e[12];
+    size_t m = 0;
+    for (int i = 0; i < 6; i++) {
+        double hi = pa[i] * pb[i];
+        double lo = fma(pa[i], pb[i], -hi);
+        m = grow(e, m, hi);
+        m = grow(e, m, lo);
+    }
+    double top = e[m - 1];
+    return (top > 0) - (top < 0);
+}
+
+double conica__scad_area2(const double *xy, size_t n)
+{
+    /* Shoelace relative to the first point (no cancellation from where the
+     * contour sits), summed with Neumaier compensation. */
+    double s = 0.0, comp = 0.0;
+    if (n < 3)
+        return 0.0;
+    double x0 = xy[0], y0 = xy[1];
+    for (size_t i = 1; i + 1 < n; i++) {
+        double ax = xy[2 * i] - x0, ay = xy[2 * i + 1] - y0;
+        double bx = xy[2 * i + 2] - x0, by = xy[2 * i + 3] - y0;
+        double t = ax * by - ay * bx;
+        double u = s + t;
+        comp += fabs(s) >= fabs(t) ? (s - u) + t : (t - u) + s;
+        s = u;
+    }
+    return s + comp;
+}

@@ -1,0 +1,421 @@
+/* Unit tests of the OpenSCAD export library (openscad_export/). The tests
+ * that run OpenSCAD itself are in tests/cli/scadprofile.sh. */
+#include "conica_test.h"
+
+#include <math.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "conica_scad.h"
+#include "scad_internal.h"
+
+#ifndef M_PI
+#define M_PI 3.14159265358979323846
+#endif
+
+static void circle(double *xy, size_t n, double cx, double cy, double r, int ccw)
+{
+    for (size_t i = 0; i < n; i++) {
+        double t = 2 * M_PI * (double)i / (double)n * (ccw ? 1 : -1);
+        xy[2 * i] = cx + r * cos(t);
+        xy[2 * i + 1] = cy + r * sin(t);
+    }
+}
+
+static void square(double *xy, double x0, double y0, double s, int ccw)
+{
+    double c[8] = {x0, y0, x0 + s, y0, x0 + s, y0 + s, x0, y0 + s};
+    for (int i = 0; i < 4; i++) {
+        int j = ccw ? i : (4 - i) % 4;
+        xy[2 * i] = c[2 * j];
+        xy[2 * i + 1] = c[2 * j + 1];
+    }
+}
+
+/* Profile of groups given as (fill, contours...) built by the caller. */
+static size_t group(conica_scad_profile *p, const char *name, conica_scad_fill fill)
+{
+    size_t g = 0;
+    REQUIRE_EQ(conica_scad_add_group(p, name, fill, 0, &g, NULL), CONICA_OK);
+    return g;
+}
+
+TEST_CASE("numbers print shortest and round-trip", "[scad][format]")
+{
+    char buf[40];
+    conica_scad_format_double(0.1, buf, sizeof buf);
+    CHECK_STR_EQ(buf, "0.1");
+    conica_scad_format_double(1.0, buf, sizeof buf);
+    CHECK_STR_EQ(buf, "1");
+    conica_scad_format_double(-0.0, buf, sizeof buf);
+    CHECK_STR_EQ(buf, "0");
+    conica_scad_format_double(-2.5, buf, sizeof buf);
+    CHECK_STR_EQ(buf, "-2.5");
+    conica_scad_format_double(1.0 / 3.0, buf, sizeof buf);
+    CHECK_EQ(strtod(buf, NULL) == 1.0 / 3.0, 1);
+    CHECK_STR_EQ(buf, "0.3333333333333333");
+    conica_scad_format_double(1e-300, buf, sizeof buf);
+    CHECK_STR_EQ(buf, "1e-300");
+    ct_rng r;
+    ct_rng_init(&r, 7);
+    for (int i = 0; i < 20000; i++) {
+        double v = ct_rng_range(&r, -1, 1) * pow(10.0, ct_rng_range(&r, -20, 20));
+        size_t len = conica_scad_format_double(v, buf, sizeof buf);
+        INFO("value %.17g printed %s", v, buf);
+        REQUIRE(strtod(buf, NULL) == v);
+        REQUIRE(len == strlen(buf));
+        /* shortest of the three: a shorter precision must not round-trip */
+        char shorter[40];
+        const char *digits = strchr(buf, 'e');
+        (void)digits;
+        snprintf(shorter, sizeof shorter, "%.15g", v);
+        if (strtod(shorter, NULL) == v)
+            REQUIRE(strlen(buf) <= strlen(shorter));
+    }
+}
+
+TEST_CASE("orientation is exact near collinear points", "[scad][orient]")
+{
+    double a[2] = {0.5, 0.5}, b[2] = {12, 12}, c[2] = {24, 24};
+    CHECK_EQ(conica__scad_orient(a, b, c), 0);
+    /* Shewchuk's classic grid: points x = 0.5 + i ulp around the line y = x */
+    int wrong = 0;
+    for (int i = 0; i < 64; i++)
+        for (int j = 0; j < 64; j++) {
+            double p[2] = {0.5, 0.5};
+            for (int k = 0; k < i; k++)
+                p[0] = nextafter(p[0], 1);
+            for (int k = 0; k < j; k++)
+                p[1] = nextafter(p[1], 1);
+            int expect = p[1] > p[0] ? 1 : p[1] < p[0] ? -1 : 0; /* b, c on y = x */
+            if (conica__scad_orient(b, c, p) != expect)
+                wrong++;
+        }
+    CHECK_EQ(wrong, 0);
+    double q[2] = {0.1, nextafter(0.1, 1)};
+    double o[2] = {0, 0}, e[2] = {1, 1};
+    CHECK_EQ(conica__scad_orient(o, e, q), 1);
+    CHECK_EQ(conica__scad_orient(e, o, q), -1);
+}
+
+TEST_CASE("validation refuses what OpenSCAD would render wrongly", "[scad][validate]")
+{
+    conica_scad_profile p;
+    conica_scad_violation v;
+    conica_status st;
+    conica_scad_profile_init(&p);
+    size_t g = group(&p, "shape", CONICA_SCAD_FILL_NONZERO);
+
+    SECTION("a square is valid")
+    {
+        double xy[8];
+        square(xy, 0, 0, 1, 1);
+        REQUIRE_EQ(conica_scad_add_contour(&p, g, xy, 4, NULL), CONICA_OK);
+        CHECK_EQ(conica_scad_validate(&p, 1, &v, &st), CONICA_OK);
+        CHECK_EQ(v.problem, CONICA_SCAD_OK);
+    }
+    SECTION("a bowtie names its crossing segments")
+    {
+        double xy[8] = {0, 0, 2, 2, 2, 0, 0, 2};
+        REQUIRE_EQ(conica_scad_add_contour(&p, g, xy, 4, NULL), CONICA_OK);
+        CHECK_EQ(conica_scad_validate(&p, 0, &v, &st), CONICA_ERR_DEGENERATE);
+        CHECK_EQ(v.problem, CONICA_SCAD_SELF_INTERSECTION);
+        CHECK_EQ_U(v.segment_a, 0);
+        CHECK_EQ_U(v.segment_b, 2);
+        CHECK_NEAR(v.x, 1, 1e-15);
+        CHECK_NEAR(v.y, 1, 1e-15);
+        INFO("%s", st.message);
+        CHECK(strstr(st.message, "segment 1 (points 1-2) and segment 3 (points 3-4)") != NULL);
+        CHECK(strstr(st.message, "'shape'") != NULL);
+    }
+    SECTION("a figure eight touching itself at one vertex")
+    {
+        double xy[12] = {0, 0, 1, 1, 2, 0, 2, 2, 1, 1, 0, 2};
+        REQUIRE_EQ(conica_scad_add_contour(&p, g, xy, 6, NULL), CONICA_OK);
+        CHECK_EQ(conica_scad_validate(&p, 0, &v, &st), CONICA_ERR_DEGENERATE);
+        CHECK_EQ(v.problem, CONICA_SCAD_SELF_INTERSECTION);
+    }
+    SECTION("a spike running back along its edge")
+    {
+        double xy[10] = {0, 0, 4, 0, 2, 0, 2, 3, 0, 3};
+        REQUIRE_EQ(conica_scad_add_contour(&p, g, xy, 5, NULL), CONICA_OK);
+        CHECK_EQ(conica_scad_validate(&p, 0, &v, &st), CONICA_ERR_DEGENERATE);
+        CHECK_EQ(v.problem, CONICA_SCAD_SELF_INTERSECTION);
+    }
+    SECTION("duplicate consecutive points, including last and first")
+    {
+        double xy[10] = {0, 0, 1, 0, 1, 1, 0, 1, 0, 0};
+        REQUIRE_EQ(conica_scad_add_contour(&p, g, xy, 5, NULL), CONICA_OK);
+        CHECK_EQ(conica_scad_validate(&p, 0, &v, &st), CONICA_ERR_DEGENERATE);
+        CHECK_EQ(v.problem, CONICA_SCAD_DUPLICATE_POINT);
+        CHECK_EQ_U(v.segment_a, 4);
+    }
+    SECTION("zero area")
+    {
+        double xy[6] = {0, 0, 1, 1, 3, 3};
+        REQUIRE_EQ(conica_scad_add_contour(&p, g, xy, 3, NULL), CONICA_OK);
+        CHECK_EQ(conica_scad_validate(&p, 0, &v, &st), CONICA_ERR_DEGENERATE);
+        CHECK_EQ(v.problem, CONICA_SCAD_ZERO_AREA);
+    }
+    SECTION("too few points")
+    {
+        double xy[4] = {0, 0, 1, 1};
+        REQUIRE_EQ(conica_scad_add_contour(&p, g, xy, 2, NULL), CONICA_OK);
+        CHECK_EQ(conica_scad_validate(&p, 0, &v, &st), CONICA_ERR_DEGENERATE);
+        CHECK_EQ(v.problem, CONICA_SCAD_TOO_FEW_POINTS);
+    }
+    SECTION("rotate_extrude needs x >= 0")
+    {
+        double xy[8];
+        square(xy, -0.5, 0, 1, 1);
+        REQUIRE_EQ(conica_scad_add_contour(&p, g, xy, 4, NULL), CONICA_OK);
+        CHECK_EQ(conica_scad_validate(&p, 0, &v, &st), CONICA_OK);
+        CHECK_EQ(conica_scad_validate(&p, 1, &v, &st), CONICA_ERR_DEGENERATE);
+        CHECK_EQ(v.problem, CONICA_SCAD_NEGATIVE_X);
+        CHECK(strstr(st.message, "x < 0") != NULL);
+    }
+    SECTION("two contours that cross")
+    {
+        double a[8], b[8];
+        square(a, 0, 0, 2, 1);
+        square(b, 1, 1, 2, 1);
+        REQUIRE_EQ(conica_scad_add_contour(&p, g, a, 4, NULL), CONICA_OK);
+        REQUIRE_EQ(conica_scad_add_contour(&p, g, b, 4, NULL), CONICA_OK);
+        CHECK_EQ(conica_scad_validate(&p, 0, &v, &st), CONICA_ERR_DEGENERATE);
+        CHECK_EQ(v.problem, CONICA_SCAD_CONTOURS_CROSS);
+        CHECK_EQ_U(v.contour_a, 0);
+        CHECK_EQ_U(v.contour_b, 1);
+    }
+    SECTION("large star: valid, then one crossing found")
+    {
+        size_t n = 200000;
+        double *xy = malloc(2 * n * sizeof *xy);
+        REQUIRE(xy != NULL);
+        for (size_t i = 0; i < n; i++) {
+            double t = 2 * M_PI * (double)i / (double)n;
+            double r = 100 + 20 * sin(2000 * t);
+            xy[2 * i] = r * cos(t);
+            xy[2 * i + 1] = r * sin(t);
+        }
+        CHECK_EQ(conica_scad_add_contour(&p, g, xy, n, NULL), CONICA_OK);
+        CHECK_EQ(conica_scad_validate(&p, 0, &v, &st), CONICA_OK);
+        /* swap two neighbouring points far apart from the start: a tiny bowtie */
+        double tx = xy[2 * 1000], ty = xy[2 * 1000 + 1];
+        p.contours[0].xy[2 * 1000] = xy[2 * 1001];
+        p.contours[0].xy[2 * 1000 + 1] = xy[2 * 1001 + 1];
+        p.contours[0].xy[2 * 1001] = tx;
+        p.contours[0].xy[2 * 1001 + 1] = ty;
+        CHECK_EQ(conica_scad_validate(&p, 0, &v, &st), CONICA_ERR_DEGENERATE);
+        CHECK_EQ(v.problem, CONICA_SCAD_SELF_INTERSECTION);
+        CHECK(v.segment_a >= 999);
+        CHECK(v.segment_b <= 1001);
+        free(xy);
+    }
+    conica_scad_profile_free(&p);
+}
+
+/* Count paths of the layout that are holes / outers, and check orientation. */
+static void check_orientation(const conica_scad_profile *p, const conica_scad_layout *l)
+{
+    for (size_t i = 0; i < l->npaths; i++) {
+        const conica_scad_contour *c = &p->contours[l->paths[i].contour];
+        double a = conica__scad_area2(c->xy, c->n) * (l->paths[i].reversed ? -1 : 1);
+        INFO("path %zu", i);
+        CHECK(l->paths[i].hole ? a < 0 : a > 0);
+        if (i > 0)
+            CHECK(l->paths[i].hole >= l->paths[i - 1].hole); /* outers first */
+    }
+}
+
+TEST_CASE("holes by containment and fill rule", "[scad][arrange]")
+{
+    conica_scad_profile p;
+    conica_scad_layout l;
+    conica_scad_profile_init(&p);
+    conica_scad_layout_init(&l);
+    double outer[8], inner[8], island[8];
+
+    SECTION("evenodd: same orientation inside makes a hole, island inside it an outer")
+    {
+        size_t g = group(&p, "e", CONICA_SCAD_FILL_EVENODD);
+        square(outer, 0, 0, 10, 0); /* clockwise: must be reversed */
+        square(inner, 2, 2, 6, 0);
+        square(island, 4, 4, 2, 0);
+        conica_scad_add_contour(&p, g, island, 4, NULL);
+        conica_scad_add_contour(&p, g, inner, 4, NULL);
+        conica_scad_add_contour(&p, g, outer, 4, NULL);
+        REQUIRE_EQ(conica_scad_validate(&p, 0, NULL, NULL), CONICA_OK);
+        REQUIRE_EQ(conica_scad_arrange(&p, &l, NULL), CONICA_OK);
+        REQUIRE_EQ_U(l.npaths, 3);
+        CHECK_EQ_U(l.outers, 2);
+        CHECK_EQ_U(l.holes, 1);
+        CHECK_EQ_U(l.paths[2].contour, 1);
+        CHECK_EQ_U(l.paths[2].parent, 2);
+        check_orientation(&p, &l);
+        CHECK(l.convexity >= 3);
+    }
+    SECTION("nonzero: same orientation inside is filled (dropped), opposite is a hole")
+    {
+        size_t g = group(&p, "n", CONICA_SCAD_FILL_NONZERO);
+        square(outer, 0, 0, 10, 1);
+        square(inner, 2, 2, 2, 1);
+        square(island, 6, 6, 2, 0);
+        conica_scad_add_contour(&p, g, outer, 4, NULL);
+        conica_scad_add_contour(&p, g, inner, 4, NULL);
+        conica_scad_add_contour(&p, g, island, 4, NULL);
+        REQUIRE_EQ(conica_scad_validate(&p, 0, NULL, NULL), CONICA_OK);
+        REQUIRE_EQ(conica_scad_arrange(&p, &l, NULL), CONICA_OK);
+        REQUIRE_EQ_U(l.npaths, 2);
+        CHECK_EQ_U(l.dropped, 1);
+        CHECK_EQ_U(l.paths[0].contour, 0);
+        CHECK_EQ_U(l.paths[1].contour, 2);
+        CHECK_EQ(l.paths[1].hole, 1);
+        check_orientation(&p, &l);
+    }
+    SECTION("union over groups: a shape inside another's hole stays, inside its solid goes")
+    {
+        size_t a = group(&p, "washer", CONICA_SCAD_FILL_EVENODD);
+        size_t b = group(&p, "pin", CONICA_SCAD_FILL_NONZERO);
+        size_t c = group(&p, "dot", CONICA_SCAD_FILL_NONZERO);
+        double dot[8];
+        square(outer, 0, 0, 10, 1);
+        square(inner, 3, 3, 4, 1);
+        square(island, 4, 4, 2, 0);
+        square(dot, 0.5, 0.5, 1, 1);
+        conica_scad_add_contour(&p, a, outer, 4, NULL);
+        conica_scad_add_contour(&p, a, inner, 4, NULL);
+        conica_scad_add_contour(&p, b, island, 4, NULL);
+        conica_scad_add_contour(&p, c, dot, 4, NULL);
+        REQUIRE_EQ(conica_scad_validate(&p, 0, NULL, NULL), CONICA_OK);
+        REQUIRE_EQ(conica_scad_arrange(&p, &l, NULL), CONICA_OK);
+        REQUIRE_EQ_U(l.npaths, 3);
+        CHECK_EQ_U(l.dropped, 1);
+        CHECK_EQ_U(l.outers, 2);
+        CHECK_EQ_U(l.paths[1].contour, 2);
+        CHECK_EQ(l.paths[1].reversed, 1);
+        check_orientation(&p, &l);
+    }
+    SECTION("contours that cancel out leave nothing")
+    {
+        size_t g = group(&p, "z", CONICA_SCAD_FILL_NONZERO);
+        size_t h = group(&p, "z2", CONICA_SCAD_FILL_NONZERO);
+        square(outer, 0, 0, 10, 1);
+        square(inner, 1, 1, 2, 1);
+        (void)h;
+        conica_scad_add_contour(&p, g, outer, 4, NULL);
+        conica_scad_add_contour(&p, g, inner, 4, NULL);
+        REQUIRE_EQ(conica_scad_arrange(&p, &l, NULL), CONICA_OK);
+        CHECK_EQ_U(l.npaths, 1);
+    }
+    conica_scad_layout_free(&l);
+    conica_scad_profile_free(&p);
+}
+
+TEST_CASE("the writer emits points, paths and modules", "[scad][write]")
+{
+    conica_scad_profile p;
+    conica_scad_layout l;
+    conica_scad_profile_init(&p);
+    conica_scad_layout_init(&l);
+    size_t g = group(&p, "w", CONICA_SCAD_FILL_EVENODD);
+    double outer[8], hole[8];
+    square(outer, 0, 0, 10, 0);
+    square(hole, 2.5, 2.5, 0.1, 1);
+    conica_scad_add_contour(&p, g, hole, 4, NULL);
+    conica_scad_add_contour(&p, g, outer, 4, NULL);
+    REQUIRE_EQ(conica_scad_arrange(&p, &l, NULL), CONICA_OK);
+    conica_scad_write_options o = conica_scad_write_defaults();
+    o.module = "bracket";
+    o.header = "made by a test\nsecond line";
+    o.extrude = 1;
+    o.extrude_height = 3;
+    o.revolve = 1;
+    o.revolve_angle = 90;
+    char *text = NULL;
+    size_t len = 0;
+    FILE *f = open_memstream(&text, &len);
+    REQUIRE(f != NULL);
+    conica_status st;
+    CHECK_EQ(conica_scad_write(f, &p, &l, &o, &st), CONICA_OK);
+    fclose(f);
+    INFO("%s", text);
+    CHECK(strncmp(text, "// made by a test\n// second line\n", 34) == 0);
+    /* outer first, reversed to counter-clockwise: (0,0) (0,10) (10,10) (10,0) reversed */
+    CHECK(strstr(text, "function bracket_points() = [\n  [0,0],\n  [10,0],\n  [10,10],\n  [0,10],\n"
+                       "  [2.5,2.5],\n  [2.5,2.6],\n  [2.6,2.6],\n  [2.6,2.5]];") != NULL);
+    CHECK(strstr(text, "function bracket_paths() = [\n  [0,1,2,3],\n  [4,5,6,7]];") != NULL);
+    CHECK(strstr(text, "module bracket() polygon(points=bracket_points(), "
+                       "paths=bracket_paths(), convexity=2);") != NULL);
+    CHECK(strstr(text, "module bracket_extruded(height=3, center=false)") != NULL);
+    CHECK(strstr(text, "module bracket_revolved(angle=90)") != NULL);
+    CHECK(strstr(text, "\nbracket_extruded();\n") != NULL);
+    free(text);
+
+    o.module = "2bad";
+    f = open_memstream(&text, &len);
+    CHECK_EQ(conica_scad_write(f, &p, &l, &o, &st), CONICA_ERR_ARG);
+    fclose(f);
+    free(text);
+    CHECK_EQ(conica_scad_valid_name("_ok9"), 1);
+    CHECK_EQ(conica_scad_valid_name("no-dash"), 0);
+    conica_scad_layout_free(&l);
+    conica_scad_profile_free(&p);
+}
+
+TEST_CASE("thinning a dense circle comes near the minimum point count", "[scad][thin]")
+{
+    const double r = 50;
+    const double tols[3] = {0.1, 0.01, 0.001};
+    size_t n = 65536;
+    double *xy = malloc(2 * n * sizeof *xy);
+    REQUIRE(xy != NULL);
+    circle(xy, n, 3, -7, r, 1);
+    for (int k = 0; k < 3; k++) {
+        double tol = tols[k], *out = NULL;
+        size_t m = 0;
+        REQUIRE_EQ(conica_scad_thin(xy, n, 1, tol, &out, &m, NULL), CONICA_OK);
+        double minimum = ceil(M_PI / acos(1 - tol / r));
+        INFO("tol %g: %zu points, minimum %g", tol, m, minimum);
+        CHECK(m >= minimum);
+        CHECK(m <= 1.1 * minimum);
+        /* every chord within tol of the true circle: sagitta of its angle */
+        double worst = 0;
+        for (size_t i = 0; i < m; i++) {
+            const double *a = &out[2 * i], *b = &out[2 * ((i + 1) % m)];
+            double half = 0.5 * hypot(b[0] - a[0], b[1] - a[1]);
+            double sag = r - sqrt(r * r - half * half);
+            if (sag > worst)
+                worst = sag;
+        }
+        CHECK_LE(worst, tol);
+        free(out);
+    }
+    free(xy);
+}
+
+TEST_CASE("thinning keeps corners and open ends", "[scad][thin]")
+{
+    /* an L of 3 dense straight runs: only the 6 corners survive */
+    double xy[2 * 300];
+    size_t n = 0;
+    const double c[7][2] = {{0, 0}, {4, 0}, {4, 1}, {1, 1}, {1, 3}, {0, 3}, {0, 0}};
+    for (int s = 0; s < 6; s++)
+        for (int i = 0; i < 50; i++) {
+            double t = i / 50.0;
+            xy[2 * n] = c[s][0] + t * (c[s + 1][0] - c[s][0]);
+            xy[2 * n + 1] = c[s][1] + t * (c[s + 1][1] - c[s][1]);
+            n++;
+        }
+    double *out = NULL;
+    size_t m = 0;
+    REQUIRE_EQ(conica_scad_thin(xy, n, 1, 1e-9, &out, &m, NULL), CONICA_OK);
+    CHECK_EQ_U(m, 6);
+    free(out);
+    REQUIRE_EQ(conica_scad_thin(xy, 120, 0, 1e-9, &out, &m, NULL), CONICA_OK);
+    CHECK_EQ_U(m, 4); /* start, two corners, end */
+    CHECK_EQ(out[2 * 3], xy[2 * 119]);
+    free(out);
+    CHECK_EQ(conica_scad_thin(xy, n, 1, 0, &out, &m, NULL), CONICA_ERR_ARG);
+}
