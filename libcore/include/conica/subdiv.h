@@ -116,6 +116,19 @@ CONICA_API conica_code conica_subdividel(const conica_curve *in, const conica_su
                                          conica_curvel *out, conica_subdiv_info *info,
                                          conica_status *st);
 
+/**
+ * @brief As conica_subdividel(), from a long double input curve (so that
+ *        samples computed in long double, e.g. exact conic samples for
+ *        precise-mode accuracy tests, are not rounded to double first).
+ *        Always computes in long double. If in->nxy is NULL the normals are
+ *        estimated (from the points rounded to double).
+ * @return the same codes as conica_subdivide()
+ */
+CONICA_API conica_code conica_subdivide_curvel(const conica_curvel *in,
+                                               const conica_subdiv_settings *s,
+                                               conica_curvel *out, conica_subdiv_info *info,
+                                               conica_status *st);
+
 #ifdef __cplusplus
 }
 #endif

@@ -1,0 +1,36 @@
+/* Weighted conic fit of seed 000, Section 1.1 step 2 (matrix (2)), general
+ * path: smallest right singular vector of W*A' through LAPACK's dgesvd with
+ * workspace allocated once per conica_subdivide() call (no allocation per
+ * edge point). Internal to libcore. */
+#ifndef CONICA_CONIC_FIT_H
+#define CONICA_CONIC_FIT_H
+
+#include <stddef.h>
+
+/* Largest patch: 2 edge pairs + 4 outer neighbours per side (the growth
+ * limit of the reference, REFERENCE.md section 1). */
+#define CONICA__FIT_MAX_PAIRS 10
+/* Matrix (2) generalised: 3 rows (point, normal x, normal y) and one alpha
+ * column per pair, plus the 6 conic coefficients. */
+#define CONICA__FIT_MAX_ROWS (3 * CONICA__FIT_MAX_PAIRS)
+#define CONICA__FIT_MAX_COLS (6 + CONICA__FIT_MAX_PAIRS)
+
+typedef struct conica__svdws {
+    double *work; /* LAPACK workspace, lwork doubles */
+    int lwork;
+    double s[CONICA__FIT_MAX_COLS];
+    double vt[CONICA__FIT_MAX_COLS * CONICA__FIT_MAX_COLS];
+} conica__svdws;
+
+/* Size and allocate the workspace for every patch size up to the maximum.
+ * Returns 0 on success, -1 when out of memory. */
+int conica__svdws_init(conica__svdws *ws);
+void conica__svdws_free(conica__svdws *ws);
+
+/* Right singular vector of the m x n column-major matrix a (leading
+ * dimension m, destroyed) for its smallest singular value, into v[0..n-1].
+ * m <= CONICA__FIT_MAX_ROWS, n <= CONICA__FIT_MAX_COLS. Returns 0 on
+ * success, -1 if LAPACK reports a failure. */
+int conica__svd_min_right(conica__svdws *ws, double *a, int m, int n, double *v);
+
+#endif

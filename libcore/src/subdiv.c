@@ -1,0 +1,353 @@
+/* Conic-preserving interpolatory subdivision (seed 000): public entry
+ * points, argument checks, and the two instantiations (double, long double)
+ * of the one type-generic implementation in subdiv_impl.h. */
+#include "conica/subdiv.h"
+
+#include <float.h>
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "conic_fit.h"
+#include "internal.h"
+
+/* Reference-compatible mode: the reference's absolute tolerances (its
+ * SubdivisionSettings::epsilon = 1e-40 for |a| in eq. (12) and the half-plane
+ * tests, Eigen's isZero() precision 1e-15 for an all-zero conic). */
+#define CONICA__REF_A_EPS 1e-40
+#define CONICA__REF_EPS 1e-40
+#define CONICA__REF_ZERO 1e-15
+/* Fast path: an end normal whose component along the chord (the sine of
+ * the angle between tangent and chord) is below this makes the pencil
+ * L0*L1, y^2 degenerate (the tangent runs through the other end point, as
+ * on collinear runs); such patches use the general fit. */
+#define CONICA__FAST_MIN_SINE 1e-13
+/* One-sided Jacobi: sweeps before giving up (converges in < 10 here). */
+#define CONICA__JACOBI_MAX_SWEEPS 60
+/* Dekker's splitter for the 64-bit significand of x87 long double: 2^32+1. */
+#define CONICA__DEKKER_SPLIT 4294967297.0L
+#define CONICA__PI 3.14159265358979323846264338327950288L
+
+/* ---------------------------------------------------- double instance */
+#define REAL double
+#define SFX(name) name##_d
+#define M(fn) fn
+#define FMA(a, b, c) fma(a, b, c)
+#define RC(x) ((double)(x))
+#define R_EPSILON DBL_EPSILON
+#define REAL_IS_DOUBLE 1
+#include "subdiv_impl.h"
+
+/* ----------------------------------------------- long double instance */
+#define REAL long double
+#define SFX(name) name##_l
+#define M(fn) fn##l
+#define FMA(a, b, c) ((a) * (b) + (c))
+#define RC(x) ((long double)(x))
+#define R_EPSILON LDBL_EPSILON
+#define REAL_IS_DOUBLE 0
+#include "subdiv_impl.h"
+
+/* ------------------------------------------------------------- public */
+
+conica_subdiv_settings conica_subdiv_defaults(void)
+{
+    conica_subdiv_settings s;
+    memset(&s, 0, sizeof s);
+    s.levels = 4;
+    s.w_edge_point = 1e5;
+    s.w_edge_normal = 1e5;
+    s.w_outer_normal = 1.0;
+    s.tau = 10.0;
+    s.patch_grow = 4;
+    s.insert_inflections = 1;
+    s.normal_method = CONICA_NORMALS_AREA;
+    s.max_points = CONICA_SUBDIV_DEFAULT_MAX_POINTS;
+    s.threads = 1;
+    return s;
+}
+
+void conica_subdiv_info_init(conica_subdiv_info *info)
+{
+    if (!info)
+        return;
+    memset(info, 0, sizeof *info);
+}
+
+void conica_subdiv_info_free(conica_subdiv_info *info)
+{
+    if (!info)
+        return;
+    free(info->inflection_index);
+    conica_subdiv_info_init(info);
+}
+
+size_t conica_subdiv_count(size_t n, int closed, int levels)
+{
+    size_t f;
+    if (levels < 0 || levels > CONICA_SUBDIV_MAX_LEVELS || n == 0)
+        return 0;
+    f = (size_t)1 << levels;
+    if (closed) {
+        if (n > ((size_t)-1) / f)
+            return 0;
+        return n * f;
+    }
+    if (n - 1 > (((size_t)-1) - 1) / f)
+        return 0;
+    return (n - 1) * f + 1;
+}
+
+void conica_curvel_init(conica_curvel *c)
+{
+    if (!c)
+        return;
+    memset(c, 0, sizeof *c);
+}
+
+void conica_curvel_free(conica_curvel *c)
+{
+    if (!c)
+        return;
+    free(c->xy);
+    free(c->nxy);
+    conica_curvel_init(c);
+}
+
+static int positive_finite(double v)
+{
+    return isfinite(v) && v > 0;
+}
+
+static conica_code check_settings(const conica_subdiv_settings *s, conica_status *st)
+{
+    if (s->levels < 0)
+        return conica__fail(st, CONICA_ERR_ARG, 0, 0, "levels must be >= 0 (got %d)", s->levels);
+    if (s->levels > CONICA_SUBDIV_MAX_LEVELS)
+        return conica__fail(st, CONICA_ERR_LIMIT, 0, 0, "levels %d exceeds the maximum of %d",
+                            s->levels, CONICA_SUBDIV_MAX_LEVELS);
+    if (!positive_finite(s->w_edge_point) || !positive_finite(s->w_edge_normal) ||
+        !positive_finite(s->w_outer_normal) || !positive_finite(s->tau) ||
+        !positive_finite(s->tau * s->w_outer_normal))
+        return conica__fail(st, CONICA_ERR_ARG, 0, 0,
+                            "weights and tau must be positive and finite");
+    if (s->patch_grow < 1 || s->patch_grow > 4)
+        return conica__fail(st, CONICA_ERR_ARG, 0, 0, "patch_grow must be 1..4 (got %d)",
+                            s->patch_grow);
+    if (s->max_points < 1)
+        return conica__fail(st, CONICA_ERR_ARG, 0, 0, "max_points must be at least 1");
+    if (s->normal_method != CONICA_NORMALS_AREA && s->normal_method != CONICA_NORMALS_CIRCLE)
+        return conica__fail(st, CONICA_ERR_ARG, 0, 0, "unknown normal_method %d",
+                            (int)s->normal_method);
+    return CONICA_OK;
+}
+
+/* Input checks on double or long double arrays (one of xyd / xyl). An edge
+ * of zero length has no perpendicular bisector (eq. (7)), so duplicate
+ * consecutive points are an error rather than being skipped silently. */
+static conica_code check_input(const double *xyd, const double *nd, const long double *xyl,
+                               const long double *nl, size_t n, int closed, int need_normals,
+                               conica_status *st)
+{
+    size_t i;
+    if (n < 2 || (closed && n < 3))
+        return conica__fail(st, CONICA_ERR_DEGENERATE, 0, 0,
+                            "a%s curve needs at least %d points (got %zu)",
+                            closed ? " closed" : "n open", closed ? 3 : 2, n);
+    for (i = 0; i < n; i++) {
+        long double x = xyd ? xyd[2 * i] : xyl[2 * i], y = xyd ? xyd[2 * i + 1] : xyl[2 * i + 1];
+        if (!isfinite(x) || !isfinite(y))
+            return conica__fail(st, CONICA_ERR_NONFINITE, 0, i, "point %zu is not finite", i);
+    }
+    for (i = 0; i < n; i++) {
+        size_t k = i + 1 == n ? 0 : i + 1;
+        if (k == 0 && !closed)
+            break;
+        if (xyd ? (xyd[2 * i] == xyd[2 * k] && xyd[2 * i + 1] == xyd[2 * k + 1])
+                : (xyl[2 * i] == xyl[2 * k] && xyl[2 * i + 1] == xyl[2 * k + 1]))
+            return conica__fail(st, CONICA_ERR_DEGENERATE, 0, i,
+                                "points %zu and %zu coincide (an edge of zero length)", i, k);
+    }
+    if (!need_normals)
+        return CONICA_OK;
+    for (i = 0; i < n; i++) {
+        long double x = nd ? nd[2 * i] : nl[2 * i], y = nd ? nd[2 * i + 1] : nl[2 * i + 1];
+        if (!isfinite(x) || !isfinite(y))
+            return conica__fail(st, CONICA_ERR_NONFINITE, 0, i, "normal %zu is not finite", i);
+        if (x == 0 && y == 0)
+            return conica__fail(st, CONICA_ERR_DEGENERATE, 0, i, "normal %zu is zero", i);
+    }
+    return CONICA_OK;
+}
+
+/* Everything both entry points share: checks, normal estimation, and the
+ * run in the requested type. Exactly one of res_d / res_l is non-NULL. */
+typedef struct subdiv_result {
+    size_t n;
+    double *xyd, *nd;
+    long double *xyl, *nl;
+    size_t *infl;
+    size_t ninfl;
+} subdiv_result;
+
+static conica_code subdivide_any(const double *xyd, const double *nd, const long double *xyl,
+                                 const long double *nl, size_t n, int closed,
+                                 const conica_subdiv_settings *s_in, int want_long,
+                                 subdiv_result *res, conica_subdiv_info *info, conica_status *st)
+{
+    conica_subdiv_settings s = s_in ? *s_in : conica_subdiv_defaults();
+    conica_subdiv_info stats;
+    conica_curve est;
+    conica_code code;
+    int estimate = s.estimate_normals || (xyd ? !nd : !nl);
+
+    conica_curve_init(&est);
+    conica_subdiv_info_init(&stats);
+    if ((code = check_settings(&s, st)) != CONICA_OK)
+        return code;
+    if ((code = check_input(xyd, nd, xyl, nl, n, closed, !estimate, st)) != CONICA_OK)
+        return code;
+    if (estimate) {
+        /* Normals from the points (curve.c), in double: only their
+         * directions enter the fit. */
+        if (xyd) {
+            code = conica_curve_set(xyd, NULL, n, closed, &est, st);
+        } else {
+            size_t i;
+            double *tmp = malloc(2 * n * sizeof *tmp);
+            if (!tmp)
+                return conica__fail(st, CONICA_ERR_NOMEM, 0, 0, "out of memory");
+            for (i = 0; i < 2 * n; i++)
+                tmp[i] = (double)xyl[i];
+            code = conica_curve_set(tmp, NULL, n, closed, &est, st);
+            free(tmp);
+        }
+        if (code == CONICA_OK)
+            code = conica_curve_estimate_normals(&est, s.normal_method, st);
+        if (code != CONICA_OK) {
+            conica_curve_free(&est);
+            return code;
+        }
+    }
+    if (want_long || s.precise) {
+        input_l in;
+        long double *rx = NULL, *rn = NULL;
+        in.xyd = xyd;
+        in.xyl = xyl;
+        in.nd = estimate ? est.nxy : nd;
+        in.nl = estimate ? NULL : nl;
+        in.n = n;
+        in.closed = closed != 0;
+        code = run_l(&in, &s, &rx, &rn, &res->n, &res->infl, &res->ninfl, &stats, st);
+        if (code == CONICA_OK && !want_long) {
+            size_t i;
+            res->xyd = malloc(2 * res->n * sizeof *res->xyd);
+            res->nd = malloc(2 * res->n * sizeof *res->nd);
+            if (!res->xyd || !res->nd) {
+                free(res->xyd);
+                free(res->nd);
+                free(res->infl);
+                code = conica__fail(st, CONICA_ERR_NOMEM, 0, 0, "out of memory");
+            } else {
+                for (i = 0; i < 2 * res->n; i++) {
+                    res->xyd[i] = (double)rx[i];
+                    res->nd[i] = (double)rn[i];
+                }
+            }
+            free(rx);
+            free(rn);
+        } else if (code == CONICA_OK) {
+            res->xyl = rx;
+            res->nl = rn;
+        }
+    } else {
+        input_d in;
+        in.xyd = xyd;
+        in.xyl = NULL;
+        in.nd = estimate ? est.nxy : nd;
+        in.nl = NULL;
+        in.n = n;
+        in.closed = closed != 0;
+        code = run_d(&in, &s, &res->xyd, &res->nd, &res->n, &res->infl, &res->ninfl, &stats, st);
+    }
+    conica_curve_free(&est);
+    if (code != CONICA_OK)
+        return code;
+    if (info) {
+        conica_subdiv_info_free(info);
+        stats.inflection_index = res->infl;
+        res->infl = NULL;
+        *info = stats;
+    } else {
+        free(res->infl);
+        res->infl = NULL;
+    }
+    conica__ok(st);
+    return CONICA_OK;
+}
+
+conica_code conica_subdivide(const conica_curve *in, const conica_subdiv_settings *s,
+                             conica_curve *out, conica_subdiv_info *info, conica_status *st)
+{
+    subdiv_result r;
+    conica_code code;
+    if (!in || !out || (in->n > 0 && !in->xy))
+        return conica__fail(st, CONICA_ERR_ARG, 0, 0, "conica_subdivide: NULL argument");
+    memset(&r, 0, sizeof r);
+    code = subdivide_any(in->xy, in->nxy, NULL, NULL, in->n, in->closed, s, 0, &r, info, st);
+    if (code != CONICA_OK)
+        return code;
+    {
+        int closed = in->closed != 0; /* `in` may alias `out` */
+        conica_curve_free(out);
+        out->xy = r.xyd;
+        out->nxy = r.nd;
+        out->n = r.n;
+        out->cap = r.n;
+        out->closed = closed;
+    }
+    return CONICA_OK;
+}
+
+conica_code conica_subdividel(const conica_curve *in, const conica_subdiv_settings *s,
+                              conica_curvel *out, conica_subdiv_info *info, conica_status *st)
+{
+    subdiv_result r;
+    conica_code code;
+    if (!in || !out || (in->n > 0 && !in->xy))
+        return conica__fail(st, CONICA_ERR_ARG, 0, 0, "conica_subdividel: NULL argument");
+    memset(&r, 0, sizeof r);
+    code = subdivide_any(in->xy, in->nxy, NULL, NULL, in->n, in->closed, s, 1, &r, info, st);
+    if (code != CONICA_OK)
+        return code;
+    conica_curvel_free(out);
+    out->xy = r.xyl;
+    out->nxy = r.nl;
+    out->n = r.n;
+    out->cap = r.n;
+    out->closed = in->closed != 0;
+    return CONICA_OK;
+}
+
+conica_code conica_subdivide_curvel(const conica_curvel *in, const conica_subdiv_settings *s,
+                                    conica_curvel *out, conica_subdiv_info *info,
+                                    conica_status *st)
+{
+    subdiv_result r;
+    conica_code code;
+    int closed;
+    if (!in || !out || (in->n > 0 && !in->xy))
+        return conica__fail(st, CONICA_ERR_ARG, 0, 0, "conica_subdivide_curvel: NULL argument");
+    memset(&r, 0, sizeof r);
+    closed = in->closed != 0;
+    code = subdivide_any(NULL, NULL, in->xy, in->nxy, in->n, closed, s, 1, &r, info, st);
+    if (code != CONICA_OK)
+        return code;
+    conica_curvel_free(out);
+    out->xy = r.xyl;
+    out->nxy = r.nl;
+    out->n = r.n;
+    out->cap = r.n;
+    out->closed = closed;
+    return CONICA_OK;
+}

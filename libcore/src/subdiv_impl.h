@@ -1,0 +1,1080 @@
+/* Type-generic core of conica_subdivide() (seed 000, Section 1.1 with the
+ * numerics of Section 2.3). subdiv.c includes this file twice: once with
+ * REAL = double and once with REAL = long double, so that default and
+ * precise mode run ONE implementation of the scheme.
+ *
+ * Required macros (undefined again at the end of this file):
+ *   REAL          the floating type
+ *   SFX(name)     name with a type suffix (name##_d / name##_l)
+ *   M(fn)         the math function for REAL (fn / fn##l)
+ *   FMA(a, b, c)  a*b + c, fused where the hardware fuses (double)
+ *   RC(x)         a constant of type REAL
+ *   R_EPSILON     machine epsilon of REAL
+ *   REAL_IS_DOUBLE  1 for double (general fit through LAPACK), 0 otherwise
+ *
+ * Notation (seed 000): an edge p_i p_{i+1}, its midpoint m (4), its normal
+ * n_edge = perp(p_{i+1} - p_i) (5); the new point lies on l(t) = m + t*n_edge
+ * (7) and on the fitted conic (3).
+ *
+ * Local frame (issue 3, "exact anywhere"): every patch is mapped by the
+ * similarity that sends the edge end points to (-1,0) and (1,0); the
+ * bisector l(t) becomes the y axis, so the new point is (0, y) and maps back
+ * to m + y*perp(h) with h the half edge. The scale factor 2^-e is a power of
+ * two, so scaling itself is exact; results do not depend on position, size
+ * or rotation beyond the rounding of the input coordinates.
+ */
+
+/* ------------------------------------------------------------------ types */
+
+/* One point-normal pair of a patch, in the coordinates the fit uses. */
+typedef struct SFX(pair) {
+    REAL x, y, nx, ny; /* point and normal */
+    REAL wv, wn;       /* point and normal weights (matrix W) */
+} SFX(pair);
+
+/* Read-only description of one level, shared by all workers. */
+typedef struct SFX(job) {
+    REAL wev, wen, wov, won; /* w_e^v, w_e^n, w_o^v = tau*w_o^n, w_o^n */
+    int ref;                 /* reference-compatible: absolute coordinates + SVD */
+    int fast;                /* closed-form pencil fit allowed */
+    int plain;               /* ablation: textbook quadratic, no FMA */
+    int normalize;           /* ablation: normalise sampled normals every level */
+    int closed;
+    int maxgrow;   /* outer neighbours per side when growing a patch */
+    size_t n;      /* points of the level being refined */
+    const REAL *xy, *nxy;
+    const unsigned char *infl; /* inflection flags per point, or NULL */
+} SFX(job);
+
+/* Per-thread state: fit workspace and counters. */
+typedef struct SFX(worker) {
+    const SFX(job) *job;
+#if REAL_IS_DOUBLE
+    conica__svdws *ws;
+#endif
+    size_t grown, fallbacks;
+} SFX(worker);
+
+/* Local frame of one edge (see the header comment). */
+typedef struct SFX(frame) {
+    REAL mx, my;   /* midpoint (4) */
+    REAL hx, hy;   /* half edge (p1 - p0)/2 */
+    REAL hsx, hsy; /* half edge times sc (a power of two): |hs| in [1, 2*sqrt2) */
+    REAL sc, hh;   /* the power of two, |hs|^2 */
+} SFX(frame);
+
+/* ------------------------------------------------------------ arithmetic */
+
+#if REAL_IS_DOUBLE
+/* a*b - c*d with Kahan's FMA trick (seed 000, Code 4): error <= 1.5 ulp. */
+static REAL SFX(diffprod)(REAL a, REAL b, REAL c, REAL d)
+{
+    REAL w = d * c;
+    REAL e = FMA(-d, c, w);
+    REAL f = FMA(a, b, -w);
+    return f + e;
+}
+#else
+/* Exact product a*b = *p + *e by Dekker's splitting (the x87 has no fused
+ * multiply-add: glibc's fmal is emulated in software and made precise mode
+ * 100x slower). */
+static void SFX(two_prod)(REAL a, REAL b, REAL *p, REAL *e)
+{
+    REAL ca = RC(CONICA__DEKKER_SPLIT) * a, cb = RC(CONICA__DEKKER_SPLIT) * b;
+    REAL ah = ca - (ca - a), al = a - ah, bh = cb - (cb - b), bl = b - bh;
+    *p = a * b;
+    *e = ((ah * bh - *p) + ah * bl + al * bh) + al * bl;
+}
+
+/* a*b - c*d as Kahan's algorithm (seed 000, Code 4) computes it, with the
+ * exact product errors from two_prod in place of the FMAs. */
+static REAL SFX(diffprod)(REAL a, REAL b, REAL c, REAL d)
+{
+    REAL w, ew, p, ep;
+    SFX(two_prod)(d, c, &w, &ew);
+    SFX(two_prod)(a, b, &p, &ep);
+    return ((p - w) + ep) - ew;
+}
+#endif
+
+/*
+ * Root nearest 0 of a t^2 + 2 b t + c = 0 (eq. (8) written as in Section
+ * 2.3). kind 0: stable form t = c / (-b - sign(b) sqrt(b^2 - ac)) with the
+ * discriminant from diffprod; this is the root the reference's code picks
+ * (eq. (12) prints the two branches swapped; the code and eq. (6) choose the
+ * root nearest the midpoint) and it tends to -c/(2b) by itself as a -> 0,
+ * without the cancellation of (-b + sqrt(...))/a. kind 1: the reference's
+ * own evaluation, t = -c/(2b) when |a| <= CONICA__REF_A_EPS. kind 2
+ * (ablation): textbook formula, no FMA.
+ * Returns 1 and *t, or 0 when there is no real root.
+ */
+static int SFX(nearest_root)(REAL a, REAL b, REAL c, int kind, REAL *t)
+{
+    REAL disc, r, den, t1, t2;
+
+    if (kind == 1) {
+        if (M(fabs)(a) <= RC(CONICA__REF_A_EPS)) {
+            *t = -c / (2 * b);
+            return isfinite(*t);
+        }
+        disc = SFX(diffprod)(b, b, a, c);
+        if (!(disc >= 0))
+            return 0;
+        r = M(sqrt)(disc);
+        *t = b < 0 ? (-b - r) / a : (-b + r) / a;
+        return isfinite(*t);
+    }
+    if (kind == 2) {
+        if (M(fabs)(a) <= RC(CONICA__REF_A_EPS) * M(fabs)(b)) {
+            *t = -c / (2 * b);
+            return isfinite(*t);
+        }
+        disc = b * b - a * c;
+        if (!(disc >= 0))
+            return 0;
+        r = M(sqrt)(disc);
+        t1 = (-b + r) / a;
+        t2 = (-b - r) / a;
+        *t = M(fabs)(t1) < M(fabs)(t2) ? t1 : t2;
+        return isfinite(*t);
+    }
+    disc = SFX(diffprod)(b, b, a, c);
+    if (!(disc >= 0))
+        return 0;
+    r = M(sqrt)(disc);
+    den = b >= 0 ? -(b + r) : (r - b);
+    if (den == 0) {
+        /* a = b = 0: either every t solves it (c = 0, take the midpoint)
+         * or none does. */
+        if (c != 0)
+            return 0;
+        *t = 0;
+        return 1;
+    }
+    *t = c / den;
+    return isfinite(*t);
+}
+
+/* ------------------------------------------------------- patch selection */
+
+static size_t SFX(next)(const SFX(job) *j, size_t i)
+{
+    return i + 1 == j->n ? 0 : i + 1;
+}
+
+/*
+ * "Same half plane" rule for growing patches (REFERENCE.md section 1): a
+ * further outer neighbour `cand` joins only if it lies on the same side as
+ * the first outer neighbour `first` on that side. Default mode uses the edge
+ * line p_i p_{i+1} as REFERENCE.md describes it (points on the line count as
+ * the same side). Reference mode reproduces the reference's
+ * areInSameHalfPlane(p_i, p_{i+1}, first, cand) exactly, which measures
+ * against the line through p_{i+1} and `first`.
+ */
+static int SFX(same_side)(const SFX(job) *j, size_t i, size_t i1, size_t first, size_t cand)
+{
+    const REAL *p = j->xy;
+    if (j->ref) {
+        REAL v0x = p[2 * i], v0y = p[2 * i + 1], v1x = p[2 * i1], v1y = p[2 * i1 + 1];
+        REAL v2x = p[2 * first], v2y = p[2 * first + 1], v3x = p[2 * cand], v3y = p[2 * cand + 1];
+        REAL ax = v3x - v1x, ay = v3y - v1y, bx = v0x - v1x, by = v0y - v1y;
+        REAL nx = v2y - v1y, ny = v1x - v2x, d1, d2;
+        if (bx * bx + by * by < RC(CONICA__REF_EPS) || ax * ax + ay * ay < RC(CONICA__REF_EPS))
+            return 1;
+        d1 = nx * ax + ny * ay;
+        d2 = nx * bx + ny * by;
+        if (M(fabs)(d1) < RC(CONICA__REF_EPS) || M(fabs)(d2) < RC(CONICA__REF_EPS))
+            return 1;
+        return d2 * (d1 > 0 ? 1 : -1) >= 0;
+    } else {
+        REAL dx = p[2 * i1] - p[2 * i], dy = p[2 * i1 + 1] - p[2 * i + 1];
+        REAL s1 = SFX(diffprod)(dx, p[2 * first + 1] - p[2 * i + 1], dy, p[2 * first] - p[2 * i]);
+        REAL s2 = SFX(diffprod)(dx, p[2 * cand + 1] - p[2 * i + 1], dy, p[2 * cand] - p[2 * i]);
+        if (s1 == 0 || s2 == 0)
+            return 1;
+        return (s1 > 0) == (s2 > 0);
+    }
+}
+
+/*
+ * Indices of the patch of edge (i, i+1): the two end points first, then up
+ * to maxl outer neighbours to the left and maxr to the right. A side whose
+ * edge end point is an inserted inflection point takes no neighbour beyond
+ * it (seed 000, modified neighbourhoods after (10)). Open curves take the
+ * neighbours that exist. In default mode a closed curve never wraps round
+ * onto the patch's own points. Returns the number of pairs.
+ */
+static int SFX(collect)(const SFX(job) *j, size_t i, int maxl, int maxr, size_t *idx)
+{
+    size_t n = j->n, i1 = SFX(next)(j, i), jj;
+    int cnt = 2, k, nl = 0;
+
+    idx[0] = i;
+    idx[1] = i1;
+    if (!(j->infl && j->infl[i])) {
+        for (k = 1; k <= maxl; k++) {
+            if (j->closed) {
+                if (!j->ref && (size_t)k + 2 > n)
+                    break;
+                jj = (i + n - (size_t)k % n) % n;
+            } else {
+                if ((size_t)k > i)
+                    break;
+                jj = i - (size_t)k;
+            }
+            if (k > 1 && !SFX(same_side)(j, i, i1, idx[2], jj))
+                break;
+            idx[cnt++] = jj;
+            nl++;
+        }
+    }
+    if (!(j->infl && j->infl[i1])) {
+        int first = cnt;
+        for (k = 1; k <= maxr; k++) {
+            if (j->closed) {
+                if (!j->ref && (size_t)(nl + k) + 2 > n)
+                    break;
+                jj = (i1 + (size_t)k) % n;
+            } else {
+                if (i1 + (size_t)k >= n)
+                    break;
+                jj = i1 + (size_t)k;
+            }
+            if (k > 1 && !SFX(same_side)(j, i, i1, idx[first], jj))
+                break;
+            idx[cnt++] = jj;
+        }
+    }
+    return cnt;
+}
+
+/* Build the local frame of edge (i, i1); returns 0 for a zero-length edge. */
+static int SFX(make_frame)(const SFX(job) *j, size_t i, size_t i1, SFX(frame) *f)
+{
+    const REAL *p = j->xy;
+    REAL x0 = p[2 * i], y0 = p[2 * i + 1], x1 = p[2 * i1], y1 = p[2 * i1 + 1], mag;
+    /* Halves first: exact (short of underflow) and free of overflow. */
+    f->hx = RC(0.5) * x1 - RC(0.5) * x0;
+    f->hy = RC(0.5) * y1 - RC(0.5) * y0;
+    f->mx = RC(0.5) * x0 + RC(0.5) * x1;
+    f->my = RC(0.5) * y0 + RC(0.5) * y1;
+    mag = M(fmax)(M(fabs)(f->hx), M(fabs)(f->hy));
+    if (!(mag > 0) || !isfinite(mag))
+        return 0;
+    f->sc = M(ldexp)(RC(1.0), -M(ilogb)(mag));
+    f->hsx = f->hx * f->sc;
+    f->hsy = f->hy * f->sc;
+    f->hh = FMA(f->hsx, f->hsx, f->hsy * f->hsy);
+    return 1;
+}
+
+/* Map the patch into the local frame: end points exactly (-1,0), (1,0),
+ * unit normals, weights from W (seed 000, step 2). */
+static void SFX(local_pairs)(const SFX(job) *j, const SFX(frame) *f, const size_t *idx, int cnt,
+                             SFX(pair) *P)
+{
+    int k;
+    for (k = 0; k < cnt; k++) {
+        size_t q = idx[k];
+        REAL nx = j->nxy[2 * q], ny = j->nxy[2 * q + 1], lx, ly, len;
+        if (k < 2) {
+            P[k].x = k == 0 ? RC(-1.0) : RC(1.0);
+            P[k].y = 0;
+            P[k].wv = j->wev;
+            P[k].wn = j->wen;
+        } else {
+            REAL wx = (j->xy[2 * q] - f->mx) * f->sc, wy = (j->xy[2 * q + 1] - f->my) * f->sc;
+            P[k].x = FMA(wx, f->hsx, wy * f->hsy) / f->hh;
+            P[k].y = SFX(diffprod)(f->hsx, wy, f->hsy, wx) / f->hh;
+            P[k].wv = j->wov;
+            P[k].wn = j->won;
+        }
+        /* Rotate the normal by the frame (scale irrelevant), then make it
+         * unit so that the fit's weights mean the same at every level. */
+        lx = FMA(nx, f->hsx, ny * f->hsy);
+        ly = SFX(diffprod)(f->hsx, ny, f->hsy, nx);
+        len = M(sqrt)(FMA(lx, lx, ly * ly));
+        P[k].nx = lx / len;
+        P[k].ny = ly / len;
+    }
+}
+
+/* ----------------------------------------------------------- fast path */
+
+/*
+ * Closed-form fit for the local frame (issue 3's hint). As w_e -> infinity
+ * the weighted fit of step 2 is forced through both end points with their
+ * normals; those conics form the pencil
+ *     C = mu * L0 * L1 + lam * y^2,
+ * L0 = a0 (x+1) + b0 y and L1 = a1 (x-1) + b1 y the tangent lines at
+ * (-1,0) and (1,0) (normals (a0,b0), (a1,b1)), y = 0 the chord. The ratio
+ * mu : lam is fitted to the outer pairs by weighted least squares (point
+ * residual C(p) with weight w_o^v, normal residual cross(grad C(p), n) with
+ * weight w_o^n, both linear in (mu, lam)) as the smallest eigenvector of
+ * the 2x2 normal matrix. With no outer pair (an open 2-point curve) the
+ * parabola of the pencil is taken.
+ * Then x = 0 meets C where (mu b0 b1 + lam) y^2 + mu (a0 b1 - a1 b0) y
+ * - mu a0 a1 = 0 (eq. (8) in the frame), and the normal there is grad C
+ * (eq. (3), Code 5), not normalised.
+ * Returns 1 with (*py, *gx, *gy), 0 when the line misses the conic, -1 when
+ * the pencil is degenerate (caller uses the general fit).
+ */
+static int SFX(fast_fit)(const SFX(job) *j, const SFX(pair) *P, int cnt, REAL *py, REAL *gx,
+                         REAL *gy)
+{
+    REAL a0 = P[0].nx, b0 = P[0].ny, a1 = P[1].nx, b1 = P[1].ny;
+    REAL mu, lam, A2, B1, C0, y, L0, L1, s;
+    int k;
+
+    /* A tangent through the other end point makes the pencil singular. */
+    if (M(fabs)(a0) <= RC(CONICA__FAST_MIN_SINE) || M(fabs)(a1) <= RC(CONICA__FAST_MIN_SINE))
+        return -1;
+    if (cnt == 2) {
+        mu = 1;
+        s = SFX(diffprod)(a0, b1, a1, b0);
+        lam = s * s / (4 * a0 * a1);
+    } else {
+        REAL n11 = 0, n12 = 0, n22 = 0, h, r;
+        for (k = 2; k < cnt; k++) {
+            REAL u = P[k].x, v = P[k].y, nu = P[k].nx, nv = P[k].ny;
+            REAL l0 = FMA(a0, u + 1, b0 * v), l1 = FMA(a1, u - 1, b1 * v);
+            REAL r1 = P[k].wv * (l0 * l1), r2 = P[k].wv * (v * v);
+            REAL ggx = FMA(l1, a0, l0 * a1), ggy = FMA(l1, b0, l0 * b1);
+            REAL s1 = P[k].wn * SFX(diffprod)(ggx, nv, ggy, nu), s2 = P[k].wn * (-2 * v * nu);
+            n11 = FMA(r1, r1, FMA(s1, s1, n11));
+            n12 = FMA(r1, r2, FMA(s1, s2, n12));
+            n22 = FMA(r2, r2, FMA(s2, s2, n22));
+        }
+        /* Smallest eigenvector of [[n11 n12][n12 n22]], from the larger of
+         * the two cancellation-free forms of the null vector of N - l_min I. */
+        h = (n11 - n22) / 2;
+        r = M(sqrt)(FMA(h, h, n12 * n12));
+        if (!isfinite(r) || !(r > 0))
+            return -1; /* N = c I: the outer pairs do not decide the ratio */
+        if (h >= 0) {
+            mu = n12;
+            lam = -(h + r);
+        } else {
+            mu = r - h;
+            lam = -n12;
+        }
+        s = M(fmax)(M(fabs)(mu), M(fabs)(lam));
+        mu /= s;
+        lam /= s;
+    }
+    if (!isfinite(mu) || !isfinite(lam))
+        return -1;
+    if (j->plain) {
+        A2 = mu * b0 * b1 + lam;
+        B1 = mu * (a0 * b1 - a1 * b0);
+    } else {
+        A2 = FMA(mu, b0 * b1, lam);
+        B1 = mu * SFX(diffprod)(a0, b1, a1, b0);
+    }
+    C0 = -mu * (a0 * a1);
+    if (!SFX(nearest_root)(A2, B1 / 2, C0, j->plain ? 2 : 0, &y))
+        return 0;
+    if (j->plain) {
+        L0 = a0 + b0 * y;
+        L1 = b1 * y - a1;
+        *gx = mu * (L1 * a0 + L0 * a1);
+        *gy = mu * (L1 * b0 + L0 * b1) + 2 * lam * y;
+    } else {
+        L0 = FMA(b0, y, a0);
+        L1 = FMA(b1, y, -a1);
+        *gx = mu * FMA(L1, a0, L0 * a1);
+        *gy = FMA(mu, FMA(L1, b0, L0 * b1), 2 * lam * y);
+    }
+    *py = y;
+    if (!isfinite(*gx) || !isfinite(*gy) || (*gx == 0 && *gy == 0))
+        return 0;
+    return 1;
+}
+
+/* ----------------------------------------------------------- SVD fit */
+
+/*
+ * One-sided Jacobi SVD (Hestenes) of the m x n column-major matrix a
+ * (lda = rows, rows >= n: callers pad with zero rows): right singular vector
+ * of the smallest singular value into v. Used for long double, where LAPACK
+ * has nothing, and as the double path's fallback. Accurate in the relative
+ * sense one-sided Jacobi is known for, which matters with weights 1e5 : 1.
+ */
+static int SFX(jacobi_min_right)(REAL *a, int rows, int n, REAL *v)
+{
+    REAL V[CONICA__FIT_MAX_COLS * CONICA__FIT_MAX_COLS];
+    int p, q, k, sweep, rotated = 1, best = 0;
+    REAL bestn = 0;
+
+    for (p = 0; p < n; p++)
+        for (q = 0; q < n; q++)
+            V[p + q * n] = p == q ? 1 : 0;
+    for (sweep = 0; sweep < CONICA__JACOBI_MAX_SWEEPS && rotated; sweep++) {
+        rotated = 0;
+        for (p = 0; p < n - 1; p++) {
+            for (q = p + 1; q < n; q++) {
+                REAL al = 0, be = 0, ga = 0, zeta, t, c, s;
+                REAL *ap = a + (size_t)p * (size_t)rows, *aq = a + (size_t)q * (size_t)rows;
+                for (k = 0; k < rows; k++) {
+                    al = FMA(ap[k], ap[k], al);
+                    be = FMA(aq[k], aq[k], be);
+                    ga = FMA(ap[k], aq[k], ga);
+                }
+                if (ga == 0 || M(fabs)(ga) <= R_EPSILON * M(sqrt)(al) * M(sqrt)(be))
+                    continue;
+                rotated = 1;
+                zeta = (be - al) / (2 * ga);
+                t = (zeta >= 0 ? 1 : -1) / (M(fabs)(zeta) + M(sqrt)(1 + zeta * zeta));
+                c = 1 / M(sqrt)(1 + t * t);
+                s = c * t;
+                for (k = 0; k < rows; k++) {
+                    REAL x = ap[k], y = aq[k];
+                    ap[k] = c * x - s * y;
+                    aq[k] = s * x + c * y;
+                }
+                for (k = 0; k < n; k++) {
+                    REAL x = V[k + p * n], y = V[k + q * n];
+                    V[k + p * n] = c * x - s * y;
+                    V[k + q * n] = s * x + c * y;
+                }
+            }
+        }
+    }
+    if (rotated)
+        return -1;
+    for (p = 0; p < n; p++) {
+        REAL nn = 0;
+        for (k = 0; k < rows; k++)
+            nn = FMA(a[k + p * rows], a[k + p * rows], nn);
+        if (p == 0 || nn < bestn) {
+            bestn = nn;
+            best = p;
+        }
+    }
+    for (k = 0; k < n; k++)
+        v[k] = V[k + best * n];
+    return 0;
+}
+
+/*
+ * General weighted fit (seed 000, step 2): rows of matrix (2) generalised
+ * to cnt pairs (one point row, two normal rows and one alpha column per
+ * pair), scaled by W; q = right singular vector of the smallest singular
+ * value. Writes the six conic coefficients q20, q02, q11, q10, q01, q00.
+ * Returns 0 on success.
+ */
+static int SFX(svd_fit)(SFX(worker) *w, const SFX(pair) *P, int cnt, REAL *q)
+{
+    REAL a[CONICA__FIT_MAX_ROWS * CONICA__FIT_MAX_COLS];
+    REAL v[CONICA__FIT_MAX_COLS];
+    int m = 3 * cnt, n = 6 + cnt, rows = m > n ? m : n, k, c;
+
+    for (k = 0; k < rows * n; k++)
+        a[k] = 0;
+    for (k = 0; k < cnt; k++) {
+        REAL x = P[k].x, y = P[k].y, wv = P[k].wv, wn = P[k].wn;
+        int r0 = 3 * k, r1 = r0 + 1, r2 = r0 + 2;
+        a[r0 + 0 * rows] = wv * (x * x);
+        a[r0 + 1 * rows] = wv * (y * y);
+        a[r0 + 2 * rows] = wv * (2 * x * y);
+        a[r0 + 3 * rows] = wv * (2 * x);
+        a[r0 + 4 * rows] = wv * (2 * y);
+        a[r0 + 5 * rows] = wv;
+        a[r1 + 0 * rows] = wn * (2 * x);
+        a[r1 + 2 * rows] = wn * (2 * y);
+        a[r1 + 3 * rows] = wn * 2;
+        a[r1 + (6 + k) * rows] = wn * -P[k].nx;
+        a[r2 + 1 * rows] = wn * (2 * y);
+        a[r2 + 2 * rows] = wn * (2 * x);
+        a[r2 + 4 * rows] = wn * 2;
+        a[r2 + (6 + k) * rows] = wn * -P[k].ny;
+    }
+#if REAL_IS_DOUBLE
+    {
+        double copy[CONICA__FIT_MAX_ROWS * CONICA__FIT_MAX_COLS];
+        for (c = 0; c < n; c++)
+            for (k = 0; k < m; k++)
+                copy[k + c * m] = a[k + c * rows];
+        if (conica__svd_min_right(w->ws, copy, m, n, v) != 0 &&
+            SFX(jacobi_min_right)(a, rows, n, v) != 0)
+            return -1;
+    }
+#else
+    (void)w;
+    (void)c;
+    if (SFX(jacobi_min_right)(a, rows, n, v) != 0)
+        return -1;
+#endif
+    for (k = 0; k < 6; k++) {
+        q[k] = v[k];
+        if (!isfinite(q[k]))
+            return -1;
+    }
+    return 0;
+}
+
+/* Fit and sample in the local frame with the general fit: x = 0 meets the
+ * conic where q02 y^2 + 2 q01 y + q00 = 0; normal from Code 5. */
+static int SFX(svd_local)(SFX(worker) *w, const SFX(pair) *P, int cnt, REAL *py, REAL *gx,
+                          REAL *gy)
+{
+    REAL q[6];
+    if (cnt < 3 || SFX(svd_fit)(w, P, cnt, q) != 0)
+        return 0;
+    if (q[0] == 0 && q[1] == 0 && q[2] == 0 && q[3] == 0 && q[4] == 0 && q[5] == 0)
+        return 0;
+    if (!SFX(nearest_root)(q[1], q[4], q[5], w->job->plain ? 2 : 0, py))
+        return 0;
+    if (w->job->plain) {
+        *gx = q[2] * *py + q[3];
+        *gy = q[1] * *py + q[4];
+    } else {
+        *gx = FMA(q[2], *py, q[3]);
+        *gy = FMA(q[1], *py, q[4]);
+    }
+    return isfinite(*gx) && isfinite(*gy) && !(*gx == 0 && *gy == 0);
+}
+
+/* ------------------------------------------------------- edge points */
+
+static void SFX(store)(const SFX(job) *j, REAL x, REAL y, REAL nx, REAL ny, REAL *oxy, REAL *on)
+{
+    oxy[0] = x;
+    oxy[1] = y;
+    if (j->normalize) {
+        REAL len = M(sqrt)(FMA(nx, nx, ny * ny));
+        if (len > 0 && isfinite(len)) {
+            nx /= len;
+            ny /= len;
+        }
+    }
+    on[0] = nx;
+    on[1] = ny;
+}
+
+/*
+ * Reference-compatible edge point: absolute coordinates, the general fit,
+ * sampling exactly as the reference's Conic::sample (origin m, direction
+ * n_edge unnormalised, normal oriented along n_edge), patch growth up to 3
+ * outer neighbours a side, midpoint with the edge normal as the last resort.
+ */
+static void SFX(edge_ref)(SFX(worker) *w, size_t i, REAL *oxy, REAL *on)
+{
+    const SFX(job) *j = w->job;
+    size_t idx[CONICA__FIT_MAX_PAIRS], i1 = SFX(next)(j, i);
+    SFX(pair) P[CONICA__FIT_MAX_PAIRS];
+    REAL x0 = j->xy[2 * i], y0 = j->xy[2 * i + 1], x1 = j->xy[2 * i1], y1 = j->xy[2 * i1 + 1];
+    REAL ox = (x0 + x1) / 2, oy = (y0 + y1) / 2, dx = y0 - y1, dy = x1 - x0;
+    int cnt, prev = -1, g, k;
+
+    for (g = 1; g <= j->maxgrow; g++) {
+        REAL q[6], qux, quy, qpx, qpy, qpz, a, b, c, t, px, py, nx, ny;
+        cnt = SFX(collect)(j, i, g, g, idx);
+        if (cnt == prev)
+            break;
+        prev = cnt;
+        for (k = 0; k < cnt; k++) {
+            P[k].x = j->xy[2 * idx[k]];
+            P[k].y = j->xy[2 * idx[k] + 1];
+            P[k].nx = j->nxy[2 * idx[k]];
+            P[k].ny = j->nxy[2 * idx[k] + 1];
+            P[k].wv = k < 2 ? j->wev : j->wov;
+            P[k].wn = k < 2 ? j->wen : j->won;
+        }
+        if (cnt < 3 || SFX(svd_fit)(w, P, cnt, q) != 0)
+            continue;
+        /* Eigen's isZero(): every coefficient within 1e-15 of zero. */
+        for (k = 0; k < 6; k++)
+            if (M(fabs)(q[k]) > RC(CONICA__REF_ZERO))
+                break;
+        if (k == 6)
+            continue;
+        /* Q u with u = (dx, dy, 0), Q p with p = (ox, oy, 1). */
+        qux = q[0] * dx + q[2] * dy;
+        quy = q[2] * dx + q[1] * dy;
+        qpx = q[0] * ox + q[2] * oy + q[3];
+        qpy = q[2] * ox + q[1] * oy + q[4];
+        qpz = q[3] * ox + q[4] * oy + q[5];
+        a = dx * qux + dy * quy;
+        b = dx * qpx + dy * qpy;
+        c = ox * qpx + oy * qpy + qpz;
+        if (!SFX(nearest_root)(a, b, c, 1, &t))
+            continue;
+        px = ox + t * dx;
+        py = oy + t * dy;
+        nx = FMA(q[0], px, FMA(q[2], py, q[3]));
+        ny = FMA(q[2], px, FMA(q[1], py, q[4]));
+        if (nx * dx + ny * dy < 0) {
+            nx = -nx;
+            ny = -ny;
+        }
+        if ((nx == 0 && ny == 0) || !isfinite(px) || !isfinite(py) || !isfinite(nx) ||
+            !isfinite(ny))
+            continue;
+        if (g > 1)
+            w->grown++;
+        SFX(store)(j, px, py, nx, ny, oxy, on);
+        return;
+    }
+    w->fallbacks++;
+    SFX(store)(j, ox, oy, dx, dy, oxy, on);
+}
+
+/* Edge point of edge (i, i+1) in default mode (local frame). */
+static void SFX(edge)(SFX(worker) *w, size_t i, REAL *oxy, REAL *on)
+{
+    const SFX(job) *j = w->job;
+    size_t idx[CONICA__FIT_MAX_PAIRS], i1;
+    SFX(pair) P[CONICA__FIT_MAX_PAIRS];
+    SFX(frame) f;
+    REAL y = 0, gx = 0, gy = 0, ox, oy, nx, ny;
+    int cnt, ok = 0, g, maxl = 1, maxr = 1;
+
+    if (j->ref) {
+        SFX(edge_ref)(w, i, oxy, on);
+        return;
+    }
+    i1 = SFX(next)(j, i);
+    if (!SFX(make_frame)(j, i, i1, &f)) {
+        /* Coincident end points (rounding at extreme levels): repeat the
+         * point; its normal is as good as any. */
+        w->fallbacks++;
+        SFX(store)(j, j->xy[2 * i], j->xy[2 * i + 1], j->nxy[2 * i], j->nxy[2 * i + 1], oxy, on);
+        return;
+    }
+    /* Seed 000 after (10): next to an inflection point the patch is the
+     * inflection point, the edge's other end and two neighbours beyond it. */
+    if (j->infl) {
+        if (j->infl[i])
+            maxr = 2;
+        if (j->infl[i1])
+            maxl = 2;
+    }
+    cnt = SFX(collect)(j, i, maxl, maxr, idx);
+    SFX(local_pairs)(j, &f, idx, cnt, P);
+    if (j->fast)
+        ok = SFX(fast_fit)(j, P, cnt, &y, &gx, &gy);
+    if (!j->fast || ok < 0)
+        ok = SFX(svd_local)(w, P, cnt, &y, &gx, &gy);
+    /* No real intersection: grow the patch one neighbour a side at a time
+     * (REFERENCE.md section 1) and refit with the general fit. */
+    for (g = 2; !ok && g <= j->maxgrow; g++) {
+        int c2 = SFX(collect)(j, i, g, g, idx);
+        if (c2 <= cnt)
+            continue;
+        cnt = c2;
+        SFX(local_pairs)(j, &f, idx, cnt, P);
+        ok = SFX(svd_local)(w, P, cnt, &y, &gx, &gy);
+        if (ok)
+            w->grown++;
+    }
+    if (ok) {
+        /* Orient the sampled normal like the edge's end normals (their sum;
+         * the frame's y axis, n_edge, if they cancel). */
+        REAL sx = P[0].nx + P[1].nx, sy = P[0].ny + P[1].ny;
+        if (sx == 0 && sy == 0)
+            sy = 1;
+        if (gx * sx + gy * sy < 0) {
+            gx = -gx;
+            gy = -gy;
+        }
+        ox = FMA(-y, f.hy, f.mx);
+        oy = FMA(y, f.hx, f.my);
+    } else {
+        /* Last resort: the midpoint with the edge normal (as the reference). */
+        REAL sx = P[0].nx + P[1].nx, sy = P[0].ny + P[1].ny;
+        w->fallbacks++;
+        ox = f.mx;
+        oy = f.my;
+        gx = 0;
+        gy = (sy < 0 && !(sx == 0 && sy == 0)) ? -1 : 1;
+    }
+    /* Back to global coordinates: (gx, gy) in the frame is gx*hs + gy*perp(hs)
+     * (a rotation times |hs| in [1, 2*sqrt2), so magnitudes stay O(|g|)). */
+    nx = FMA(gx, f.hsx, -gy * f.hsy);
+    ny = FMA(gx, f.hsy, gy * f.hsx);
+    if (!isfinite(ox) || !isfinite(oy) || !isfinite(nx) || !isfinite(ny) || (nx == 0 && ny == 0)) {
+        w->fallbacks++;
+        ox = f.mx;
+        oy = f.my;
+        nx = -f.hsy;
+        ny = f.hsx;
+    }
+    SFX(store)(j, ox, oy, nx, ny, oxy, on);
+}
+
+/* One subdivision level: src (j->n points) -> dst. Old vertices copied
+ * bit-for-bit (step 1), one edge point per edge (steps 2-4). */
+static void SFX(level)(SFX(worker) *w, REAL *dxy, REAL *dn, size_t e_begin, size_t e_end)
+{
+    const SFX(job) *j = w->job;
+    size_t e;
+    for (e = e_begin; e < e_end; e++) {
+        dxy[4 * e] = j->xy[2 * e];
+        dxy[4 * e + 1] = j->xy[2 * e + 1];
+        dn[4 * e] = j->nxy[2 * e];
+        dn[4 * e + 1] = j->nxy[2 * e + 1];
+        if (e + 1 < j->n || j->closed)
+            SFX(edge)(w, e, dxy + 4 * e + 2, dn + 4 * e + 2);
+    }
+}
+
+/* ----------------------------------------------------- inflection points */
+
+/* Input accessor: the caller's double or long double arrays. */
+typedef struct SFX(input) {
+    const double *xyd, *nd;
+    const long double *xyl, *nl;
+    size_t n;
+    int closed;
+} SFX(input);
+
+static void SFX(in_pt)(const SFX(input) *in, size_t k, REAL *x, REAL *y)
+{
+    if (in->xyd) {
+        *x = (REAL)in->xyd[2 * k];
+        *y = (REAL)in->xyd[2 * k + 1];
+    } else {
+        *x = (REAL)in->xyl[2 * k];
+        *y = (REAL)in->xyl[2 * k + 1];
+    }
+}
+
+static void SFX(in_nrm)(const SFX(input) *in, size_t k, REAL *x, REAL *y)
+{
+    if (in->nd) {
+        *x = (REAL)in->nd[2 * k];
+        *y = (REAL)in->nd[2 * k + 1];
+    } else {
+        *x = (REAL)in->nl[2 * k];
+        *y = (REAL)in->nl[2 * k + 1];
+    }
+}
+
+/*
+ * Does edge (i, i+1) need an inflection point (seed 000, before (9)):
+ * p_{i-1} and p_{i+2} strictly on different sides of the edge line. Edges
+ * without both neighbours (open ends) and edges whose neighbourhood has
+ * coincident points never do, as in the reference.
+ */
+static int SFX(needs_infl)(const SFX(input) *in, int ref, size_t i)
+{
+    size_t n = in->n, a, c, d;
+    REAL x0, y0, x1, y1, x2, y2, x3, y3, d1, d2, eps = ref ? RC(CONICA__REF_EPS) : 0;
+
+    if (in->closed) {
+        a = (i + n - 1) % n;
+        c = (i + 1) % n;
+        d = (i + 2) % n;
+    } else {
+        if (i == 0 || i + 2 >= n)
+            return 0;
+        a = i - 1;
+        c = i + 1;
+        d = i + 2;
+    }
+    SFX(in_pt)(in, a, &x0, &y0);
+    SFX(in_pt)(in, i, &x1, &y1);
+    SFX(in_pt)(in, c, &x2, &y2);
+    SFX(in_pt)(in, d, &x3, &y3);
+    if ((x0 == x1 && y0 == y1) || (x2 == x3 && y2 == y3) || (x1 == x2 && y1 == y2) ||
+        (x0 == x3 && y0 == y3))
+        return 0;
+    if (ref) {
+        REAL nx = y2 - y1, ny = x1 - x2;
+        d1 = nx * (x3 - x1) + ny * (y3 - y1);
+        d2 = nx * (x0 - x1) + ny * (y0 - y1);
+    } else {
+        d1 = SFX(diffprod)(x2 - x1, y3 - y1, y2 - y1, x3 - x1);
+        d2 = SFX(diffprod)(x2 - x1, y0 - y1, y2 - y1, x0 - x1);
+    }
+    if (M(fabs)(d1) <= eps || M(fabs)(d2) <= eps)
+        return 0;
+    return (d1 > 0) != (d2 > 0);
+}
+
+static void SFX(unit)(REAL *x, REAL *y)
+{
+    REAL len = M(sqrt)(FMA(*x, *x, *y * *y));
+    *x /= len;
+    *y /= len;
+}
+
+static REAL SFX(clamped_acos)(REAL c)
+{
+    return M(acos)(c > 1 ? 1 : (c < -1 ? -1 : c));
+}
+
+/*
+ * Candidate inflection normal of eq. (10): (1 - gamma) * orth + gamma * d
+ * with gamma = 1/2 - |phi/pi - 1/2|, phi the angle between the edges AB and
+ * BC; d = +-BC is the edge direction with the sign that tilts the normal
+ * away from the neighbour (as the reference resolves the sign eq. (10)
+ * leaves open). Returns the angle between the candidate and the edge normal
+ * (the reference's "area weighted" blend uses the lengths of two unit
+ * vectors, so it is a no-op there and is left out).
+ */
+static REAL SFX(infl_candidate)(REAL abx, REAL aby, REAL bcx, REAL bcy, REAL ox, REAL oy, REAL *nx,
+                                REAL *ny)
+{
+    REAL ang = SFX(clamped_acos)(abx * bcx + aby * bcy);
+    REAL gam = RC(0.5) - M(fabs)(ang / RC(CONICA__PI) - RC(0.5));
+    REAL rx = bcx, ry = bcy, cx, cy;
+    if (abx * ox + aby * oy >= 0) {
+        rx = -rx;
+        ry = -ry;
+    }
+    *nx = (1 - gam) * ox + gam * rx;
+    *ny = (1 - gam) * oy + gam * ry;
+    SFX(unit)(nx, ny);
+    cx = ox;
+    cy = oy;
+    if (*nx * ox + *ny * oy < 0) {
+        cx = -cx;
+        cy = -cy;
+    }
+    return M(fabs)(SFX(clamped_acos)(*nx * cx + *ny * cy));
+}
+
+/* Position (9) and normal (10) of the inflection point on edge (i, i+1). */
+static void SFX(infl_point)(const SFX(input) *in, int ref, size_t i, REAL *pxy, REAL *pn)
+{
+    size_t n = in->n, a = (i + n - 1) % n, c = (i + 1) % n, d = (i + 2) % n;
+    REAL x0, y0, x1, y1, x2, y2, x3, y3, ax, ay, ex, ey, bx, by, ox, oy, lx, ly, rx, ry, la, ra;
+
+    SFX(in_pt)(in, a, &x0, &y0);
+    SFX(in_pt)(in, i, &x1, &y1);
+    SFX(in_pt)(in, c, &x2, &y2);
+    SFX(in_pt)(in, d, &x3, &y3);
+    ax = x0 - x1; /* v0v1 */
+    ay = y0 - y1;
+    ex = x1 - x2; /* v1v2 */
+    ey = y1 - y2;
+    bx = x3 - x2; /* v3v2 */
+    by = y3 - y2;
+    SFX(unit)(&ax, &ay);
+    SFX(unit)(&ex, &ey);
+    SFX(unit)(&bx, &by);
+    ox = -ey;
+    oy = ex;
+    la = SFX(infl_candidate)(ax, ay, -ex, -ey, ox, oy, &lx, &ly);
+    ra = SFX(infl_candidate)(bx, by, ex, ey, ox, oy, &rx, &ry);
+    pxy[0] = RC(0.5) * x1 + RC(0.5) * x2;
+    pxy[1] = RC(0.5) * y1 + RC(0.5) * y2;
+    if (la < ra) {
+        pn[0] = lx;
+        pn[1] = ly;
+    } else {
+        pn[0] = rx;
+        pn[1] = ry;
+    }
+    if (!ref) {
+        /* Orient like the edge's end normals, so the output's normals keep
+         * the input's orientation. */
+        REAL n1x, n1y, n2x, n2y;
+        SFX(in_nrm)(in, i, &n1x, &n1y);
+        SFX(in_nrm)(in, c, &n2x, &n2y);
+        SFX(unit)(&n1x, &n1y);
+        SFX(unit)(&n2x, &n2y);
+        if (pn[0] * (n1x + n2x) + pn[1] * (n1y + n2y) < 0) {
+            pn[0] = -pn[0];
+            pn[1] = -pn[1];
+        }
+    }
+}
+
+static size_t SFX(count_infl)(const SFX(input) *in, int ref)
+{
+    size_t i, c = 0, ne = in->closed ? in->n : in->n - 1;
+    for (i = 0; i < ne; i++)
+        c += (size_t)SFX(needs_infl)(in, ref, i);
+    return c;
+}
+
+/* Level 0: the input with unit normals, plus inflection points if asked.
+ * Writes the flags (if flags) and the level-0 indices of inserted points. */
+static size_t SFX(load)(const SFX(input) *in, int ref, int insert, REAL *xy, REAL *nn,
+                        unsigned char *flags, size_t *infl_idx)
+{
+    size_t i, k = 0, ni = 0;
+    for (i = 0; i < in->n; i++) {
+        SFX(in_pt)(in, i, &xy[2 * k], &xy[2 * k + 1]);
+        SFX(in_nrm)(in, i, &nn[2 * k], &nn[2 * k + 1]);
+        SFX(unit)(&nn[2 * k], &nn[2 * k + 1]);
+        if (flags)
+            flags[k] = 0;
+        k++;
+        if (insert && (in->closed || i + 1 < in->n) && SFX(needs_infl)(in, ref, i)) {
+            SFX(infl_point)(in, ref, i, &xy[2 * k], &nn[2 * k]);
+            if (flags)
+                flags[k] = 1;
+            if (infl_idx)
+                infl_idx[ni] = k;
+            ni++;
+            k++;
+        }
+    }
+    return k;
+}
+
+/* ---------------------------------------------------------------- driver */
+
+/*
+ * Run the whole subdivision. On success *res_xy / *res_n (malloc'ed, N
+ * points) hold the result with unit normals and *res_infl the output
+ * indices of the inflection points (NULL if none). Nothing is allocated on
+ * failure.
+ */
+static conica_code SFX(run)(const SFX(input) *in, const conica_subdiv_settings *s, REAL **res_xy,
+                            REAL **res_n, size_t *res_count, size_t **res_infl, size_t *res_ninfl,
+                            conica_subdiv_info *stats, conica_status *st)
+{
+    int L = s->levels, lev;
+    int ref = s->reference_compatible != 0;
+    int insert = s->insert_inflections && L > 0;
+    size_t ninfl = insert ? SFX(count_infl)(in, ref) : 0;
+    size_t n0 = in->n + ninfl, N, NB = 0, i;
+    REAL *A = NULL, *An = NULL, *B = NULL, *Bn = NULL;
+    unsigned char *flags = NULL;
+    size_t *infl = NULL;
+    SFX(job) job;
+    SFX(worker) wk;
+#if REAL_IS_DOUBLE
+    conica__svdws ws;
+#endif
+    conica_code code = CONICA_OK;
+
+    N = conica_subdiv_count(n0, in->closed, L);
+    if (N == 0 || N > s->max_points)
+        return conica__fail(st, CONICA_ERR_LIMIT, 0, 0,
+                            "%d levels on %zu points (%zu inflection points added) would make "
+                            "more than the %zu points allowed (max_points)",
+                            L, in->n, ninfl, s->max_points);
+    if (N > ((size_t)-1) / (2 * sizeof(REAL)))
+        return conica__fail(st, CONICA_ERR_LIMIT, 0, 0, "output of %zu points is too large", N);
+    if (L > 0)
+        NB = conica_subdiv_count(n0, in->closed, L - 1);
+    A = malloc(2 * N * sizeof *A);
+    An = malloc(2 * N * sizeof *An);
+    if (NB) {
+        B = malloc(2 * NB * sizeof *B);
+        Bn = malloc(2 * NB * sizeof *Bn);
+    }
+    if (ninfl) {
+        flags = malloc(N);
+        infl = malloc(ninfl * sizeof *infl);
+    }
+#if REAL_IS_DOUBLE
+    ws.work = NULL;
+    if (L > 0 && conica__svdws_init(&ws) != 0)
+        code = CONICA_ERR_NOMEM;
+#endif
+    if (!A || !An || (NB && (!B || !Bn)) || (ninfl && (!flags || !infl)))
+        code = CONICA_ERR_NOMEM;
+    if (code != CONICA_OK) {
+        free(A);
+        free(An);
+        free(B);
+        free(Bn);
+        free(flags);
+        free(infl);
+#if REAL_IS_DOUBLE
+        conica__svdws_free(&ws);
+#endif
+        return conica__fail(st, code, 0, 0, "out of memory for %zu output points", N);
+    }
+
+    /* The levels alternate between the two buffers so that the last one
+     * lands in A (double buffering, no allocation per level or point). */
+    {
+        REAL *sx = (L % 2) ? B : A, *sn = (L % 2) ? Bn : An;
+        size_t cur = SFX(load)(in, ref, insert, sx, sn, flags, infl);
+
+        job.wev = (REAL)s->w_edge_point;
+        job.wen = (REAL)s->w_edge_normal;
+        job.won = (REAL)s->w_outer_normal;
+        job.wov = (REAL)s->tau * (REAL)s->w_outer_normal;
+        job.ref = ref;
+        job.fast = !ref && !s->force_svd;
+        job.plain = s->plain_quadratic != 0;
+        job.normalize = s->normalize_normals != 0;
+        job.closed = in->closed;
+        job.maxgrow = ref ? (s->patch_grow < 3 ? s->patch_grow : 3) : s->patch_grow;
+        job.infl = ninfl ? flags : NULL;
+        wk.job = &job;
+#if REAL_IS_DOUBLE
+        wk.ws = &ws;
+#endif
+        wk.grown = 0;
+        wk.fallbacks = 0;
+        stats->edge_points = 0;
+        for (lev = 1; lev <= L; lev++) {
+            REAL *dx = ((L - lev) % 2) ? B : A, *dn = ((L - lev) % 2) ? Bn : An;
+            size_t ne = in->closed ? cur : cur - 1;
+            job.n = cur;
+            job.xy = sx;
+            job.nxy = sn;
+            SFX(level)(&wk, dx, dn, 0, cur);
+            stats->edge_points += ne;
+            if (flags) {
+                /* Inflection flags follow their points: index i -> 2i. */
+                for (i = cur; i-- > 0;) {
+                    flags[2 * i] = flags[i];
+                    if (2 * i + 1 < cur + ne)
+                        flags[2 * i + 1] = 0;
+                }
+            }
+            cur += ne;
+            sx = dx;
+            sn = dn;
+        }
+        stats->patch_grown = wk.grown;
+        stats->midpoint_fallbacks = wk.fallbacks;
+        (void)cur;
+    }
+    free(B);
+    free(Bn);
+    free(flags);
+#if REAL_IS_DOUBLE
+    conica__svdws_free(&ws);
+#endif
+    /* Unit normals out (kept unnormalised between levels, Section 2.3),
+     * and never a NaN. */
+    for (i = 0; i < N; i++) {
+        REAL nx = An[2 * i], ny = An[2 * i + 1], len;
+        REAL mag = M(fmax)(M(fabs)(nx), M(fabs)(ny));
+        if (!isfinite(A[2 * i]) || !isfinite(A[2 * i + 1]) || !(mag > 0) || !isfinite(mag)) {
+            code = conica__fail(st, CONICA_ERR_NUMERIC, 0, i,
+                                "point %zu of the output is not finite or has no normal", i);
+            break;
+        }
+        nx /= mag;
+        ny /= mag;
+        len = M(sqrt)(FMA(nx, nx, ny * ny));
+        An[2 * i] = nx / len;
+        An[2 * i + 1] = ny / len;
+    }
+    if (code != CONICA_OK) {
+        free(A);
+        free(An);
+        free(infl);
+        return code;
+    }
+    for (i = 0; i < ninfl; i++)
+        infl[i] <<= L;
+    *res_xy = A;
+    *res_n = An;
+    *res_count = N;
+    *res_infl = infl;
+    *res_ninfl = ninfl;
+    stats->inflections = ninfl;
+    return CONICA_OK;
+}
+
+#undef REAL
+#undef SFX
+#undef M
+#undef FMA
+#undef RC
+#undef R_EPSILON
+#undef REAL_IS_DOUBLE

@@ -1,0 +1,48 @@
+/* Internal helpers shared by the SVG layer's translation units
+ * (conica_svg__ prefix; not installed). */
+#ifndef CONICA_SVG_INTERNAL_H
+#define CONICA_SVG_INTERNAL_H
+
+#include <stdarg.h>
+#include <stddef.h>
+
+#include "conica_svg.h"
+
+/* conica__fail()/conica__ok() from libcore's internal.h fill the status. */
+#include "internal.h"
+
+/* A growable character buffer (always NUL-terminated once non-empty). */
+typedef struct conica_svg__buf {
+    char *s;
+    size_t n, cap;
+    int oom; /* an append failed: the content is incomplete */
+} conica_svg__buf;
+
+void conica_svg__buf_put(conica_svg__buf *b, const char *s, size_t n);
+void conica_svg__buf_putc(conica_svg__buf *b, char c);
+
+/* Write v with `precision` significant digits in the shortest SVG form
+ * ("-.5", "1e-5", no "+", no trailing zeros), independent of the C locale.
+ * Returns the length written into out (at most 40 bytes plus NUL). */
+size_t conica_svg__format_number(double v, int precision, char out[48]);
+
+/* Append a number to a compact list: a separator only where the grammar
+ * needs one. *prev_kind tracks the previous token (0 = none/letter). */
+void conica_svg__put_number(conica_svg__buf *b, double v, int precision, int *prev_kind);
+
+/* Endpoint to centre parametrisation of an arc (SVG 2, F.6.5 and F.6.6);
+ * fills the ARC fields of *seg from x0,y0,x1,y1,rx,ry,phi(deg),flags, or
+ * turns it into a LINE for a zero radius. Returns 0 when the arc must be
+ * dropped (coincident end points, F.6.2). */
+int conica_svg__arc_to_centre(conica_svg_seg *seg, double rx, double ry, double phi_deg);
+
+/* Point and derivative (d/dt, t in [0,1]) of a drawing segment. */
+void conica_svg__seg_eval(const conica_svg_seg *seg, double t, double p[2], double d[2]);
+
+/* Append one segment (growing the array); 0 when out of memory. */
+int conica_svg__path_push(conica_svg_path *p, const conica_svg_seg *g);
+
+/* Monotonic seconds. */
+double conica_svg__now(void);
+
+#endif

@@ -1,0 +1,271 @@
+/* svgsmooth: smooth the outlines of an SVG file with conic-preserving
+ * subdivision (corners kept, arcs reproduced), or flatten its curves within
+ * a tolerance; nothing else in the document changes. */
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+
+#include "cli.h"
+#include "conica_svg.h"
+
+#define PROG "svgsmooth"
+#define MAX_SELECT 4096 /* ids in one --select list */
+
+static const char usage_text[] =
+    "Usage: svgsmooth [OPTION]... IN\n"
+    "Smooth the outlines of an SVG file (paths, polylines, polygons) with\n"
+    "conic-preserving subdivision: vertices stay, corners stay sharp, arcs and\n"
+    "conics are reproduced. Or flatten every curve to a polyline within a\n"
+    "tolerance. Everything else in the document is kept as it is.\n"
+    "IN and OUT may be '-' for stdin/stdout.\n"
+    "\n"
+    "  --levels K          subdivision levels (default 4; 0 writes the vertices)\n"
+    "  --tolerance T       smoothing: refine until a level moves no point more\n"
+    "                      than T user units; with --flatten: maximum distance\n"
+    "                      of the polyline from the true curve\n"
+    "  --corner-angle DEG  tangent turn that makes a corner (default 40; 180\n"
+    "                      disables corners)\n"
+    "  --flatten           flatten curves within --tolerance (required) with the\n"
+    "                      guaranteed adaptive plotter; straight segments stay\n"
+    "  --precision N       significant digits written (1..17, default 7)\n"
+    "  --select IDS        only the elements with these ids (comma separated)\n"
+    "  --convert-shapes    also rect, circle, ellipse, line (rewritten as paths)\n"
+    "  --stats             counts and seconds on stderr\n"
+    "  --in-place          replace IN (through a temporary file)\n"
+    "  -o OUT              output file (default stdout)\n"
+    "  --max-input-bytes N   document size cap (default 64 MiB)\n"
+    "  --max-depth N         XML nesting cap (default 256)\n"
+    "  --max-elements N      XML element cap (default 1048576)\n"
+    "  --max-path-bytes N    cap on one d/points attribute (default 8 MiB)\n"
+    "  --max-points N        cap on output points in the document (default 67108864)\n"
+    "  --help, --version\n"
+    "\n"
+    "Exit status: 0 ok (warnings included), 1 error (output untouched), 2 usage.\n";
+
+static double now(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+}
+
+typedef struct warn_ctx {
+    const char *name;
+} warn_ctx;
+
+static void on_warning(void *ctx, size_t line, const char *message)
+{
+    const warn_ctx *w = ctx;
+    char where[1100];
+    if (line)
+        snprintf(where, sizeof where, "%s:%zu", w->name, line);
+    else
+        snprintf(where, sizeof where, "%s", w->name);
+    cli_warning(PROG, where, "%s", message);
+}
+
+static int fail_status(const char *name, const conica_status *st)
+{
+    char where[1100];
+    if (st->line)
+        snprintf(where, sizeof where, "%s:%zu", name, st->line);
+    else
+        snprintf(where, sizeof where, "%s", name);
+    return cli_error(PROG, where, "%s", st->message);
+}
+
+static int size_arg(const char *flag, const char *v, size_t *out)
+{
+    long x;
+    if (!v || cli_parse_int(v, 1, 0x7fffffffL, &x))
+        return cli_usage_error(PROG, "%s needs a whole number in 1..2147483647", flag);
+    *out = (size_t)x;
+    return 0;
+}
+
+/* Split "a,b,c" into ids (pointers into s, which is modified). */
+static int split_ids(char *s, const char **ids, size_t *n)
+{
+    char *p = s;
+    *n = 0;
+    while (*p) {
+        char *c = strchr(p, ',');
+        if (c)
+            *c = '\0';
+        if (*p) {
+            if (*n == MAX_SELECT)
+                return 1;
+            ids[(*n)++] = p;
+        }
+        if (!c)
+            break;
+        p = c + 1;
+    }
+    return 0;
+}
+
+int main(int argc, char **argv)
+{
+    conica_svg_settings set = conica_svg_defaults();
+    conica_svg_stats stats;
+    conica_svg_doc *doc = NULL;
+    conica_status st;
+    warn_ctx wc;
+    const char *in = NULL, *out_path = NULL, **ids = NULL;
+    char *sel = NULL, *buf = NULL, *res = NULL;
+    size_t len = 0, rlen = 0, nids = 0;
+    int i, have_levels = 0, have_tol = 0, flatten = 0, want_stats = 0, in_place = 0, rc = 1;
+    double t_start, t_io = 0.0, t0;
+    cli_output out;
+
+    memset(&stats, 0, sizeof stats);
+    memset(&out, 0, sizeof out);
+    for (i = 1; i < argc; i++) {
+        const char *a = argv[i];
+        const char *v = i + 1 < argc ? argv[i + 1] : NULL;
+        long x;
+        double d;
+        if (!strcmp(a, "--help") || !strcmp(a, "-h")) {
+            fputs(usage_text, stdout);
+            free(sel);
+            return 0;
+        } else if (!strcmp(a, "--version")) {
+            printf("svgsmooth (Conica) %s\n", conica_version());
+            free(sel);
+            return 0;
+        } else if (!strcmp(a, "--levels")) {
+            if (!v || cli_parse_int(v, 0, 30, &x))
+                return cli_usage_error(PROG, "--levels needs a whole number in 0..30");
+            set.levels = (int)x;
+            have_levels = 1;
+            i++;
+        } else if (!strcmp(a, "--tolerance")) {
+            if (!v || cli_parse_double(v, &d) || !(d > 0.0))
+                return cli_usage_error(PROG, "--tolerance needs a number > 0");
+            set.tolerance = d;
+            have_tol = 1;
+            i++;
+        } else if (!strcmp(a, "--corner-angle")) {
+            if (!v || cli_parse_double(v, &d) || !(d >= 0.0 && d <= 180.0))
+                return cli_usage_error(PROG, "--corner-angle needs degrees in 0..180");
+            set.corner_angle_deg = d;
+            i++;
+        } else if (!strcmp(a, "--precision")) {
+            if (!v || cli_parse_int(v, 1, 17, &x))
+                return cli_usage_error(PROG, "--precision needs a whole number in 1..17");
+            set.precision = (int)x;
+            i++;
+        } else if (!strcmp(a, "--select")) {
+            if (!v)
+                return cli_usage_error(PROG, "--select needs a list of ids");
+            free(sel);
+            sel = strdup(v);
+            if (!sel)
+                return cli_error(PROG, NULL, "out of memory");
+            i++;
+        } else if (!strcmp(a, "--flatten")) {
+            flatten = 1;
+        } else if (!strcmp(a, "--convert-shapes")) {
+            set.convert_shapes = 1;
+        } else if (!strcmp(a, "--stats")) {
+            want_stats = 1;
+        } else if (!strcmp(a, "--in-place")) {
+            in_place = 1;
+        } else if (!strcmp(a, "-o")) {
+            if (!v)
+                return cli_usage_error(PROG, "-o needs a file name");
+            out_path = v;
+            i++;
+        } else if (!strcmp(a, "--max-input-bytes") || !strcmp(a, "--max-depth") ||
+                   !strcmp(a, "--max-elements") || !strcmp(a, "--max-path-bytes") ||
+                   !strcmp(a, "--max-points")) {
+            size_t *dst = !strcmp(a, "--max-input-bytes") ? &set.limits.max_bytes
+                        : !strcmp(a, "--max-depth")       ? &set.limits.max_depth
+                        : !strcmp(a, "--max-elements")    ? &set.limits.max_elements
+                        : !strcmp(a, "--max-path-bytes")  ? &set.limits.max_path_bytes
+                                                          : &set.limits.max_points;
+            if (size_arg(a, v, dst))
+                return CLI_EXIT_USAGE;
+            i++;
+        } else if (a[0] == '-' && a[1] != '\0') {
+            return cli_usage_error(PROG, "unknown option '%s'", a);
+        } else {
+            if (in)
+                return cli_usage_error(PROG, "only one input file, got '%s' and '%s'", in, a);
+            in = a;
+        }
+    }
+    if (!in)
+        return cli_usage_error(PROG, "no input file (use '-' for stdin)");
+    if (have_levels && have_tol)
+        return cli_usage_error(PROG, "--levels and --tolerance exclude each other");
+    if (flatten && !have_tol)
+        return cli_usage_error(PROG, "--flatten needs --tolerance T");
+    if (flatten && have_levels)
+        return cli_usage_error(PROG, "--flatten takes --tolerance, not --levels");
+    if (in_place && (out_path || !strcmp(in, "-")))
+        return cli_usage_error(PROG, "--in-place needs a named input file and no -o");
+    if (flatten)
+        set.mode = CONICA_SVG_FLATTEN;
+    if (in_place)
+        out_path = in;
+    if (sel) {
+        ids = malloc(MAX_SELECT * sizeof *ids);
+        if (!ids)
+            return cli_error(PROG, NULL, "out of memory");
+        if (split_ids(sel, ids, &nids)) {
+            free(ids);
+            free(sel);
+            return cli_usage_error(PROG, "--select takes at most %d ids", MAX_SELECT);
+        }
+        set.select = ids;
+        set.nselect = nids;
+    }
+    wc.name = strcmp(in, "-") ? in : "<stdin>";
+    set.warn = on_warning;
+    set.warn_ctx = &wc;
+
+    t_start = now();
+    if (cli_read_file(PROG, in, set.limits.max_bytes, &buf, &len))
+        goto done;
+    t0 = now();
+    if (conica_svg_doc_load(buf, len, &set.limits, &doc, &st) != CONICA_OK) {
+        fail_status(wc.name, &st);
+        goto done;
+    }
+    t_io += now() - t0;
+    if (conica_svg_process(doc, &set, &stats, &st) != CONICA_OK) {
+        fail_status(wc.name, &st);
+        goto done;
+    }
+    t0 = now();
+    if (conica_svg_doc_save(doc, &res, &rlen, &st) != CONICA_OK) {
+        fail_status(wc.name, &st);
+        goto done;
+    }
+    if (cli_output_open(PROG, out_path, &out))
+        goto done;
+    if (fwrite(res, 1, rlen, out.f) != rlen) {
+        cli_output_abort(&out);
+        cli_error(PROG, out_path ? out_path : "<stdout>", "write failed");
+        goto done;
+    }
+    if (cli_output_commit(PROG, &out))
+        goto done;
+    t_io += now() - t0;
+    if (want_stats)
+        fprintf(stderr,
+                "svgsmooth: stats: %zu elements, %zu subpaths, %zu input vertices, %zu output "
+                "points, %.3f s (XML+path I/O %.3f s, geometry %.3f s)\n",
+                stats.elements, stats.subpaths, stats.in_vertices, stats.out_points,
+                now() - t_start, t_io + stats.io_seconds, stats.geometry_seconds);
+    rc = 0;
+done:
+    conica_svg_buffer_free(res);
+    conica_svg_doc_free(doc);
+    free(buf);
+    free(ids);
+    free(sel);
+    return rc;
+}
