@@ -226,7 +226,7 @@ typedef struct conica_scad_refine_info {
 
 /**
  * @brief A closed point-normal curve refined by conic subdivision until the
- *        dense polyline is within tol/16 of the limit curve (estimated from
+ *        dense polyline is within tol/256 of the limit curve (estimated from
  *        its three-point sagittas), then thinned to the fewest points with
  *        chords within the rest of the tolerance (conica_scad_thin).
  * @param[in]  in          closed input curve (normals optional)

@@ -13,7 +13,7 @@
 /* The dense polyline may use this fraction of the tolerance; the chords get
  * the rest (seed 000 subdivision converges quadratically, so each level
  * quarters the dense error and the fraction costs few levels). */
-#define REFINE_DENSE_FRACTION (1.0 / 16.0)
+#define REFINE_DENSE_FRACTION (1.0 / 256.0)
 /* A level-L vertex sits about 4x the level-L chord error away from the chord
  * joining its two neighbours (sagitta ~ kappa h^2 / 2 vs kappa h^2 / 8);
  * 0.3 > 1/4 keeps the estimate on the safe side. */

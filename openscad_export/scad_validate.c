@@ -218,14 +218,16 @@ static conica_code check_crossings(const conica_scad_profile *p, conica_scad_vio
     if (nseg > UINT32_MAX)
         return conica__fail(st, CONICA_ERR_LIMIT, 0, 0, "too many segments to check");
     {
-        double w = xmax - xmin, h = ymax - ymin, side;
+        double w = xmax - xmin, h = ymax - ymin, cells;
         if (!(w > 0))
             w = h > 0 ? h : 1;
         if (!(h > 0))
             h = w;
-        side = sqrt(w * h / ((double)nseg * GRID_CELLS_PER_SEGMENT));
-        g.gx = (size_t)fmin(fmax(ceil(w / side), 1), 1 << 15);
-        g.gy = (size_t)fmin(fmax(ceil(h / side), 1), 1 << 15);
+        /* about nseg square cells, never more columns or rows than that
+         * (a very flat profile gets one row) */
+        cells = fmin((double)nseg * GRID_CELLS_PER_SEGMENT, 1 << 26);
+        g.gx = (size_t)fmin(fmax(ceil(sqrt(cells * w / h)), 1), cells);
+        g.gy = (size_t)fmin(fmax(ceil(cells / (double)g.gx), 1), cells);
         g.x0 = xmin;
         g.y0 = ymin;
         g.cw = w / (double)g.gx;
@@ -319,7 +321,6 @@ conica_code conica_scad_validate(const conica_scad_profile *p, int rotate_extrud
         return conica__fail(st, CONICA_ERR_ARG, 0, 0, "empty profile");
     for (size_t c = 0; c < p->ncontours; c++) {
         const conica_scad_contour *k = &p->contours[c];
-        double xmin = INFINITY, ymin = INFINITY, xmax = -INFINITY, ymax = -INFINITY;
         if (k->n < 3)
             return report(p, v, st, CONICA_SCAD_TOO_FEW_POINTS, c, 0, c, 0, k->xy[0], k->xy[1]);
         for (size_t i = 0; i < k->n; i++) {
@@ -328,18 +329,25 @@ conica_code conica_scad_validate(const conica_scad_profile *p, int rotate_extrud
                 return report(p, v, st, CONICA_SCAD_DUPLICATE_POINT, c, i, c, i, a[0], a[1]);
             if (rotate_extrude && a[0] < 0)
                 return report(p, v, st, CONICA_SCAD_NEGATIVE_X, c, i, c, i, a[0], a[1]);
-            xmin = fmin(xmin, a[0]);
-            xmax = fmax(xmax, a[0]);
-            ymin = fmin(ymin, a[1]);
-            ymax = fmax(ymax, a[1]);
+        }
+    }
+    /* crossings first: a bowtie's lobes cancel to zero signed area */
+    conica_code rc = check_crossings(p, v, st);
+    if (rc != CONICA_OK)
+        return rc;
+    for (size_t c = 0; c < p->ncontours; c++) {
+        const conica_scad_contour *k = &p->contours[c];
+        double xmin = INFINITY, ymin = INFINITY, xmax = -INFINITY, ymax = -INFINITY;
+        for (size_t i = 0; i < k->n; i++) {
+            xmin = fmin(xmin, k->xy[2 * i]);
+            xmax = fmax(xmax, k->xy[2 * i]);
+            ymin = fmin(ymin, k->xy[2 * i + 1]);
+            ymax = fmax(ymax, k->xy[2 * i + 1]);
         }
         double diag2 = (xmax - xmin) * (xmax - xmin) + (ymax - ymin) * (ymax - ymin);
         if (!(fabs(0.5 * conica__scad_area2(k->xy, k->n)) > CONICA_SCAD_ZERO_AREA_REL * diag2))
             return report(p, v, st, CONICA_SCAD_ZERO_AREA, c, 0, c, 0, k->xy[0], k->xy[1]);
     }
-    conica_code rc = check_crossings(p, v, st);
-    if (rc != CONICA_OK)
-        return rc;
     if (v)
         memset(v, 0, sizeof *v);
     conica__ok(st);

@@ -102,7 +102,7 @@ conica_code conica_scad_write(FILE *f, const conica_scad_profile *p, const conic
     for (size_t i = 0; i < l->npaths; i++) {
         const conica_scad_contour *c = &p->contours[l->paths[i].contour];
         for (size_t k = 0; k < c->n; k++) {
-            size_t j = l->paths[i].reversed ? c->n - 1 - k : k;
+            size_t j = l->paths[i].reversed ? (c->n - k) % c->n : k; /* same first point */
             fputs(i == 0 && k == 0 ? "\n  [" : ",\n  [", f);
             conica_scad_format_double(c->xy[2 * j], num, sizeof num);
             fputs(num, f);

@@ -154,7 +154,15 @@ TEST_CASE("validation refuses what OpenSCAD would render wrongly", "[scad][valid
     }
     SECTION("zero area")
     {
+        /* folded onto a line: seen as a segment running back over another */
         double xy[6] = {0, 0, 1, 1, 3, 3};
+        REQUIRE_EQ(conica_scad_add_contour(&p, g, xy, 3, NULL), CONICA_OK);
+        CHECK_EQ(conica_scad_validate(&p, 0, &v, &st), CONICA_ERR_DEGENERATE);
+        CHECK_EQ(v.problem, CONICA_SCAD_SELF_INTERSECTION);
+    }
+    SECTION("zero area without a crossing")
+    {
+        double xy[6] = {0, 0, 1e-200, 1e-200, 1, 0};
         REQUIRE_EQ(conica_scad_add_contour(&p, g, xy, 3, NULL), CONICA_OK);
         CHECK_EQ(conica_scad_validate(&p, 0, &v, &st), CONICA_ERR_DEGENERATE);
         CHECK_EQ(v.problem, CONICA_SCAD_ZERO_AREA);
@@ -341,7 +349,7 @@ TEST_CASE("the writer emits points, paths and modules", "[scad][write]")
     CHECK_EQ(conica_scad_write(f, &p, &l, &o, &st), CONICA_OK);
     fclose(f);
     INFO("%s", text);
-    CHECK(strncmp(text, "// made by a test\n// second line\n", 34) == 0);
+    CHECK(strncmp(text, "// made by a test\n// second line\n", 33) == 0);
     /* outer first, reversed to counter-clockwise: (0,0) (0,10) (10,10) (10,0) reversed */
     CHECK(strstr(text, "function bracket_points() = [\n  [0,0],\n  [10,0],\n  [10,10],\n  [0,10],\n"
                        "  [2.5,2.5],\n  [2.5,2.6],\n  [2.6,2.6],\n  [2.6,2.5]];") != NULL);
@@ -418,4 +426,52 @@ TEST_CASE("thinning keeps corners and open ends", "[scad][thin]")
     CHECK_EQ(out[2 * 3], xy[2 * 119]);
     free(out);
     CHECK_EQ(conica_scad_thin(xy, n, 1, 0, &out, &m, NULL), CONICA_ERR_ARG);
+}
+
+TEST_CASE("refining exact circle samples to a tolerance", "[scad][refine]")
+{
+    /* 8 exact point-normal samples of a circle r = 50 off the origin: conic
+     * subdivision reproduces the circle, thinning reaches the minimum
+     * ceil(pi / acos(1 - tol / r)) = 50 / 158 / 497 within 10 %. */
+    const double r = 50, cx = 1000, cy = -300;
+    const double tols[3] = {0.1, 0.01, 0.001};
+    double xy[16], nxy[16];
+    for (int i = 0; i < 8; i++) {
+        double t = 2 * M_PI * i / 8.0;
+        nxy[2 * i] = cos(t);
+        nxy[2 * i + 1] = sin(t);
+        xy[2 * i] = cx + r * nxy[2 * i];
+        xy[2 * i + 1] = cy + r * nxy[2 * i + 1];
+    }
+    conica_curve in;
+    conica_curve_init(&in);
+    REQUIRE_EQ(conica_curve_set(xy, nxy, 8, 1, &in, NULL), CONICA_OK);
+    for (int k = 0; k < 3; k++) {
+        double *out = NULL;
+        size_t m = 0;
+        conica_scad_refine_info info;
+        conica_status st;
+        conica_code rc = conica_scad_refine(&in, tols[k], 0, &out, &m, &info, &st);
+        INFO("%s", st.message);
+        REQUIRE_EQ(rc, CONICA_OK);
+        double minimum = ceil(M_PI / acos(1 - tols[k] / r));
+        INFO("tol %g: %zu points (minimum %g), level %d, %zu dense", tols[k], m, minimum,
+             info.levels, info.dense_points);
+        CHECK(m >= minimum);
+        CHECK(m <= 1.1 * minimum);
+        double worst_on = 0, worst_chord = 0;
+        for (size_t i = 0; i < m; i++) {
+            const double *a = &out[2 * i], *b = &out[2 * ((i + 1) % m)];
+            worst_on = fmax(worst_on, fabs(hypot(a[0] - cx, a[1] - cy) - r));
+            double half = 0.5 * hypot(b[0] - a[0], b[1] - a[1]);
+            worst_chord = fmax(worst_chord, r - sqrt(r * r - half * half));
+        }
+        CHECK_LE(worst_on, 1e-9 * r);
+        CHECK_LE(worst_chord + worst_on, tols[k]);
+        free(out);
+    }
+    double *out = NULL;
+    size_t m = 0;
+    CHECK_EQ(conica_scad_refine(&in, 1e-9, 1000, &out, &m, NULL, NULL), CONICA_ERR_LIMIT);
+    conica_curve_free(&in);
 }
