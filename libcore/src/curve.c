@@ -2,6 +2,7 @@
  * implementation's text format (`v x y` / `vn nx ny` lines). */
 #include "conica/curve.h"
 
+#include <float.h>
 #include <locale.h>
 #include <math.h>
 #include <stdio.h>
@@ -115,22 +116,42 @@ static size_t distinct_neighbour(const conica_curve *c, size_t i, int dir)
 /* Twice the signed area of the polygon (closed by the chord for an open
  * curve), taken about the first point so that the result does not depend
  * on where the curve sits. Positive = counter-clockwise = turns left. */
-static double signed_area2(const conica_curve *c)
+static double signed_area2(const conica_curve *c, double sc)
 {
-    double ox = c->xy[0], oy = c->xy[1], a = 0.0;
+    double ox = c->xy[0] * sc, oy = c->xy[1] * sc, a = 0.0;
     size_t i;
     for (i = 1; i + 1 < c->n; i++) {
-        double x0 = c->xy[2 * i] - ox, y0 = c->xy[2 * i + 1] - oy;
-        double x1 = c->xy[2 * i + 2] - ox, y1 = c->xy[2 * i + 3] - oy;
+        double x0 = c->xy[2 * i] * sc - ox, y0 = c->xy[2 * i + 1] * sc - oy;
+        double x1 = c->xy[2 * i + 2] * sc - ox, y1 = c->xy[2 * i + 3] * sc - oy;
         a += x0 * y1 - x1 * y0;
     }
     return a;
 }
 
+/* A power of two that brings the largest coordinate into [1, 2): normals
+ * only depend on directions, and working on scaled coordinates keeps the
+ * differences and products below from overflowing (curves near 1e308) or
+ * underflowing (curves near 1e-300). Exact, so nothing else changes. */
+static double unit_scale(const conica_curve *c)
+{
+    double m = 0.0;
+    size_t i;
+    int e;
+    for (i = 0; i < 2 * c->n; i++)
+        if (fabs(c->xy[i]) > m)
+            m = fabs(c->xy[i]);
+    if (m == 0.0)
+        return 1.0;
+    e = -ilogb(m);
+    if (e > DBL_MAX_EXP - 1)
+        e = DBL_MAX_EXP - 1;
+    return ldexp(1.0, e);
+}
+
 conica_code conica_curve_estimate_normals(conica_curve *c, conica_normal_method method,
                                           conica_status *st)
 {
-    double *nn, orient;
+    double *nn, orient, sc;
     size_t i, n;
 
     if (!c || (c->n > 0 && !c->xy))
@@ -154,7 +175,8 @@ conica_code conica_curve_estimate_normals(conica_curve *c, conica_normal_method 
      * point to the right of travel, which is outward for a counter-clockwise
      * curve; flip them all for a clockwise one (the reference does the same:
      * its ExStep example is clockwise and gets outward normals). */
-    orient = signed_area2(c) < 0.0 ? -1.0 : 1.0;
+    sc = unit_scale(c);
+    orient = signed_area2(c, sc) < 0.0 ? -1.0 : 1.0;
 
     nn = malloc(2 * n * sizeof *nn);
     if (!nn)
@@ -162,15 +184,15 @@ conica_code conica_curve_estimate_normals(conica_curve *c, conica_normal_method 
 
     for (i = 0; i < n; i++) {
         size_t p = distinct_neighbour(c, i, -1), q = distinct_neighbour(c, i, +1);
-        double px = c->xy[2 * i], py = c->xy[2 * i + 1];
+        double px = c->xy[2 * i] * sc, py = c->xy[2 * i + 1] * sc;
         double ax = 0, ay = 0, bx = 0, by = 0, mx, my, len;
         if (p < n) {
-            ax = c->xy[2 * p] - px;
-            ay = c->xy[2 * p + 1] - py;
+            ax = c->xy[2 * p] * sc - px;
+            ay = c->xy[2 * p + 1] * sc - py;
         }
         if (q < n) {
-            bx = c->xy[2 * q] - px;
-            by = c->xy[2 * q + 1] - py;
+            bx = c->xy[2 * q] * sc - px;
+            by = c->xy[2 * q + 1] * sc - py;
         }
         /* Area weighting: the sum of the two unnormalised edge normals is
          * perp(next - prev); an open end has only its one edge. */
