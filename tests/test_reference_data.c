@@ -1,0 +1,230 @@
+/* The reference implementation's own example curves (../shared/data/conis/
+ * input) against what it produced at 5 levels (reference-k5): proof that
+ * conica_subdivide() is the same scheme (seed 000, Section 1.1).
+ *
+ * - reference-compatible + precise: same point counts, inflection points
+ *   inserted at the same places, every point within 1e-6 of the input's
+ *   bounding-box diagonal (ExStar_sub0's positions excepted: the reference
+ *   itself is unstable there, REFERENCE.md section 1);
+ * - default settings (local frames, double): same counts and inflection
+ *   places, points within 5e-2 of the diagonal (the local frame changes the
+ *   fitted conic for data that lie on no conic; REFERENCE.md measured up to
+ *   3e-2 for such a variant).
+ * Every figure is printed, so a failure says which file and by how much. */
+#include "conica_test.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "conica/curve.h"
+#include "conica/subdiv.h"
+
+#define LEVELS 5
+#define STRIDE (1u << LEVELS) /* level-0 vertices sit every 2^5 output points */
+#define TOL_COMPAT 1e-6       /* x diagonal, reference-compatible + precise */
+#define TOL_DEFAULT 5e-2      /* x diagonal, default settings */
+/* An output vertex is "an input vertex" when it is this close (x diagonal):
+ * the reference printed 19 digits of a long double, we read them as double. */
+#define TOL_SAME_VERTEX 1e-12
+
+static const char *const names[] = {
+    "5pointOpenCircle", "ExLetG_sub0", "ExStar_sub0", "ExStep_sub0", "ex6_sub0E", "ex6_sub0F",
+    "example1",         "example10",   "example11",   "example12",   "example13", "example2",
+    "example3",         "example4",    "example5",    "example6",    "example7",  "example8",
+    "example9",         "lG2",         "tau_example2", "tau_sub0",   "tst"};
+#define NNAMES (sizeof names / sizeof names[0])
+
+static int load(const char *rel, conica_curve *c)
+{
+    char path[1024];
+    char *buf;
+    long size;
+    size_t got;
+    FILE *f;
+    conica_status st;
+    conica_code rc;
+    if (!ct_data_path(path, sizeof path, rel))
+        return 0;
+    f = fopen(path, "rb");
+    if (!f)
+        return 0;
+    fseek(f, 0, SEEK_END);
+    size = ftell(f);
+    fseek(f, 0, SEEK_SET);
+    buf = malloc((size_t)size + 1);
+    if (!buf) {
+        fclose(f);
+        return 0;
+    }
+    got = fread(buf, 1, (size_t)size, f);
+    fclose(f);
+    rc = conica_curve_parse(buf, got, c, &st);
+    free(buf);
+    if (rc != CONICA_OK)
+        printf("reference-data: %s:%zu: %s\n", rel, st.line, st.message);
+    return rc == CONICA_OK;
+}
+
+static double bbox_diagonal(const conica_curve *c)
+{
+    double x0 = c->xy[0], x1 = x0, y0 = c->xy[1], y1 = y0;
+    size_t i;
+    for (i = 1; i < c->n; i++) {
+        double x = c->xy[2 * i], y = c->xy[2 * i + 1];
+        x0 = x < x0 ? x : x0;
+        x1 = x > x1 ? x : x1;
+        y0 = y < y0 ? y : y0;
+        y1 = y > y1 ? y : y1;
+    }
+    return hypot(x1 - x0, y1 - y0);
+}
+
+/* Which level-0 slots (every STRIDE-th output point) are inserted
+ * inflection points rather than input vertices: input vertices appear in
+ * order; anything between them is an inserted point. Writes a '0'/'1'
+ * string into pattern (one char per slot) and returns the number of
+ * inserted points, or -1 when the input vertices are not all found. */
+static long inflection_pattern(const double *xy, size_t n_out, int closed,
+                               const conica_curve *in, double diag, char *pattern, size_t cap)
+{
+    size_t slots = closed ? n_out / STRIDE : (n_out - 1) / STRIDE + 1, j, k = 0;
+    long inserted = 0;
+    if (slots + 1 > cap)
+        return -1;
+    for (j = 0; j < slots; j++) {
+        const double *p = xy + 2 * (j * STRIDE);
+        if (k < in->n && hypot(p[0] - in->xy[2 * k], p[1] - in->xy[2 * k + 1]) <=
+                             TOL_SAME_VERTEX * diag) {
+            pattern[j] = '0';
+            k++;
+        } else {
+            pattern[j] = '1';
+            inserted++;
+        }
+    }
+    pattern[slots] = '\0';
+    return k == in->n ? inserted : -1;
+}
+
+typedef struct result {
+    int ok_count, ok_inflections;
+    double max_dev; /* x diagonal */
+    size_t worst_index;
+} result;
+
+/* Subdivide one example in the given mode and compare it with reference-k5. */
+static int compare_one(const char *name, int compat, result *res)
+{
+    char rel[256], pat_ours[4096], pat_ref[4096];
+    conica_curve in, ref, out;
+    conica_curvel outl;
+    conica_subdiv_settings s = conica_subdiv_defaults();
+    conica_status st;
+    conica_code rc;
+    double diag, *xy;
+    size_t i, n_out;
+    long inf_ours, inf_ref;
+
+    conica_curve_init(&in);
+    conica_curve_init(&ref);
+    conica_curve_init(&out);
+    conica_curvel_init(&outl);
+    snprintf(rel, sizeof rel, "conis/input/%s.txt", name);
+    REQUIRE(load(rel, &in));
+    snprintf(rel, sizeof rel, "conis/reference-k5/%s.k5.txt", name);
+    REQUIRE(load(rel, &ref));
+    in.closed = strcmp(name, "5pointOpenCircle") != 0;
+    if (!in.nxy) /* as the reference: area-weighted normals of the closed curve */
+        REQUIRE_EQ(conica_curve_estimate_normals(&in, CONICA_NORMALS_AREA, NULL), CONICA_OK);
+    diag = bbox_diagonal(&in);
+
+    s.levels = LEVELS;
+    s.reference_compatible = compat;
+    s.precise = compat;
+    memset(&st, 0, sizeof st);
+    if (compat) {
+        rc = conica_subdividel(&in, &s, &outl, NULL, &st);
+        n_out = outl.n;
+    } else {
+        rc = conica_subdivide(&in, &s, &out, NULL, &st);
+        n_out = out.n;
+    }
+    INFO("%s (%s): status %d %s", name, compat ? "reference-compatible, precise" : "default",
+         (int)rc, st.message);
+    REQUIRE_EQ(rc, CONICA_OK);
+
+    xy = malloc(2 * (n_out ? n_out : 1) * sizeof *xy);
+    REQUIRE(xy != NULL);
+    for (i = 0; i < 2 * n_out; i++)
+        xy[i] = compat ? (double)outl.xy[i] : out.xy[i];
+
+    res->ok_count = n_out == ref.n;
+    res->max_dev = 0;
+    res->worst_index = 0;
+    res->ok_inflections = 0;
+    if (res->ok_count) {
+        for (i = 0; i < n_out; i++) {
+            double d = hypot(xy[2 * i] - ref.xy[2 * i], xy[2 * i + 1] - ref.xy[2 * i + 1]) / diag;
+            if (!(d <= res->max_dev)) { /* NaN counts as worst */
+                res->max_dev = isnan(d) ? INFINITY : d;
+                res->worst_index = i;
+            }
+        }
+    }
+    inf_ours = inflection_pattern(xy, n_out, in.closed, &in, diag, pat_ours, sizeof pat_ours);
+    inf_ref = inflection_pattern(ref.xy, ref.n, in.closed, &in, diag, pat_ref, sizeof pat_ref);
+    res->ok_inflections = inf_ours >= 0 && inf_ref >= 0 && strcmp(pat_ours, pat_ref) == 0;
+    printf("reference-data: %-16s %-30s points %6zu (reference %6zu)  inflections %ld (reference %ld)%s"
+           "  max deviation %.3g x diagonal at point %zu\n",
+           name, compat ? "reference-compatible+precise" : "default", n_out, ref.n, inf_ours,
+           inf_ref, res->ok_inflections ? "" : " MISPLACED", res->max_dev, res->worst_index);
+    if (!res->ok_inflections)
+        printf("reference-data:   slots ours %s\nreference-data:   slots ref  %s\n",
+               inf_ours >= 0 ? pat_ours : "?", inf_ref >= 0 ? pat_ref : "?");
+
+    free(xy);
+    conica_curve_free(&in);
+    conica_curve_free(&ref);
+    conica_curve_free(&out);
+    conica_curvel_free(&outl);
+    return 1;
+}
+
+static void compare_all(int compat, double tol)
+{
+    size_t k;
+    ct_data_dir_or_skip();
+    for (k = 0; k < NNAMES; k++) {
+        result r;
+        int unstable = strcmp(names[k], "ExStar_sub0") == 0;
+        compare_one(names[k], compat, &r);
+        INFO("%s: max deviation %.3g x diagonal at point %zu (tolerance %g)", names[k],
+             r.max_dev, r.worst_index, tol);
+        CHECK(r.ok_count);
+        CHECK(r.ok_inflections);
+        if (compat && unstable) {
+            /* REFERENCE.md section 1: the reference's own output here moves
+             * by up to 7 diagonals with the last bits of its input. */
+            if (!(r.max_dev <= tol))
+                WARN("%s: positions differ by %.3g x diagonal (not checked: unstable in the "
+                     "reference itself)",
+                     names[k], r.max_dev);
+        } else {
+            CHECK(r.max_dev <= tol);
+        }
+    }
+}
+
+TEST_CASE("reference examples: reference-compatible + precise match reference-k5 within 1e-6",
+          "[subdiv][reference][data]")
+{
+    compare_all(1, TOL_COMPAT);
+}
+
+TEST_CASE("reference examples: default settings match reference-k5 within 5e-2",
+          "[subdiv][reference][data]")
+{
+    compare_all(0, TOL_DEFAULT);
+}
