@@ -26,8 +26,10 @@
 #include <string.h>
 #include <time.h>
 
+#include "conica/bspline.h"
 #include "conica/common.h"
 #include "conica/curve.h"
+#include "conica/plot.h"
 #include "conica/subdiv.h"
 
 #ifndef CONICA_SOABI
@@ -672,29 +674,34 @@ static conica_code cx_run(cx_job *j)
 }
 
 /*
- * Interpolate m attributes per input vertex onto the output: old vertices
- * are kept bit-for-bit by the scheme (seed 000, Section 1.1), so each input
- * vertex is found again in the output in order; the points in between get
- * values linear in the chord length between their two anchors.
- * Returns 0 when an input vertex cannot be found (should not happen).
+ * Find each input vertex in the output: the scheme keeps old vertices
+ * bit-for-bit (seed 000, Section 1.1), in order, so one forward scan finds
+ * them. anchor[] gets n + 1 entries (the last closes the curve). Returns 0
+ * when a vertex is missing (cannot happen with libcore's guarantee).
  */
-static int cx_interp_attrs(const double *inxy, size_t n, int closed, const double *attr, int m,
-                           const double *oxy, size_t N, double *oattr)
+static int cx_find_anchors(const double *inxy, size_t n, int closed, const double *oxy, size_t N,
+                           size_t *anchor)
 {
-    size_t *anchor = malloc((n + 1) * sizeof *anchor);
-    if (anchor == NULL)
-        return 0;
     size_t k = 0;
     for (size_t i = 0; i < n; i++) {
         while (k < N && !(oxy[2 * k] == inxy[2 * i] && oxy[2 * k + 1] == inxy[2 * i + 1]))
             k++;
-        if (k == N) {
-            free(anchor);
+        if (k == N)
             return 0;
-        }
         anchor[i] = k++;
     }
     anchor[n] = closed ? N : anchor[n - 1];
+    return 1;
+}
+
+/*
+ * Interpolate m attributes per input vertex onto the output: the anchors
+ * keep their values, the points in between get values linear in the chord
+ * length between their two anchors.
+ */
+static void cx_interp_attrs(const size_t *anchor, size_t n, int closed, const double *attr, int m,
+                            const double *oxy, size_t N, double *oattr)
+{
     for (size_t i = 0; i < n; i++) {
         size_t a = anchor[i], b = anchor[i + 1];
         size_t inext = (i + 1) % n;
@@ -719,8 +726,33 @@ static int cx_interp_attrs(const double *inxy, size_t n, int closed, const doubl
             run += hypot(oxy[2 * u] - oxy[2 * t], oxy[2 * u + 1] - oxy[2 * t + 1]);
         }
     }
-    free(anchor);
-    return 1;
+}
+
+/*
+ * After lifting back from the plane: the old vertices get their exact input
+ * coordinates again (the projection round trip would move them by an ulp),
+ * and a coordinate that all input points share (z of a 2D curve, x of a
+ * curve in a YZ plane) is set exactly on every output point and handle.
+ */
+static void cx_restore_exact(const double *in3, size_t n, const size_t *anchor, double *o3,
+                             size_t N, double *hl3, double *hr3)
+{
+    for (size_t i = 0; i < n; i++)
+        memcpy(o3 + 3 * anchor[i], in3 + 3 * i, 3 * sizeof *o3);
+    for (int k = 0; k < 3; k++) {
+        size_t i = 1;
+        while (i < n && in3[3 * i + (size_t)k] == in3[(size_t)k])
+            i++;
+        if (i < n)
+            continue;
+        for (size_t j = 0; j < N; j++) {
+            o3[3 * j + (size_t)k] = in3[(size_t)k];
+            if (hl3)
+                hl3[3 * j + (size_t)k] = in3[(size_t)k];
+            if (hr3)
+                hr3[3 * j + (size_t)k] = in3[(size_t)k];
+        }
+    }
 }
 
 /*
@@ -849,7 +881,7 @@ static PyObject *cx_subdivide(PyObject *self, PyObject *args, PyObject *kw)
     const char *method = "area";
     double corner_angle = 0.0, plane_tol = 1e-6, abs_tol = 0.0;
     Py_ssize_t max_points = (Py_ssize_t)CX_DEFAULT_MAX_POINTS;
-    if (!PyArg_ParseTupleAndKeywords(args, kw, "O|O$ipipppspOpdOipddiOn:subdivide", kwlist,
+    if (!PyArg_ParseTupleAndKeywords(args, kw, "O|O$ipippspOpdOipddiOn:subdivide", kwlist,
                                      &opoints, &onormals, &dim, &closed, &levels, &precise,
                                      &estimate, &method, &inflections, &onormals_out, &tangents,
                                      &corner_angle, &oattrs, &nattrs, &handles, &plane_tol,
@@ -891,6 +923,7 @@ static PyObject *cx_subdivide(PyObject *self, PyObject *args, PyObject *kw)
     double *xy = NULL, *nin2 = NULL, *nout2 = NULL;
     double *fin_xy = NULL, *fin_n = NULL, *fin_attr = NULL, *hl = NULL, *hr = NULL;
     double *o3 = NULL, *on3 = NULL, *hl3 = NULL, *hr3 = NULL;
+    size_t *anchor = NULL;
     size_t npts_v = 0, nn = 0, nno = 0, na = 0;
     cx_job job;
     memset(&job, 0, sizeof job);
@@ -1056,16 +1089,22 @@ static PyObject *cx_subdivide(PyObject *self, PyObject *args, PyObject *kw)
     }
     const double *rxy = handles ? fin_xy : job.out.xy;
     const double *rn = handles ? fin_n : job.out.nxy;
+    anchor = malloc((n + 1) * sizeof *anchor);
+    if (anchor == NULL) {
+        PyErr_NoMemory();
+        goto done;
+    }
+    if (!cx_find_anchors(xy, n, closed, rxy, N, anchor)) {
+        cx_raisef(S->numeric, "could not find the input vertices in the output");
+        goto done;
+    }
     if (nattrs > 0) {
         fin_attr = malloc((N ? N : 1) * (size_t)nattrs * sizeof *fin_attr);
         if (fin_attr == NULL) {
             PyErr_NoMemory();
             goto done;
         }
-        if (!cx_interp_attrs(xy, n, closed, attrs, nattrs, rxy, N, fin_attr)) {
-            cx_raisef(S->numeric, "could not find the input vertices in the output");
-            goto done;
-        }
+        cx_interp_attrs(anchor, n, closed, attrs, nattrs, rxy, N, fin_attr);
     }
     if (dim == 3) {
         o3 = malloc(3 * N * sizeof *o3);
@@ -1084,6 +1123,7 @@ static PyObject *cx_subdivide(PyObject *self, PyObject *args, PyObject *kw)
             cx_from_plane(&pl, hl, N, hl3, 0);
             cx_from_plane(&pl, hr, N, hr3, 0);
         }
+        cx_restore_exact(pts, n, anchor, o3, N, hl3, hr3);
     }
     {
         /* inflection indices refer to the run output; map to the result */
@@ -1151,6 +1191,196 @@ done:
     free(on3);
     free(hl3);
     free(hr3);
+    free(anchor);
+    return result;
+}
+
+/* ------------------------------------------------------------ plotting */
+
+/*
+ * Attributes (radius, tilt) along a plotted spline: they are a spline
+ * function with the curve's knots and weights; each output point gets the
+ * value at the parameter that splits the parameter range in the same ratio
+ * as the point splits the polyline's length (exact at the ends, smooth in
+ * between; the plotter does not report parameters).
+ */
+static conica_code cx_plot_attrs(int degree, const double *knots, size_t nknots,
+                                 const double *attrs, int nattrs, size_t n, const double *w,
+                                 const double *pts, int dim, size_t N, double *out,
+                                 conica_status *st)
+{
+    conica_bspline fs;
+    conica_bspline_init(&fs);
+    /* one scalar spline per attribute keeps dim = 1 (any nattrs) */
+    double *col = malloc((n ? n : 1) * sizeof *col);
+    double *len = malloc((N ? N : 1) * sizeof *len);
+    if (col == NULL || len == NULL) {
+        free(col);
+        free(len);
+        return CONICA_ERR_NOMEM;
+    }
+    len[0] = 0.0;
+    for (size_t i = 1; i < N; i++) {
+        double d2 = 0.0;
+        for (int k = 0; k < dim; k++) {
+            double d = pts[i * (size_t)dim + (size_t)k] - pts[(i - 1) * (size_t)dim + (size_t)k];
+            d2 += d * d;
+        }
+        len[i] = len[i - 1] + sqrt(d2);
+    }
+    double t0 = knots[degree], t1 = knots[n];
+    conica_code rc = CONICA_OK;
+    for (int q = 0; q < nattrs && rc == CONICA_OK; q++) {
+        for (size_t i = 0; i < n; i++)
+            col[i] = attrs[i * (size_t)nattrs + (size_t)q];
+        rc = conica_bspline_set(degree, 1, knots, nknots, col, n, w, &fs, st);
+        for (size_t i = 0; i < N && rc == CONICA_OK; i++) {
+            double f = len[N - 1] > 0 ? len[i] / len[N - 1] : (N > 1 ? (double)i / (double)(N - 1) : 0.0);
+            double t = i + 1 == N ? t1 : t0 + f * (t1 - t0);
+            double v;
+            rc = conica_bspline_eval(&fs, t, &v, st);
+            out[i * (size_t)nattrs + (size_t)q] = v;
+        }
+        conica_bspline_free(&fs);
+    }
+    free(col);
+    free(len);
+    return rc;
+}
+
+PyDoc_STRVAR(plot_doc,
+"plot(ctrl, *, dim=3, degree, knots, weights=None, tolerance, attrs=None, nattrs=0,\n"
+"     typecode='d', max_points=4194304) -> (points, attrs or None, info)\n"
+"--\n\n"
+"Plot a (rational) B-spline with libconica's guaranteed adaptive plotter\n"
+"(seed 004): the polyline stays within `tolerance` (absolute, curve units)\n"
+"of the curve over the domain [knots[degree], knots[n]]. ctrl holds n\n"
+"points of dim values, knots n + degree + 1 values, weights n positive values\n"
+"or None. attrs (nattrs values per control point, e.g. radius and tilt) are\n"
+"evaluated as a spline function with the same knots at the output points.\n"
+"info: dict with points and knots_inserted.");
+
+static PyObject *cx_plot(PyObject *self, PyObject *args, PyObject *kw)
+{
+    static char *kwlist[] = {"ctrl", "dim", "degree", "knots", "weights", "tolerance",
+                             "attrs", "nattrs", "typecode", "max_points", NULL};
+    cx_state *S = cx_get_state(self);
+    PyObject *octrl, *oknots, *ow = Py_None, *oattrs = Py_None, *otype = NULL;
+    int dim = 3, degree = -1, nattrs = 0;
+    double tol = -1.0;
+    Py_ssize_t max_points = (Py_ssize_t)CX_DEFAULT_MAX_POINTS;
+    if (!PyArg_ParseTupleAndKeywords(args, kw, "O|$iiOOdOiOn:plot", kwlist, &octrl, &dim,
+                                     &degree, &oknots, &ow, &tol, &oattrs, &nattrs, &otype,
+                                     &max_points))
+        return NULL;
+    char typecode;
+    if (!cx_typecode(otype, &typecode))
+        return NULL;
+    if (dim < 1 || dim > 3)
+        return cx_raisef(S->arg_error, "dim must be 1, 2 or 3, got %d", dim);
+    if (degree < 1)
+        return cx_raisef(S->arg_error, "degree must be given and >= 1, got %d", degree);
+    if (!(tol > 0) || !isfinite(tol))
+        return cx_raisef(S->arg_error, "tolerance must be a positive finite number");
+    if (max_points < 2 || (size_t)max_points > CX_HARD_MAX_POINTS)
+        return cx_raisef(S->limit_error, "max_points must be 2..%zu, got %zd",
+                         CX_HARD_MAX_POINTS, max_points);
+    if (nattrs < 0 || nattrs > CX_MAX_ATTRS)
+        return cx_raisef(S->arg_error, "nattrs must be 0..%d, got %d", CX_MAX_ATTRS, nattrs);
+    if ((oattrs == Py_None) != (nattrs == 0))
+        return cx_raisef(S->arg_error, "attrs and nattrs > 0 go together");
+    if (oknots == NULL)
+        return cx_raisef(S->arg_error, "knots must be given");
+
+    PyObject *result = NULL;
+    double *ctrl = NULL, *knots = NULL, *w = NULL, *attrs = NULL, *oatt = NULL;
+    size_t nc = 0, nk = 0, nw = 0, na = 0;
+    conica_bspline sp;
+    conica_bspline_init(&sp);
+    conica_polyline pl;
+    conica_polyline_init(&pl);
+    conica_status st;
+    memset(&st, 0, sizeof st);
+    if (!cx_read_doubles(octrl, "ctrl", &ctrl, &nc) ||
+        !cx_read_doubles(oknots, "knots", &knots, &nk))
+        goto done;
+    if (ow != Py_None && !cx_read_doubles(ow, "weights", &w, &nw))
+        goto done;
+    if (nattrs > 0 && !cx_read_doubles(oattrs, "attrs", &attrs, &na))
+        goto done;
+    if (nc % (size_t)dim != 0) {
+        cx_raisef(S->arg_error, "ctrl: %zu values is not a multiple of dim=%d", nc, dim);
+        goto done;
+    }
+    size_t n = nc / (size_t)dim;
+    if (n < (size_t)degree + 1) {
+        cx_raisef(S->degenerate, "a degree-%d spline needs at least %d control points, got %zu",
+                  degree, degree + 1, n);
+        goto done;
+    }
+    if (nk != n + (size_t)degree + 1) {
+        cx_raisef(S->arg_error, "knots: %zu values, a degree-%d spline with %zu control "
+                  "points needs %zu", nk, degree, n, n + (size_t)degree + 1);
+        goto done;
+    }
+    if (w && nw != n) {
+        cx_raisef(S->arg_error, "weights: %zu values for %zu control points", nw, n);
+        goto done;
+    }
+    if (attrs && na != n * (size_t)nattrs) {
+        cx_raisef(S->arg_error, "attrs: %zu values for %zu points x %d attributes", na, n,
+                  nattrs);
+        goto done;
+    }
+    if (attrs && cx_first_nonfinite(attrs, na) < na) {
+        cx_raisef(S->nonfinite, "attrs: non-finite value");
+        goto done;
+    }
+    conica_code rc;
+    Py_BEGIN_ALLOW_THREADS
+    rc = conica_bspline_set(degree, dim, knots, nk, ctrl, n, w, &sp, &st);
+    if (rc == CONICA_OK) {
+        conica_plot_settings set = conica_plot_defaults();
+        set.method = CONICA_PLOT_GUARANTEED;
+        set.abs_tolerance = tol;
+        set.max_points = (size_t)max_points;
+        conica_plot_stats stats;
+        memset(&stats, 0, sizeof stats);
+        rc = conica_plot(&sp, &set, &pl, &stats, &st);
+    }
+    if (rc == CONICA_OK && attrs) {
+        oatt = malloc((pl.n ? pl.n : 1) * (size_t)nattrs * sizeof *oatt);
+        if (oatt == NULL)
+            rc = CONICA_ERR_NOMEM;
+        else
+            rc = cx_plot_attrs(degree, knots, nk, attrs, nattrs, n, w, pl.xy, pl.dim, pl.n,
+                               oatt, &st);
+    }
+    Py_END_ALLOW_THREADS
+    if (rc != CONICA_OK) {
+        cx_raise(S, rc, &st);
+        goto done;
+    }
+    {
+        PyObject *ap = cx_make_array(S, typecode, pl.xy, pl.n, pl.dim, pl.dim, 0.0);
+        PyObject *aa = attrs ? cx_make_array(S, typecode, oatt, pl.n, nattrs, nattrs, 0.0)
+                             : (Py_INCREF(Py_None), Py_None);
+        PyObject *info = Py_BuildValue("{s:n,s:n}", "points", (Py_ssize_t)pl.n, "pieces",
+                                       (Py_ssize_t)pl.npieces);
+        if (ap && aa && info)
+            result = PyTuple_Pack(3, ap, aa, info);
+        Py_XDECREF(ap);
+        Py_XDECREF(aa);
+        Py_XDECREF(info);
+    }
+done:
+    PyMem_Free(ctrl);
+    PyMem_Free(knots);
+    PyMem_Free(w);
+    PyMem_Free(attrs);
+    free(oatt);
+    conica_bspline_free(&sp);
+    conica_polyline_free(&pl);
     return result;
 }
 
@@ -1204,6 +1434,7 @@ static PyObject *cx_version(PyObject *self, PyObject *unused)
 static PyMethodDef cx_methods[] = {
     {"subdivide", (PyCFunction)(void (*)(void))cx_subdivide, METH_VARARGS | METH_KEYWORDS,
      subdivide_doc},
+    {"plot", (PyCFunction)(void (*)(void))cx_plot, METH_VARARGS | METH_KEYWORDS, plot_doc},
     {"fit_plane", cx_fit_plane_py, METH_O, fit_plane_doc},
     {"version", cx_version, METH_NOARGS, version_doc},
     {NULL, NULL, 0, NULL}};

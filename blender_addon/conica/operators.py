@@ -1,0 +1,564 @@
+# Operators of the Conica add-on: curve.conic_subdivide and
+# curve.adaptive_to_poly. Python only moves Blender's data in and out
+# (foreach_get/foreach_set on flat arrays); the geometry runs in _conica.
+#
+# Both operators first compute every spline's result and only then modify
+# the scene, so a failure leaves the scene unchanged; a spline that cannot
+# be processed (degenerate, NaN, non-planar) is reported and kept as it is.
+import array
+import math
+import time
+
+import bpy
+from bpy.props import BoolProperty, EnumProperty, FloatProperty, IntProperty
+
+from . import _conica
+
+# A 3D spline is processed in its best-fit plane when its points lie within
+# PLANE_TOL of its size from that plane (issue 8). Blender stores
+# coordinates as float32, which alone moves a point up to sqrt(3) * 2^-24
+# of its largest coordinate off any plane: that much is allowed on top, or
+# a planar circle far from the origin would count as non-planar.
+PLANE_TOL = 1e-6
+FLOAT32_SLACK = 2.0 ** -22
+
+# Output budget per spline (points), far above interactive use.
+MAX_POINTS = 1 << 22
+
+# Timings of the last run (seconds), read by the benchmark.
+last_timing = {}
+
+
+def _zeros(n, typecode="f"):
+    return array.array(typecode, bytes((4 if typecode == "f" else 8) * n))
+
+
+class SplineData:
+    """A spline's points read with foreach_get (float32, as Blender stores)."""
+
+    __slots__ = ("type", "n", "co", "weights", "hl", "hr", "radius", "tilt",
+                 "selected", "cyclic")
+
+    def __init__(self, sp):
+        self.type = sp.type
+        self.cyclic = sp.use_cyclic_u
+        if sp.type == "BEZIER":
+            pts = sp.bezier_points
+            n = len(pts)
+            self.co = _zeros(3 * n)
+            self.hl = _zeros(3 * n)
+            self.hr = _zeros(3 * n)
+            pts.foreach_get("co", self.co)
+            pts.foreach_get("handle_left", self.hl)
+            pts.foreach_get("handle_right", self.hr)
+            self.weights = None
+            sel = array.array("b", bytes(n))
+            pts.foreach_get("select_control_point", sel)
+        else:
+            pts = sp.points
+            n = len(pts)
+            co4 = _zeros(4 * n)
+            pts.foreach_get("co", co4)
+            self.co = _zeros(3 * n)
+            self.co[0::3] = co4[0::4]
+            self.co[1::3] = co4[1::4]
+            self.co[2::3] = co4[2::4]
+            self.weights = co4[3::4]
+            self.hl = self.hr = None
+            sel = array.array("b", bytes(n))
+            pts.foreach_get("select", sel)
+        self.n = n
+        self.radius = _zeros(n)
+        self.tilt = _zeros(n)
+        pts.foreach_get("radius", self.radius)
+        pts.foreach_get("tilt", self.tilt)
+        self.selected = any(sel)
+
+    def attrs(self):
+        a = _zeros(2 * self.n)
+        a[0::2] = self.radius
+        a[1::2] = self.tilt
+        return a
+
+    def abs_tol(self):
+        if not self.co:
+            return 0.0
+        return FLOAT32_SLACK * max(abs(min(self.co)), abs(max(self.co)))
+
+
+# ---------------------------------------------------------------- NURBS
+
+def nurbs_knots(pnts, order, cyclic, endpoint, bezier):
+    """The knot vector Blender 3.4+ uses for a NURBS spline (BKE curve.cc,
+    calcknots): pnts + order (+ order - 1 when cyclic) knots; for a cyclic
+    spline the control points are then extended by the first order - 1."""
+    repeat_inner = order - 1 if bezier else 1
+    if endpoint:
+        head = order - (1 if cyclic else 0)
+    else:
+        head = min(2, repeat_inner) if bezier else 1
+    tail = 2 * order - 1 if cyclic else (order if endpoint else 0)
+    count = pnts + order + (order - 1 if cyclic else 0)
+    knots = [0.0] * count
+    r = head
+    current = 0.0
+    offset = 1 if (endpoint and cyclic) else 0
+    if offset:
+        knots[0] = current
+        current += 1.0
+    for i in range(offset, count - tail):
+        knots[i] = current
+        r -= 1
+        if r == 0:
+            current += 1.0
+            r = repeat_inner
+    tail_index = count - tail
+    for i in range(tail):
+        knots[tail_index + i] = current + (knots[i] - knots[0])
+    return knots
+
+
+def nurbs_spline(sp, data):
+    """(degree, knots, ctrl, weights, attrs) of a NURBS spline as Blender
+    evaluates it (order clamped to the point count; cyclic splines wrapped)."""
+    n = data.n
+    order = max(2, min(sp.order_u, n))
+    cyclic = data.cyclic
+    knots = nurbs_knots(n, order, cyclic, sp.use_endpoint_u, sp.use_bezier_u)
+    ctrl, w, attrs = data.co, data.weights, data.attrs()
+    if cyclic:
+        extra = order - 1
+        ctrl = ctrl + ctrl[:3 * extra]
+        w = w + w[:extra]
+        attrs = attrs + attrs[:2 * extra]
+    return order - 1, knots, ctrl, w, attrs
+
+
+def plot_nurbs(sp, data, tolerance):
+    degree, knots, ctrl, w, attrs = nurbs_spline(sp, data)
+    pts, att, _info = _conica.plot(ctrl, dim=3, degree=degree, knots=knots, weights=w,
+                                   tolerance=tolerance, attrs=attrs, nattrs=2,
+                                   max_points=MAX_POINTS)
+    return pts, att
+
+
+def plot_bezier(data, tolerance):
+    """Cubic Bezier segments one by one (so every anchor is a vertex of the
+    result), joined; radius and tilt linear in each segment's parameter."""
+    n = data.n
+    co, hl, hr = data.co, data.hl, data.hr
+    segs = n if data.cyclic else n - 1
+    out = array.array("d")
+    att = array.array("d")
+    for s in range(segs):
+        a, b = s, (s + 1) % n
+        ctrl = (co[3 * a:3 * a + 3] + hr[3 * a:3 * a + 3] + hl[3 * b:3 * b + 3] +
+                co[3 * b:3 * b + 3])
+        r0, r1 = data.radius[a], data.radius[b]
+        t0, t1 = data.tilt[a], data.tilt[b]
+        attrs = [r0, t0, (2 * r0 + r1) / 3, (2 * t0 + t1) / 3,
+                 (r0 + 2 * r1) / 3, (t0 + 2 * t1) / 3, r1, t1]
+        pts, at, _info = _conica.plot(ctrl, dim=3, degree=3,
+                                      knots=[0, 0, 0, 0, 1, 1, 1, 1], weights=None,
+                                      tolerance=tolerance, attrs=attrs, nattrs=2,
+                                      max_points=MAX_POINTS)
+        skip = 0 if s == 0 else 1
+        out.extend(pts[3 * skip:])
+        att.extend(at[2 * skip:])
+        if len(out) > 3 * MAX_POINTS:
+            raise _conica.LimitError("more than %d points" % MAX_POINTS)
+    if data.cyclic and len(out) >= 6:
+        del out[-3:]  # the closing point repeats the first
+        del att[-2:]
+    return out, att
+
+
+# ---------------------------------------------------------------- helpers
+
+def _bezier_tangents(data):
+    """Arriving and leaving tangents at each anchor from its handles (a
+    zero-length handle borrows the other side, then the chord)."""
+    n = data.n
+    co, hl, hr = data.co, data.hl, data.hr
+    tin = array.array("d", bytes(24 * n))
+    tout = array.array("d", bytes(24 * n))
+    for i in range(n):
+        p = co[3 * i:3 * i + 3]
+        a = [p[k] - hl[3 * i + k] for k in range(3)]
+        b = [hr[3 * i + k] - p[k] for k in range(3)]
+        la = math.sqrt(sum(x * x for x in a))
+        lb = math.sqrt(sum(x * x for x in b))
+        if la == 0.0 and lb == 0.0:
+            j0 = (i - 1) % n if (data.cyclic or i > 0) else i
+            j1 = (i + 1) % n if (data.cyclic or i < n - 1) else i
+            a = b = [co[3 * j1 + k] - co[3 * j0 + k] for k in range(3)]
+        elif la == 0.0:
+            a = b
+        elif lb == 0.0:
+            b = a
+        tin[3 * i:3 * i + 3] = array.array("d", a)
+        tout[3 * i:3 * i + 3] = array.array("d", b)
+    return tin, tout
+
+
+def curve_objects(context):
+    """(objects, edit): the curve objects to work on, each data-block once."""
+    edit = context.mode == "EDIT_CURVE"
+    if edit:
+        objs = getattr(context, "objects_in_mode", None)
+        if objs is None:
+            objs = [o for o in context.view_layer.objects if o.mode == "EDIT"]
+        objs = [o for o in objs if o.type == "CURVE"]
+    else:
+        objs = [o for o in context.selected_objects if o.type == "CURVE"]
+        ao = context.active_object
+        if not objs and ao is not None and ao.type == "CURVE" and ao.select_get():
+            objs = [ao]
+    seen, out = set(), []
+    for o in objs:
+        if o.data.as_pointer() not in seen:
+            seen.add(o.data.as_pointer())
+            out.append(o)
+    return out, edit
+
+
+def poll_curves(context):
+    ao = context.active_object
+    if context.mode == "EDIT_CURVE":
+        return ao is not None and ao.type == "CURVE"
+    if ao is not None and ao.type == "CURVE":
+        return True
+    return any(o.type == "CURVE" for o in context.selected_objects)
+
+
+class _Result:
+    __slots__ = ("index", "kind", "co", "attrs", "hl", "hr", "cyclic", "material",
+                 "smooth", "resolution", "selected")
+
+
+def write_results(cu, results, select):
+    """Append the new splines, then remove the ones they replace (spline
+    order: untouched splines first, then the new ones in input order)."""
+    old = list(cu.splines)
+    for r in results:
+        if r.kind == "POLY":
+            n = len(r.co) // 4
+            sp = cu.splines.new("POLY")
+            sp.points.add(n - 1)
+            sp.points.foreach_set("co", r.co)
+            sp.points.foreach_set("radius", r.attrs[0::2])
+            sp.points.foreach_set("tilt", r.attrs[1::2])
+            if select:
+                sp.points.foreach_set("select", [r.selected] * n)
+        else:
+            n = len(r.co) // 3
+            sp = cu.splines.new("BEZIER")
+            bp = sp.bezier_points
+            bp.add(n - 1)
+            bp.foreach_set("handle_left_type", [3] * n)  # FREE: keep our handles
+            bp.foreach_set("handle_right_type", [3] * n)
+            bp.foreach_set("co", r.co)
+            bp.foreach_set("handle_left", r.hl)
+            bp.foreach_set("handle_right", r.hr)
+            bp.foreach_set("radius", r.attrs[0::2])
+            bp.foreach_set("tilt", r.attrs[1::2])
+            if select:
+                for key in ("select_control_point", "select_left_handle",
+                            "select_right_handle"):
+                    bp.foreach_set(key, [r.selected] * n)
+        sp.use_cyclic_u = r.cyclic
+        sp.material_index = r.material
+        sp.use_smooth = r.smooth
+        sp.resolution_u = r.resolution
+    for r in results:
+        cu.splines.remove(old[r.index])
+
+
+def _new_object_copy(context, ob):
+    new = ob.copy()
+    new.data = ob.data.copy()
+    new.name = ob.name + ".conic"
+    for coll in ob.users_collection:
+        coll.objects.link(new)
+    return new
+
+
+OUTPUT_ITEMS = [
+    ("REPLACE", "Replace (Poly)", "Replace the splines by POLY splines through the new points"),
+    ("BEZIER", "Replace (Bézier)",
+     "Replace the splines by Bézier splines with handles along the conic tangents"),
+    ("NEW_OBJECT", "New Object", "Put the result in a new object; the original stays untouched"),
+]
+
+
+class _CurveOperator:
+    """Shared driver: collect, compute everything, then write."""
+
+    @classmethod
+    def poll(cls, context):
+        return poll_curves(context)
+
+    def process(self, ob, sp, data):  # -> _Result or raises _conica.ConicaError
+        raise NotImplementedError
+
+    def wants(self, sp, data, edit):
+        return (not edit) or data.selected
+
+    def execute(self, context):
+        objs, edit = curve_objects(context)
+        if not objs:
+            self.report({"ERROR"}, "No curve object selected")
+            return {"CANCELLED"}
+        t_start = time.perf_counter()
+        if edit:
+            bpy.ops.object.mode_set(mode="OBJECT")
+        try:
+            return self._run(context, objs, edit, t_start)
+        finally:
+            if edit:
+                bpy.ops.object.mode_set(mode="EDIT")
+
+    def _run(self, context, objs, edit, t_start):
+        t_lib = 0.0
+        plans = []  # (object, [results])
+        problems = []
+        skipped = 0
+        for ob in objs:
+            results = []
+            for i, sp in enumerate(ob.data.splines):
+                data = SplineData(sp)
+                if not self.wants(sp, data, edit):
+                    continue
+                try:
+                    r = self.process(ob, sp, data)
+                except _conica.ConicaError as exc:
+                    problems.append("%s, spline %d: %s" % (ob.name, i, exc))
+                    continue
+                if r is None:
+                    skipped += 1
+                    continue
+                t_lib += r[1]
+                r = r[0]
+                r.index = i
+                r.cyclic = data.cyclic
+                r.material = sp.material_index
+                r.smooth = sp.use_smooth
+                r.resolution = sp.resolution_u
+                r.selected = edit
+                results.append(r)
+            if results:
+                plans.append((ob, results))
+        t_write = time.perf_counter()
+        done = 0
+        for ob, results in plans:
+            target = ob
+            if self.output == "NEW_OBJECT":
+                target = _new_object_copy(context, ob)
+            write_results(target.data, results, edit)
+            done += len(results)
+        t_end = time.perf_counter()
+        last_timing.clear()
+        last_timing.update(total=t_end - t_start, libcore=t_lib, write=t_end - t_write,
+                           splines=done)
+        for p in problems:
+            self.report({"WARNING"}, p)
+        if done == 0:
+            if not problems:
+                self.report({"WARNING"}, "Nothing to do: no %sspline to process"
+                            % ("selected " if edit else ""))
+            return {"CANCELLED"}
+        msg = "%s: %d spline%s" % (self.bl_label, done, "" if done == 1 else "s")
+        if problems:
+            msg += ", %d left unchanged (see the warnings)" % len(problems)
+        self.report({"INFO"}, msg)
+        return {"FINISHED"}
+
+
+class CURVE_OT_conic_subdivide(_CurveOperator, bpy.types.Operator):
+    """Subdivide curves so that circles, ellipses and other conics stay
+    exact (conic-preserving interpolatory subdivision)"""
+    bl_idname = "curve.conic_subdivide"
+    bl_label = "Conic Subdivide"
+    bl_options = {"REGISTER", "UNDO"}
+
+    levels: IntProperty(
+        name="Levels", description="Subdivision levels; each doubles the segments",
+        default=3, min=1, max=8, options={"SKIP_SAVE"})
+    normals: EnumProperty(
+        name="Normals", default="AUTO",
+        items=[("AUTO", "Auto",
+                "From Bézier handles and NURBS tangents; estimated for poly splines"),
+               ("ESTIMATE", "Estimate", "Always estimate normals from the points")])
+    keep_corners: BoolProperty(
+        name="Keep Corners", default=False,
+        description="Keep vertices where the curve turns more than the corner angle "
+                    "as sharp corners")
+    corner_angle: FloatProperty(
+        name="Corner Angle", subtype="ANGLE", default=math.radians(60.0),
+        min=math.radians(1.0), max=math.radians(179.0),
+        description="Turning angle above which a vertex is a corner")
+    output: EnumProperty(name="Output", items=OUTPUT_ITEMS, default="REPLACE")
+    precise: BoolProperty(
+        name="Precise", default=False,
+        description="Compute in extended precision (slower)")
+    tolerance: FloatProperty(
+        name="NURBS Tolerance", default=1e-3, min=1e-7, max=0.1,
+        description="NURBS splines are first plotted within this fraction of their size")
+
+    def process(self, ob, sp, data):
+        kind = "BEZIER" if self.output == "BEZIER" else "POLY"
+        normals = normals_out = None
+        tangents = False
+        if data.type == "NURBS":
+            size = _size(data.co)
+            if not size > 0:
+                raise _conica.DegenerateError("NURBS spline has no extent")
+            t0 = time.perf_counter()
+            pts, att = plot_nurbs(sp, data, self.tolerance * size)
+            t_plot = time.perf_counter() - t0
+            if data.cyclic and len(pts) >= 6:
+                # the plot of a cyclic spline ends where it starts
+                if pts[-3:] == pts[:3]:
+                    del pts[-3:]
+                    del att[-2:]
+            co, attrs = pts, att
+        else:
+            t_plot = 0.0
+            co, attrs = data.co, data.attrs()
+            if data.type == "BEZIER" and self.normals == "AUTO":
+                normals, normals_out = _bezier_tangents(data)
+                tangents = True
+        t0 = time.perf_counter()
+        res = _conica.subdivide(
+            co, normals, dim=3, closed=data.cyclic, levels=self.levels,
+            precise=self.precise, estimate=self.normals == "ESTIMATE" or normals is None,
+            normals_out=normals_out, tangents=tangents,
+            corner_angle=self.corner_angle if self.keep_corners else 0.0,
+            attrs=attrs, nattrs=2, handles=kind == "BEZIER",
+            plane_tol=PLANE_TOL, abs_tol=data.abs_tol(),
+            stride=4 if kind == "POLY" else 3, typecode="f", max_points=MAX_POINTS)
+        t_lib = time.perf_counter() - t0 + t_plot
+        r = _Result()
+        r.kind = kind
+        r.co, r.attrs = res[0], res[2]
+        r.hl, r.hr = (res[5], res[6]) if kind == "BEZIER" else (None, None)
+        return r, t_lib
+
+    def draw(self, context):
+        layout = self.layout
+        layout.use_property_split = True
+        layout.prop(self, "levels")
+        layout.prop(self, "normals")
+        row = layout.row(heading="Keep Corners")
+        row.prop(self, "keep_corners", text="")
+        sub = row.row()
+        sub.active = self.keep_corners
+        sub.prop(self, "corner_angle", text="")
+        layout.prop(self, "output")
+        layout.prop(self, "precise")
+        layout.prop(self, "tolerance")
+
+
+def _size(co):
+    """Bounding-box diagonal of flat x,y,z values."""
+    if not co:
+        return 0.0
+    d2 = 0.0
+    for k in range(3):
+        c = co[k::3]
+        lo, hi = min(c), max(c)
+        if not (math.isfinite(lo) and math.isfinite(hi)):
+            return float("nan")
+        d2 += (hi - lo) ** 2
+    return math.sqrt(d2)
+
+
+class CURVE_OT_adaptive_to_poly(_CurveOperator, bpy.types.Operator):
+    """Convert Bézier and NURBS splines to poly splines that stay within a
+    distance of the curve, with as few points as the adaptive plotter needs"""
+    bl_idname = "curve.adaptive_to_poly"
+    bl_label = "Curve to Polyline (Adaptive)"
+    bl_options = {"REGISTER", "UNDO"}
+
+    tolerance: FloatProperty(
+        name="Tolerance", subtype="DISTANCE", default=1e-3, min=1e-7, soft_max=1.0,
+        description="Largest distance between the polyline and the curve")
+    output: EnumProperty(name="Output", items=[OUTPUT_ITEMS[0], OUTPUT_ITEMS[2]],
+                         default="REPLACE")
+
+    def process(self, ob, sp, data):
+        if data.type == "POLY":
+            return None  # already a polyline
+        if data.n < 2:
+            raise _conica.DegenerateError("a spline needs at least 2 points, has %d" % data.n)
+        t0 = time.perf_counter()
+        if data.type == "BEZIER":
+            pts, att = plot_bezier(data, self.tolerance)
+        else:
+            pts, att = plot_nurbs(sp, data, self.tolerance)
+            if data.cyclic and len(pts) >= 6 and pts[-3:] == pts[:3]:
+                del pts[-3:]
+                del att[-2:]
+        t_lib = time.perf_counter() - t0
+        n = len(pts) // 3
+        co4 = _zeros(4 * n)
+        co4[0::4] = array.array("f", pts[0::3])
+        co4[1::4] = array.array("f", pts[1::3])
+        co4[2::4] = array.array("f", pts[2::3])
+        co4[3::4] = array.array("f", [1.0]) * n
+        r = _Result()
+        r.kind = "POLY"
+        r.co = co4
+        r.attrs = array.array("f", att)
+        r.hl = r.hr = None
+        return r, t_lib
+
+
+# ---------------------------------------------------------------- menus
+
+def _menu_edit(self, context):
+    self.layout.separator()
+    self.layout.operator(CURVE_OT_conic_subdivide.bl_idname)
+    self.layout.operator(CURVE_OT_adaptive_to_poly.bl_idname)
+
+
+def _menu_object(self, context):
+    ob = context.active_object
+    if ob is not None and ob.type == "CURVE":
+        self.layout.separator()
+        self.layout.operator(CURVE_OT_conic_subdivide.bl_idname)
+        self.layout.operator(CURVE_OT_adaptive_to_poly.bl_idname)
+
+
+def _menu_convert(self, context):
+    self.layout.separator()
+    self.layout.operator(CURVE_OT_adaptive_to_poly.bl_idname)
+    self.layout.operator(CURVE_OT_conic_subdivide.bl_idname)
+
+
+MENUS = [
+    ("VIEW3D_MT_edit_curve_segments", _menu_edit),
+    ("VIEW3D_MT_edit_curve_context_menu", _menu_edit),
+    ("VIEW3D_MT_object_convert", _menu_convert),
+    ("VIEW3D_MT_object_context_menu", _menu_object),
+]
+
+CLASSES = (CURVE_OT_conic_subdivide, CURVE_OT_adaptive_to_poly)
+
+
+def register():
+    for c in CLASSES:
+        bpy.utils.register_class(c)
+    for name, fn in MENUS:
+        menu = getattr(bpy.types, name, None)
+        if menu is not None:
+            menu.append(fn)
+
+
+def unregister():
+    for name, fn in MENUS:
+        menu = getattr(bpy.types, name, None)
+        if menu is not None:
+            menu.remove(fn)
+    for c in reversed(CLASSES):
+        bpy.utils.unregister_class(c)

@@ -1,0 +1,734 @@
+# Conica add-on tests, run inside real Blender (headless):
+#   CONICA_ZIP=build/conica-blender.zip BLENDER_USER_SCRIPTS=$tmp \
+#   blender -b --factory-startup --python-exit-code 1 --python tests/blender/test_addon.py
+# Prints one `PASS name` or `FAIL name: why` line per check (tests/cli/blender.sh
+# turns them into the suite summary). Every check runs even if others fail.
+#
+# Precision: Blender stores curve coordinates as float32, so "within 1e-9 of
+# the radius" is checked on the values _conica returns in double for the
+# spline's stored (float32) input; the points written back into Blender are
+# checked within float32 rounding of their coordinates.
+import array
+import importlib
+import math
+import os
+import shutil
+import sys
+import tempfile
+import traceback
+
+import addon_utils
+import bpy
+
+RESULTS = []
+TMP = tempfile.mkdtemp(prefix="conica-blender-")
+F32 = 2.0 ** -24
+
+
+def report(name, ok, why=""):
+    RESULTS.append((name, ok))
+    if ok:
+        print("PASS %s" % name, flush=True)
+    else:
+        print("FAIL %s: %s" % (name, why), flush=True)
+
+
+def case(fn):
+    """Run one test function; an exception is a failure of that test."""
+    try:
+        fn()
+    except Exception as exc:  # noqa: BLE001 - report and go on
+        report(fn.__name__, False, "%s: %s\n%s" % (type(exc).__name__, exc,
+                                                   traceback.format_exc()))
+    return fn
+
+
+# ---------------------------------------------------------------- helpers
+
+def fresh_scene():
+    for ob in list(bpy.data.objects):
+        bpy.data.objects.remove(ob, do_unlink=True)
+    for cu in list(bpy.data.curves):
+        bpy.data.curves.remove(cu)
+    bpy.context.view_layer.update()
+
+
+def new_curve(name):
+    cu = bpy.data.curves.new(name, "CURVE")
+    cu.dimensions = "3D"
+    ob = bpy.data.objects.new(name, cu)
+    bpy.context.scene.collection.objects.link(ob)
+    return ob
+
+
+def select_only(*objs):
+    for o in bpy.context.view_layer.objects:
+        if o is not None:
+            o.select_set(False)
+    for o in objs:
+        o.select_set(True)
+    bpy.context.view_layer.objects.active = objs[0] if objs else None
+
+
+def add_bezier(cu, pts, tangents, cyclic, hlen=None):
+    """Bezier spline through pts; handles along tangents (length hlen[i] or
+    the tangent's own length)."""
+    sp = cu.splines.new("BEZIER")
+    sp.bezier_points.add(len(pts) - 1)
+    for i, bp in enumerate(sp.bezier_points):
+        p, t = pts[i], tangents[i]
+        s = 1.0 if hlen is None else hlen[i]
+        bp.handle_left_type = bp.handle_right_type = "FREE"
+        bp.co = p
+        bp.handle_left = [p[k] - s * t[k] for k in range(3)]
+        bp.handle_right = [p[k] + s * t[k] for k in range(3)]
+    sp.use_cyclic_u = cyclic
+    return sp
+
+
+def add_poly(cu, pts, cyclic, radius=None, tilt=None):
+    sp = cu.splines.new("POLY")
+    sp.points.add(len(pts) - 1)
+    for i, p in enumerate(sp.points):
+        p.co = (pts[i][0], pts[i][1], pts[i][2], 1.0)
+        if radius:
+            p.radius = radius[i]
+        if tilt:
+            p.tilt = tilt[i]
+    sp.use_cyclic_u = cyclic
+    return sp
+
+
+def add_nurbs(cu, pts, weights, order, cyclic=False, endpoint=False, bezier=False):
+    sp = cu.splines.new("NURBS")
+    sp.points.add(len(pts) - 1)
+    for i, p in enumerate(sp.points):
+        p.co = (pts[i][0], pts[i][1], pts[i][2], weights[i])
+    sp.use_cyclic_u = cyclic
+    sp.order_u = order
+    sp.use_endpoint_u = endpoint
+    sp.use_bezier_u = bezier
+    return sp
+
+
+def poly_co(sp):
+    n = len(sp.points)
+    co = array.array("f", bytes(16 * n))
+    sp.points.foreach_get("co", co)
+    return [(co[4 * i], co[4 * i + 1], co[4 * i + 2]) for i in range(n)]
+
+
+def spline_snapshot(sp):
+    if sp.type == "BEZIER":
+        return ("BEZIER", sp.use_cyclic_u,
+                [(tuple(b.co), tuple(b.handle_left), tuple(b.handle_right), b.radius, b.tilt)
+                 for b in sp.bezier_points])
+    return (sp.type, sp.use_cyclic_u,
+            [(tuple(p.co), p.radius, p.tilt) for p in sp.points])
+
+
+def curve_snapshot(cu):
+    return [spline_snapshot(s) for s in cu.splines]
+
+
+def conica_pkg():
+    return sys.modules["conica"]
+
+
+def dist(a, b):
+    return math.sqrt(sum((a[k] - b[k]) ** 2 for k in range(3)))
+
+
+def eval_points(ob):
+    """Blender's own evaluation of a curve object (its evaluated mesh)."""
+    dg = bpy.context.evaluated_depsgraph_get()
+    ev = ob.evaluated_get(dg)
+    me = ev.to_mesh()
+    pts = [tuple(v.co) for v in me.vertices]
+    ev.to_mesh_clear()
+    return pts
+
+
+def point_polyline_distance(p, poly, closed):
+    best = float("inf")
+    m = len(poly)
+    for i in range(m if closed else m - 1):
+        a, b = poly[i], poly[(i + 1) % m]
+        ab = [b[k] - a[k] for k in range(3)]
+        ap = [p[k] - a[k] for k in range(3)]
+        L = sum(x * x for x in ab)
+        t = 0.0 if L == 0 else max(0.0, min(1.0, sum(ab[k] * ap[k] for k in range(3)) / L))
+        q = [a[k] + t * ab[k] for k in range(3)]
+        best = min(best, dist(p, q))
+    return best
+
+
+def direct_subdivide(sp, levels, closed):
+    """What the operator passes to _conica, returned in double."""
+    ops = conica_pkg().operators
+    data = ops.SplineData(sp)
+    tin = tout = None
+    tangents = False
+    if data.type == "BEZIER":
+        tin, tout = ops._bezier_tangents(data)
+        tangents = True
+    return conica_pkg()._conica.subdivide(
+        data.co, tin, dim=3, closed=closed, levels=levels, normals_out=tout,
+        tangents=tangents, estimate=tin is None, attrs=data.attrs(), nattrs=2,
+        plane_tol=ops.PLANE_TOL, abs_tol=data.abs_tol(), typecode="d")
+
+
+KAPPA = 4.0 / 3.0 * (math.sqrt(2.0) - 1.0)  # circular cubic handle factor
+
+
+def circle_bezier(cu, R=1.0):
+    pts, tans = [], []
+    for i in range(4):
+        a = i * math.pi / 2
+        c, s = round(math.cos(a)), round(math.sin(a))
+        pts.append((R * c, R * s, 0.0))
+        tans.append((-s * KAPPA * R, c * KAPPA * R, 0.0))
+    return add_bezier(cu, pts, tans, True)
+
+
+def run_op(op, **kw):
+    return op(**kw)
+
+
+# ---------------------------------------------------------------- install
+
+@case
+def install_from_zip():
+    z = os.environ["CONICA_ZIP"]
+    r = bpy.ops.preferences.addon_install(filepath=os.path.abspath(z), overwrite=True)
+    report("install_from_zip", r == {"FINISHED"}, str(r))
+    mod = addon_utils.enable("conica", default_set=True, handle_error=None)
+    report("addon_enable", mod is not None and hasattr(bpy.types, "CURVE_OT_conic_subdivide"),
+           "enable returned %r" % mod)
+    pkg = conica_pkg()
+    report("bl_info_blender_3_4", tuple(pkg.bl_info["blender"]) <= (3, 4, 0),
+           str(pkg.bl_info["blender"]))
+    report("import_check_ok", pkg.IMPORT_ERROR is None, str(pkg.IMPORT_ERROR))
+    import sysconfig
+    ext = pkg._conica
+    report("abi_tag", ("." + ext.SOABI + ".so") == sysconfig.get_config_var("EXT_SUFFIX")
+           and tuple(ext.PY_VERSION) == tuple(sys.version_info[:2]),
+           "%s vs %s" % (ext.SOABI, sysconfig.get_config_var("EXT_SUFFIX")))
+    here = os.path.dirname(pkg.__file__)
+    report("manifest_in_package", os.path.isfile(os.path.join(here, "blender_manifest.toml")))
+
+
+@case
+def menus_and_search():
+    ops = conica_pkg().operators
+    for name, fn in ops.MENUS:
+        menu = getattr(bpy.types, name, None)
+        ok = menu is not None and fn in menu._dyn_ui_initialize()
+        report("menu_" + name, ok, "menu missing or entry not appended")
+    report("labels", bpy.types.CURVE_OT_conic_subdivide.bl_label == "Conic Subdivide" and
+           bpy.types.CURVE_OT_adaptive_to_poly.bl_label == "Curve to Polyline (Adaptive)")
+    props = bpy.ops.curve.conic_subdivide.get_rna_type().properties
+    lv = props["levels"]
+    report("levels_prop", (lv.default, lv.hard_min, lv.hard_max, lv.is_skip_save) ==
+           (3, 1, 8, True), "%r" % ((lv.default, lv.hard_min, lv.hard_max, lv.is_skip_save),))
+    report("operator_props", all(k in props for k in
+                                 ("normals", "keep_corners", "corner_angle", "output",
+                                  "precise")))
+
+
+@case
+def import_check_mismatch():
+    """A package whose binary was built for another Python says so."""
+    pkg = conica_pkg()
+    here = os.path.dirname(pkg.__file__)
+    dst = os.path.join(TMP, "fakepath", "conica_mismatch")
+    shutil.copytree(here, dst, ignore=shutil.ignore_patterns("__pycache__"))
+    for f in os.listdir(dst):
+        if f.startswith("_conica") and f.endswith(".so"):
+            os.rename(os.path.join(dst, f),
+                      os.path.join(dst, "_conica.cpython-39-aarch64-linux-gnu.so"))
+    sys.path.insert(0, os.path.dirname(dst))
+    try:
+        m = importlib.import_module("conica_mismatch")
+        msg = m.IMPORT_ERROR or ""
+        report("import_check_mismatch_message",
+               "built for" in msg and "cpython-39" in msg and "3.11" in msg.replace(
+                   "Python %d.%d" % sys.version_info[:2], "3.11"), msg)
+        m.register()  # must not raise: only a preferences panel with the message
+        m.unregister()
+        report("import_check_mismatch_register", True)
+    finally:
+        sys.path.pop(0)
+
+
+@case
+def extension_rejects_bad_input():
+    ext = conica_pkg()._conica
+    bad = [
+        ("wrong_length", dict(points=[0, 0, 1], dim=2), ext.ArgumentError),
+        ("nan", dict(points=[0, 0, float("nan"), 1, 2, 2], dim=2), ext.NonFiniteError),
+        ("empty", dict(points=[]), ext.DegenerateError),
+        ("huge_levels", dict(points=[0, 0, 1, 1], levels=1000), ext.LimitError),
+        ("too_many_points", dict(points=[0, 0, 1, 1], levels=29), ext.LimitError),
+        ("non_numeric", dict(points=[0, "a", 1, 1]), TypeError),
+        ("string", dict(points="0011"), TypeError),
+        ("int_buffer", dict(points=array.array("i", [0, 0, 1, 1])), TypeError),
+        ("dim", dict(points=[0, 0, 1, 1], dim=5), ext.ArgumentError),
+        ("nonplanar", dict(points=[0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1], dim=3, closed=True),
+         ext.NonPlanarError),
+        ("normals_length", dict(points=[0, 0, 1, 1], normals=[1, 0]), ext.ArgumentError),
+    ]
+    for name, kw, exc in bad:
+        try:
+            ext.subdivide(**kw)
+            report("ext_rejects_" + name, False, "no exception")
+        except exc as e:
+            report("ext_rejects_" + name, isinstance(e, (ext.ConicaError, TypeError)), str(e))
+        except Exception as e:  # noqa: BLE001
+            report("ext_rejects_" + name, False, "%s: %s" % (type(e).__name__, e))
+    report("ext_error_hierarchy", issubclass(ext.DegenerateError, ValueError) and
+           issubclass(ext.NumericError, RuntimeError) and
+           issubclass(ext.OutOfMemoryError, MemoryError) and
+           issubclass(ext.LimitError, ext.ConicaError))
+    for name, kw in [("plot_knots", dict(ctrl=[0, 0, 0, 1, 1, 1, 2, 0, 0], degree=2,
+                                         knots=[0, 0, 1], tolerance=1e-3)),
+                     ("plot_tol", dict(ctrl=[0, 0, 0, 1, 1, 1, 2, 0, 0], degree=2,
+                                       knots=[0, 0, 0, 1, 1, 1], tolerance=-1.0)),
+                     ("plot_weights", dict(ctrl=[0, 0, 0, 1, 1, 1, 2, 0, 0], degree=2,
+                                           knots=[0, 0, 0, 1, 1, 1], tolerance=1e-3,
+                                           weights=[1, -1, 1]))]:
+        try:
+            ext.plot(**kw)
+            report("ext_rejects_" + name, False, "no exception")
+        except ext.ConicaError as e:
+            report("ext_rejects_" + name, True, str(e))
+    # accepted inputs: lists, array('f'), array('d'), memoryviews
+    ok = True
+    for src in ([1, 0, 0, 1, -1, 0, 0, -1], array.array("f", [1, 0, 0, 1, -1, 0, 0, -1]),
+                memoryview(array.array("d", [1, 0, 0, 1, -1, 0, 0, -1]))):
+        r = ext.subdivide(src, closed=True, levels=1)
+        ok = ok and len(r[0]) == 16 and r[0].typecode == "d"
+    report("ext_accepts_sequences_and_buffers", ok)
+
+
+# ---------------------------------------------------------------- exactness
+
+def check_on_conic(name, pts, fn, tol):
+    worst = max(abs(fn(p)) for p in pts) if pts else float("inf")
+    report(name, worst <= tol, "worst %.3g > %.3g" % (worst, tol))
+
+
+@case
+def circle_bezier_exact():
+    fresh_scene()
+    ob = new_curve("circle")
+    sp = circle_bezier(ob.data)
+    res = direct_subdivide(sp, 3, True)
+    d = res[0]
+    pts = [(d[3 * i], d[3 * i + 1], d[3 * i + 2]) for i in range(len(d) // 3)]
+    report("circle_double_count", len(pts) == 32, str(len(pts)))
+    check_on_conic("circle_double_1e-9", pts, lambda p: math.hypot(p[0], p[1]) - 1.0, 1e-9)
+    check_on_conic("circle_double_planar", pts, lambda p: p[2], 1e-12)
+    select_only(ob)
+    r = bpy.ops.curve.conic_subdivide(levels=3)
+    report("circle_op_finished", r == {"FINISHED"}, str(r))
+    out = ob.data.splines[0]
+    stored = poly_co(out)
+    report("circle_op_poly_cyclic", out.type == "POLY" and out.use_cyclic_u and
+           len(stored) == 32, "%s %s %d" % (out.type, out.use_cyclic_u, len(stored)))
+    check_on_conic("circle_stored_float32", stored, lambda p: math.hypot(p[0], p[1]) - 1.0,
+                   4 * F32)
+    # the stored points are the double results rounded to float32
+    worst = max(abs(stored[i][k] - pts[i][k]) for i in range(32) for k in range(3))
+    report("circle_stored_is_rounded_double", worst <= F32, "worst %.3g" % worst)
+
+
+@case
+def ellipse_bezier_exact():
+    fresh_scene()
+    ob = new_curve("ellipse")
+    a, b = 2.0, 1.0
+    pts = [(a, 0, 0), (0, b, 0), (-a, 0, 0), (0, -b, 0)]
+    tans = [(0, KAPPA * b, 0), (-KAPPA * a, 0, 0), (0, -KAPPA * b, 0), (KAPPA * a, 0, 0)]
+    sp = add_bezier(ob.data, pts, tans, True)
+    d = direct_subdivide(sp, 4, True)[0]
+    out = [(d[3 * i], d[3 * i + 1], d[3 * i + 2]) for i in range(len(d) // 3)]
+    # geometric distance to the ellipse ~ algebraic residual / gradient norm
+    check_on_conic("ellipse_double_1e-9", out,
+                   lambda p: ((p[0] / a) ** 2 + (p[1] / b) ** 2 - 1.0) /
+                   (2 * math.hypot(p[0] / a ** 2, p[1] / b ** 2)), 1e-9)
+    select_only(ob)
+    bpy.ops.curve.conic_subdivide(levels=4)
+    st = poly_co(ob.data.splines[0])
+    report("ellipse_stored_count", len(st) == 64, str(len(st)))
+    check_on_conic("ellipse_stored_float32", st,
+                   lambda p: ((p[0] / a) ** 2 + (p[1] / b) ** 2 - 1.0) /
+                   (2 * math.hypot(p[0] / a ** 2, p[1] / b ** 2)), 8 * F32 * a)
+
+
+@case
+def open_arc_exact():
+    fresh_scene()
+    ob = new_curve("arc")
+    # Pythagorean points: exactly representable, exactly on the circle r=5
+    pts = [(5, 0, 0), (4, 3, 0), (3, 4, 0), (0, 5, 0), (-3, 4, 0), (-4, 3, 0)]
+    tans = [(-p[1] * 0.25, p[0] * 0.25, 0) for p in pts]
+    sp = add_bezier(ob.data, pts, tans, False)
+    d = direct_subdivide(sp, 3, False)[0]
+    out = [(d[3 * i], d[3 * i + 1], d[3 * i + 2]) for i in range(len(d) // 3)]
+    report("arc_double_count", len(out) == 5 * 8 + 1, str(len(out)))
+    check_on_conic("arc_double_1e-9", out, lambda p: math.hypot(p[0], p[1]) - 5.0, 1e-9)
+    select_only(ob)
+    bpy.ops.curve.conic_subdivide(levels=3)
+    s = ob.data.splines[0]
+    st = poly_co(s)
+    report("arc_open_kept", not s.use_cyclic_u and len(st) == 41 and
+           st[0] == (5.0, 0.0, 0.0) and st[-1] == (-4.0, 3.0, 0.0), "%d %r %r" %
+           (len(st), st[0], st[-1]))
+    check_on_conic("arc_stored_float32", st, lambda p: math.hypot(p[0], p[1]) - 5.0,
+                   4 * F32 * 5)
+
+
+@case
+def moved_rotated_circle_exact():
+    """Circle r=5 at (1000,-500,20) in the plane spanned by (1,0,0) and
+    (0,0.6,0.8): every coordinate and handle direction exact in float32."""
+    fresh_scene()
+    ob = new_curve("moved")
+    c = (1000.0, -500.0, 20.0)
+    u = (1.0, 0.0, 0.0)
+    v = (0.0, 0.6, 0.8)
+    nrm = (0.0, -0.8, 0.6)
+    m = 9049.0 / 16384.0  # ~ KAPPA, dyadic so m*(0,3,4) is exact
+    pts = [(1005.0, -500.0, 20.0), (1000.0, -497.0, 24.0), (995.0, -500.0, 20.0),
+           (1000.0, -503.0, 16.0)]
+    tans = [(0, 3 * m, 4 * m), (-5 * m, 0, 0), (0, -3 * m, -4 * m), (5 * m, 0, 0)]
+    sp = add_bezier(ob.data, pts, tans, True)
+    ob.rotation_euler = (0.3, 0.2, 0.1)  # object transform: must stay untouched
+    d = direct_subdivide(sp, 3, True)[0]
+    out = [(d[3 * i], d[3 * i + 1], d[3 * i + 2]) for i in range(len(d) // 3)]
+    report("moved_double_count", len(out) == 32, str(len(out)))
+    check_on_conic("moved_double_radius_1e-9", out, lambda p: dist(p, c) - 5.0, 1e-9)
+    check_on_conic("moved_double_plane_1e-9", out,
+                   lambda p: sum((p[k] - c[k]) * nrm[k] for k in range(3)), 1e-9)
+    del u, v
+    select_only(ob)
+    r = bpy.ops.curve.conic_subdivide(levels=3)
+    st = poly_co(ob.data.splines[0])
+    report("moved_op_finished", r == {"FINISHED"} and len(st) == 32, "%r %d" % (r, len(st)))
+    check_on_conic("moved_stored_float32", st, lambda p: dist(p, c) - 5.0, 4 * F32 * 1000)
+    report("moved_transform_untouched",
+           tuple(round(x, 6) for x in ob.rotation_euler) == (0.3, 0.2, 0.1) and
+           tuple(ob.location) == (0, 0, 0))
+
+
+@case
+def poly_star_inflections():
+    fresh_scene()
+    ob = new_curve("star")
+    pts = []
+    for i in range(10):
+        r = 1.0 if i % 2 == 0 else 0.5
+        a = i * math.pi / 5
+        pts.append((r * math.cos(a), r * math.sin(a), 0.0))
+    sp = add_poly(ob.data, pts, True)
+    before = poly_co(sp)
+    res = direct_subdivide(sp, 3, True)
+    ninfl = len(res[3])
+    report("star_has_inflections", ninfl > 0, "inflections %d" % ninfl)
+    select_only(ob)
+    r = bpy.ops.curve.conic_subdivide(levels=3)
+    st = poly_co(ob.data.splines[0])
+    report("star_op_count", r == {"FINISHED"} and len(st) == (10 + ninfl) * 8,
+           "%r %d vs %d" % (r, len(st), (10 + ninfl) * 8))
+    # interpolatory: every old vertex is still there, bit for bit
+    sset = set(st)
+    report("star_old_vertices_kept", all(p in sset for p in before))
+
+
+@case
+def nurbs_knots_match_blender():
+    """The knot vector we compute gives the curve Blender draws: Blender's
+    evaluated points lie on our adaptive plot (within the tolerance)."""
+    ops = conica_pkg().operators
+    configs = [("endpoint3", 3, False, True, False), ("uniform3", 3, False, False, False),
+               ("uniform4", 4, False, False, False), ("bezier3", 3, False, True, True),
+               ("cyclic3", 3, True, False, False), ("cyclic4", 4, True, False, False),
+               ("endpoint4", 4, False, True, False)]
+    base = [(0, 0, 0), (1, 2, 0), (3, 2.5, 0), (4, 0, 0), (5, -1, 0), (7, 1, 0), (8, 3, 0)]
+    w = [1, 0.5, 2, 1, 1.5, 1, 0.8]
+    tol = 1e-4
+    for name, order, cyc, endp, bez in configs:
+        fresh_scene()
+        ob = new_curve("nurbs_" + name)
+        sp = add_nurbs(ob.data, base, w, order, cyc, endp, bez)
+        sp.resolution_u = 16
+        data = ops.SplineData(sp)
+        pts, _att = ops.plot_nurbs(sp, data, tol)
+        poly = [(pts[3 * i], pts[3 * i + 1], pts[3 * i + 2]) for i in range(len(pts) // 3)]
+        bl = eval_points(ob)
+        worst = max(point_polyline_distance(p, poly, cyc) for p in bl)
+        report("nurbs_knots_" + name, worst <= tol + 1e-5 and len(bl) > 10,
+               "Blender's curve is %.3g from our plot (%d pts, %d ours)" %
+               (worst, len(bl), len(poly)))
+
+
+@case
+def nurbs_circle():
+    fresh_scene()
+    ob = new_curve("nurbs_circle")
+    h = math.sqrt(0.5)
+    pts = [(1, 0, 0), (1, 1, 0), (0, 1, 0), (-1, 1, 0), (-1, 0, 0), (-1, -1, 0), (0, -1, 0),
+           (1, -1, 0), (1, 0, 0)]
+    w = [1, h, 1, h, 1, h, 1, h, 1]
+    add_nurbs(ob.data, pts, w, 3, False, True, True)
+    select_only(ob)
+    r = bpy.ops.curve.adaptive_to_poly(tolerance=1e-4)
+    sp = ob.data.splines[0]
+    st = poly_co(sp)
+    report("nurbs_to_poly", r == {"FINISHED"} and sp.type == "POLY" and 10 < len(st) < 2000,
+           "%r %s %d" % (r, sp.type, len(st)))
+    check_on_conic("nurbs_to_poly_vertices_on_circle", st,
+                   lambda p: math.hypot(p[0], p[1]) - 1.0, 4 * F32)
+    mids = [tuple((st[i][k] + st[i + 1][k]) / 2 for k in range(3)) for i in range(len(st) - 1)]
+    check_on_conic("nurbs_to_poly_within_tolerance", mids,
+                   lambda p: math.hypot(p[0], p[1]) - 1.0, 1e-4 + 4 * F32)
+    # Conic Subdivide on a NURBS circle: plotted, then refined on the circle
+    fresh_scene()
+    ob = new_curve("nurbs_circle2")
+    add_nurbs(ob.data, pts, w, 3, False, True, True)
+    select_only(ob)
+    r = bpy.ops.curve.conic_subdivide(levels=2, tolerance=1e-4)
+    st = poly_co(ob.data.splines[0])
+    report("nurbs_conic_subdivide", r == {"FINISHED"} and len(st) > 8, "%r %d" % (r, len(st)))
+    check_on_conic("nurbs_conic_subdivide_on_circle", st,
+                   lambda p: math.hypot(p[0], p[1]) - 1.0, 1e-4 * 2.83 + 4 * F32)
+
+
+@case
+def bezier_to_poly_adaptive():
+    fresh_scene()
+    ob = new_curve("bez_adapt")
+    sp = circle_bezier(ob.data)
+    for bp in sp.bezier_points:
+        bp.radius = 2.0
+    select_only(ob)
+    r = bpy.ops.curve.adaptive_to_poly(tolerance=1e-5)
+    s = ob.data.splines[0]
+    st = poly_co(s)
+    anchors = {(1.0, 0.0, 0.0), (0.0, 1.0, 0.0), (-1.0, 0.0, 0.0), (0.0, -1.0, 0.0)}
+    report("bezier_to_poly", r == {"FINISHED"} and s.type == "POLY" and s.use_cyclic_u and
+           anchors <= set(st), "%r %s %d" % (r, s.type, len(st)))
+    # a cubic circle approximation is within 2.8e-4 of the circle
+    mids = [tuple((st[i][k] + st[(i + 1) % len(st)][k]) / 2 for k in range(3))
+            for i in range(len(st))]
+    check_on_conic("bezier_to_poly_tolerance", mids, lambda p: math.hypot(p[0], p[1]) - 1.0,
+                   2.8e-4 + 1e-5 + 4 * F32)
+    report("bezier_to_poly_radius", all(abs(p.radius - 2.0) < 1e-6 for p in s.points))
+
+
+# ---------------------------------------------------------------- attributes
+
+@case
+def cyclic_radius_tilt_material():
+    fresh_scene()
+    ob = new_curve("hexagon")
+    cu = ob.data
+    cu.materials.append(bpy.data.materials.new("m0"))
+    cu.materials.append(bpy.data.materials.new("m1"))
+    pts = [(math.cos(i * math.pi / 3), math.sin(i * math.pi / 3), 0.0) for i in range(6)]
+    radius = [1, 2, 3, 4, 5, 6]
+    tilt = [0.0, 0.1, 0.2, 0.3, 0.4, 0.5]
+    sp = add_poly(cu, pts, True, radius, tilt)
+    sp.material_index = 1
+    select_only(ob)
+    bpy.ops.curve.conic_subdivide(levels=1)
+    s = cu.splines[0]
+    rr = [p.radius for p in s.points]
+    tt = [p.tilt for p in s.points]
+    report("cyclic_kept", s.use_cyclic_u and len(s.points) == 12, str(len(s.points)))
+    report("material_index_kept", s.material_index == 1, str(s.material_index))
+    report("radius_at_old_vertices", all(abs(rr[2 * i] - radius[i]) < 1e-6 for i in range(6)),
+           str(rr))
+    report("tilt_at_old_vertices", all(abs(tt[2 * i] - tilt[i]) < 1e-6 for i in range(6)),
+           str(tt))
+    ok = all(min(radius[i], radius[(i + 1) % 6]) < rr[2 * i + 1] <
+             max(radius[i], radius[(i + 1) % 6]) for i in range(6))
+    report("radius_interpolated", ok, str(rr))
+    ok = abs(tt[11] - 0.25) < 1e-6 and abs(tt[1] - 0.05) < 1e-6
+    report("tilt_interpolated", ok, str(tt))
+
+
+# ---------------------------------------------------------------- outputs
+
+@case
+def output_bezier():
+    fresh_scene()
+    ob = new_curve("out_bez")
+    circle_bezier(ob.data)
+    select_only(ob)
+    r = bpy.ops.curve.conic_subdivide(levels=2, output="BEZIER")
+    s = ob.data.splines[0]
+    report("output_bezier_type", r == {"FINISHED"} and s.type == "BEZIER" and
+           len(s.bezier_points) == 16 and s.use_cyclic_u, "%r %s" % (r, s.type))
+    k = 4.0 / 3.0 * math.tan(2 * math.pi / 16 / 4)  # handle length for 16 arcs
+    worst_dir = worst_len = 0.0
+    for bp in s.bezier_points:
+        p = bp.co
+        for h in (bp.handle_left, bp.handle_right):
+            d = h - p
+            worst_dir = max(worst_dir, abs(d.dot(p)) / max(d.length, 1e-30))
+            worst_len = max(worst_len, abs(d.length - k))
+    report("output_bezier_tangent_handles", worst_dir < 1e-5, "%.3g" % worst_dir)
+    report("output_bezier_handle_length", worst_len < 1e-3 * k, "%.3g vs %.3g" % (worst_len, k))
+    ev = eval_points(ob)
+    check_on_conic("output_bezier_shape", ev, lambda p: math.hypot(p[0], p[1]) - 1.0, 1e-5)
+
+
+@case
+def output_new_object():
+    fresh_scene()
+    ob = new_curve("orig")
+    circle_bezier(ob.data)
+    before = curve_snapshot(ob.data)
+    select_only(ob)
+    r = bpy.ops.curve.conic_subdivide(levels=2, output="NEW_OBJECT")
+    new = bpy.data.objects.get("orig.conic")
+    report("output_new_object", r == {"FINISHED"} and new is not None and
+           new.data != ob.data and new.data.splines[0].type == "POLY" and
+           len(new.data.splines[0].points) == 16, str(r))
+    report("output_new_object_original_untouched", curve_snapshot(ob.data) == before)
+
+
+@case
+def several_splines_objects_and_edit_mode():
+    fresh_scene()
+    a = new_curve("A")
+    b = new_curve("B")
+    for ob in (a, b):
+        for cx in (0.0, 5.0):
+            pts = [(cx + math.cos(i * math.pi / 4), math.sin(i * math.pi / 4), 0.0)
+                   for i in range(8)]
+            add_poly(ob.data, pts, True)
+    select_only(a, b)
+    bpy.ops.curve.conic_subdivide(levels=1)
+    report("object_mode_all_selected", all(len(s.points) == 16 for ob in (a, b)
+                                           for s in ob.data.splines))
+    # edit mode: only the selected spline
+    fresh_scene()
+    c = new_curve("C")
+    for cx in (0.0, 5.0):
+        pts = [(cx + math.cos(i * math.pi / 4), math.sin(i * math.pi / 4), 0.0)
+               for i in range(8)]
+        add_poly(c.data, pts, True)
+    for i, s in enumerate(c.data.splines):
+        for p in s.points:
+            p.select = i == 1
+    select_only(c)
+    bpy.ops.object.mode_set(mode="EDIT")
+    r = bpy.ops.curve.conic_subdivide(levels=2)
+    mode = bpy.context.mode
+    bpy.ops.object.mode_set(mode="OBJECT")
+    counts = sorted(len(s.points) for s in c.data.splines)
+    xs = [min(p.co[0] for p in s.points) for s in c.data.splines if len(s.points) == 32]
+    report("edit_mode_selected_spline_only", r == {"FINISHED"} and counts == [8, 32] and
+           xs and xs[0] > 3.0 and mode == "EDIT_CURVE", "%r %r %r %s" % (r, counts, xs, mode))
+
+
+@case
+def undo_restores():
+    """Operators called from Python push no undo step of their own (the UI
+    pushes one for an operator with the UNDO flag when the user runs it), so
+    the test pushes the steps the UI would: before and after the operator."""
+    report("undo_flag", "UNDO" in bpy.types.CURVE_OT_conic_subdivide.bl_options and
+           "UNDO" in bpy.types.CURVE_OT_adaptive_to_poly.bl_options)
+    fresh_scene()
+    ob = new_curve("undo")
+    circle_bezier(ob.data)
+    add_poly(ob.data, [(3, 0, 0), (4, 1, 0), (5, 0, 0)], False, [1, 2, 3], [0, 1, 0])
+    select_only(ob)
+    before = curve_snapshot(ob.data)
+    bpy.ops.ed.undo_push(message="before conic subdivide")
+    bpy.ops.curve.conic_subdivide(levels=3)
+    bpy.ops.ed.undo_push(message="Conic Subdivide")
+    after = curve_snapshot(bpy.data.objects["undo"].data)
+    report("undo_changed", after != before)
+    r = bpy.ops.ed.undo()
+    restored = curve_snapshot(bpy.data.objects["undo"].data)
+    report("undo_restores_exactly", r == {"FINISHED"} and restored == before,
+           "undo %r" % r)
+    bpy.ops.ed.redo()
+    report("redo_reapplies", curve_snapshot(bpy.data.objects["undo"].data) == after)
+
+
+@case
+def poll_false_for_mesh():
+    fresh_scene()
+    bpy.ops.mesh.primitive_cube_add()
+    cube = bpy.context.active_object
+    select_only(cube)
+    report("poll_false_mesh", not bpy.ops.curve.conic_subdivide.poll() and
+           not bpy.ops.curve.adaptive_to_poly.poll())
+    ob = new_curve("c")
+    circle_bezier(ob.data)
+    select_only(ob)
+    report("poll_true_curve", bpy.ops.curve.conic_subdivide.poll())
+
+
+@case
+def degenerate_splines_reported():
+    fresh_scene()
+    ob = new_curve("mixed")
+    cu = ob.data
+    good = [(math.cos(i * math.pi / 4), math.sin(i * math.pi / 4), 0.0) for i in range(8)]
+    add_poly(cu, [(0, 0, 0)], False)                                  # 1 point
+    add_poly(cu, [(1, 1, 0), (1, 1, 0), (1, 1, 0)], True)             # duplicates
+    add_poly(cu, [(0, 0, 0), (float("nan"), 1, 0), (2, 0, 0)], False)  # NaN
+    add_poly(cu, [(0, 0, 0), (1, 0, 1), (1, 1, 0), (0, 1, 1)], True)  # non-planar
+    add_poly(cu, good, True)
+    bad_before = [spline_snapshot(s) for s in list(cu.splines)[:4]]
+    select_only(ob)
+    r = bpy.ops.curve.conic_subdivide(levels=2)
+    splines = list(cu.splines)
+    after = [spline_snapshot(s) for s in splines]
+
+    def same(x, y):  # NaN-aware comparison
+        return repr(x) == repr(y)
+    kept = all(any(same(b, a) for a in after) for b in bad_before)
+    report("degenerate_others_processed", r == {"FINISHED"} and len(splines) == 5 and
+           sorted(len(s.points) for s in splines)[-1] == 32, "%r %d" % (r, len(splines)))
+    report("degenerate_left_unchanged", kept)
+    # all bad: cancelled, nothing changed
+    fresh_scene()
+    ob = new_curve("allbad")
+    add_poly(ob.data, [(0, 0, 0)], False)
+    before = curve_snapshot(ob.data)
+    select_only(ob)
+    r = bpy.ops.curve.conic_subdivide(levels=2)
+    report("degenerate_only_cancelled", r == {"CANCELLED"} and
+           curve_snapshot(ob.data) == before, str(r))
+
+
+@case
+def save_and_reload():
+    fresh_scene()
+    ob = new_curve("saved")
+    circle_bezier(ob.data)
+    select_only(ob)
+    bpy.ops.curve.conic_subdivide(levels=2)
+    snap = curve_snapshot(ob.data)
+    path = os.path.join(TMP, "saved.blend")
+    bpy.ops.wm.save_as_mainfile(filepath=path)
+    bpy.ops.wm.open_mainfile(filepath=path)
+    ob2 = bpy.data.objects.get("saved")
+    report("save_reload", ob2 is not None and curve_snapshot(ob2.data) == snap)
+    # the add-on still works after loading a file
+    select_only(ob2)
+    r = bpy.ops.curve.conic_subdivide(levels=1)
+    report("works_after_reload", r == {"FINISHED"} and len(ob2.data.splines[0].points) == 32)
+
+
+failed = [n for n, ok in RESULTS if not ok]
+print("SUMMARY %d passed, %d failed" % (len(RESULTS) - len(failed), len(failed)))
+shutil.rmtree(TMP, ignore_errors=True)
+sys.exit(1 if failed else 0)
