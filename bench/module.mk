@@ -1,6 +1,16 @@
 # bench/: benchmark programs (print figures, never assert). Shared fragment:
 # each owner appends its own rules below.
 
+# ---- bench_ablation (issue 9): the numerics ablation of seed 000, Section 3.2
+BENCH_ABLATION := $(BUILD)/bench/bench_ablation
+$(BUILD)/obj/bench/bench_ablation.o: CPPFLAGS += -Ilibcore/tools
+$(BENCH_ABLATION): $(BUILD)/obj/bench/bench_ablation.o $(ALL_LIBS)
+	@mkdir -p $(@D)
+	$(CC) $(LDFLAGS) -o $@ $< $(ALL_LIBS) $(ALL_LDLIBS)
+BENCH_BINS += $(BENCH_ABLATION)
+# scripts/demo-diagnostics.sh draws the ablation combs with it
+DEMO_DEPS += $(BENCH_ABLATION)
+
 # ---- bench_subdiv (issue 3): speed and accuracy of conica_subdivide
 BENCH_SUBDIV := $(BUILD)/bench/bench_subdiv
 $(BENCH_SUBDIV): $(BUILD)/obj/bench/bench_subdiv.o $(CORE_A)

@@ -24,6 +24,23 @@ int plotsvg_load_curve(const char *prog, const char *path, int closed, conica_cu
     return 0;
 }
 
+int plotsvg_common_arg(const char *prog, const char *cmd, const char *a, int has_next,
+                       int *closed, const char **in_path)
+{
+    if (!strcmp(a, "--open"))
+        *closed = 0;
+    else if (!strcmp(a, "--closed"))
+        *closed = 1;
+    else if (a[0] == '-' && a[1] != '\0')
+        return cli_usage_error(prog, "%s: unknown option '%s'%s", cmd, a,
+                               has_next ? "" : " (or missing value)");
+    else if (*in_path)
+        return cli_usage_error(prog, "%s: one input file only ('%s', '%s')", cmd, *in_path, a);
+    else
+        *in_path = a;
+    return 0;
+}
+
 /* ------------------------------------------------------------ curvature */
 
 double plotsvg_curvature(const double a[2], const double b[2], const double c[2])
@@ -84,6 +101,29 @@ double plotsvg_size(const double *xy, size_t n)
     return fmax(box[2] - box[0], box[3] - box[1]);
 }
 
+static int cmp_double(const void *a, const void *b)
+{
+    double x = *(const double *)a, y = *(const double *)b;
+    return (x > y) - (x < y);
+}
+
+double plotsvg_comb_scale(const double *kappa, size_t n, double size, double *tmp,
+                          double *max_len)
+{
+    size_t m = 0, at;
+    double kref;
+    for (size_t i = 0; i < n; i++)
+        if (isfinite(kappa[i]))
+            tmp[m++] = fabs(kappa[i]);
+    *max_len = PLOTSVG_COMB_CLIP * PLOTSVG_COMB_FRACTION * size;
+    if (m == 0)
+        return 0.0;
+    qsort(tmp, m, sizeof *tmp, cmp_double);
+    at = (size_t)floor((1.0 - PLOTSVG_COMB_OUTLIERS) * (double)(m - 1));
+    kref = tmp[at] > 0.0 ? tmp[at] : tmp[m - 1];
+    return kref > 0.0 ? PLOTSVG_COMB_FRACTION * size / kref : 0.0;
+}
+
 void plotsvg_comb_tips(const double *xy, const double *nxy, const double *kappa, size_t n,
                        double scale, double max_len, double *tips)
 {
@@ -103,18 +143,30 @@ void plotsvg_comb_tips(const double *xy, const double *nxy, const double *kappa,
     }
 }
 
-double plotsvg_comb_roughness(const double *kappa, size_t n, int closed)
+static double median(double *v, size_t m)
 {
-    double kmax = 0.0, jump = 0.0;
+    if (m == 0)
+        return 0.0;
+    qsort(v, m, sizeof *v, cmp_double);
+    return m % 2 ? v[m / 2] : 0.5 * (v[m / 2 - 1] + v[m / 2]);
+}
+
+double plotsvg_comb_roughness(const double *kappa, size_t n, int closed, double *tmp)
+{
+    size_t m = 0;
+    double mk, md;
     for (size_t i = 0; i < n; i++)
-        if (isfinite(kappa[i]) && fabs(kappa[i]) > kmax)
-            kmax = fabs(kappa[i]);
-    for (size_t i = closed ? 0 : 1; i < n; i++) {
-        double a = kappa[(i + n - 1) % n], b = kappa[i];
-        if (isfinite(a) && isfinite(b) && fabs(b - a) > jump)
-            jump = fabs(b - a);
+        if (isfinite(kappa[i]))
+            tmp[m++] = fabs(kappa[i]);
+    mk = median(tmp, m);
+    m = 0;
+    for (size_t i = closed ? 0 : 1; i + (closed ? 0 : 1) < n; i++) {
+        double a = kappa[(i + n - 1) % n], b = kappa[i], c = kappa[(i + 1) % n];
+        if (isfinite(a) && isfinite(b) && isfinite(c))
+            tmp[m++] = fabs(a - 2.0 * b + c);
     }
-    return kmax > 0.0 ? jump / kmax : 0.0;
+    md = median(tmp, m);
+    return mk > 0.0 ? md / mk : 0.0;
 }
 
 /* --------------------------------------------------------------- errors */
@@ -370,28 +422,66 @@ static void map(const plotsvg_frame *fr, double x, double y, double *px, double 
     *py = fr->y0 - fr->s * y;
 }
 
+/* Is every point strictly between a and b (indices, picture space via fr)
+ * within PLOTSVG_SIMPLIFY_PX of the segment a-b? */
+static int chord_covers(const plotsvg_frame *fr, const double *xy, size_t a, size_t b)
+{
+    double ax, ay, bx, by, dx, dy, len2;
+    map(fr, xy[2 * a], xy[2 * a + 1], &ax, &ay);
+    map(fr, xy[2 * b], xy[2 * b + 1], &bx, &by);
+    dx = bx - ax;
+    dy = by - ay;
+    len2 = dx * dx + dy * dy;
+    for (size_t i = a + 1; i < b; i++) {
+        double px, py, t, ex, ey;
+        map(fr, xy[2 * i], xy[2 * i + 1], &px, &py);
+        t = len2 > 0.0 ? ((px - ax) * dx + (py - ay) * dy) / len2 : 0.0;
+        t = fmin(fmax(t, 0.0), 1.0);
+        ex = ax + t * dx - px;
+        ey = ay + t * dy - py;
+        if (ex * ex + ey * ey > PLOTSVG_SIMPLIFY_PX * PLOTSVG_SIMPLIFY_PX)
+            return 0;
+    }
+    return 1;
+}
+
+static void put_vertex(FILE *f, const plotsvg_frame *fr, const double *xy, size_t i, int *pen)
+{
+    double x, y;
+    map(fr, xy[2 * i], xy[2 * i + 1], &x, &y);
+    fputc(*pen ? (*pen == 1 ? 'L' : ' ') : 'M', f);
+    put_num(f, x);
+    fputc(' ', f);
+    put_num(f, y);
+    /* one L, then implicit repeats: compact path data */
+    *pen = *pen ? 2 : 1;
+}
+
 void plotsvg_path(FILE *f, const plotsvg_frame *fr, const double *xy, size_t n, int closed,
                   const char *attrs)
 {
     int pen = 0, broken = 0;
-    size_t drawn = 0;
+    size_t drawn = 0, last = 0;
     fputs("<path fill=\"none\" ", f);
     fputs(attrs, f);
     fputs(" d=\"", f);
     for (size_t i = 0; i < n; i++) {
-        double x, y;
-        if (!isfinite(xy[2 * i]) || !isfinite(xy[2 * i + 1])) {
+        int finite = isfinite(xy[2 * i]) && isfinite(xy[2 * i + 1]);
+        if (!finite) {
             pen = 0;
             broken = 1;
             continue;
         }
-        map(fr, xy[2 * i], xy[2 * i + 1], &x, &y);
-        fputc(pen ? (pen == 1 ? 'L' : ' ') : 'M', f);
-        put_num(f, x);
-        fputc(' ', f);
-        put_num(f, y);
-        /* one L, then implicit repeats: compact path data */
-        pen = pen ? 2 : 1;
+        /* Thin the polyline where it is straight to within a fraction of a
+         * pixel: a level-12 curve has far more vertices than pixels. The
+         * vertex is kept when the run from the last kept vertex to the next
+         * one would stray, at run ends, and at breaks. */
+        if (pen && i + 1 < n && i - last < PLOTSVG_SIMPLIFY_RUN &&
+            isfinite(xy[2 * i + 2]) && isfinite(xy[2 * i + 3]) &&
+            chord_covers(fr, xy, last, i + 1))
+            continue;
+        put_vertex(f, fr, xy, i, &pen);
+        last = i;
         drawn++;
     }
     if (closed && !broken && drawn > 2)

@@ -15,9 +15,17 @@
 /* Auto comb scale: the largest tooth is this fraction of the curve's size
  * (the larger side of its bounding box). */
 #define PLOTSVG_COMB_FRACTION 0.15
+/* Fraction of teeth left out when choosing the auto scale, and how much
+ * longer than the largest regular tooth a spike may be drawn. */
+#define PLOTSVG_COMB_OUTLIERS 0.02
+#define PLOTSVG_COMB_CLIP 2.0
 /* Default cap on drawn teeth (every vertex still shapes the comb outline);
  * keeps an SVG of a level-12 curve small. */
 #define PLOTSVG_DEFAULT_MAX_TEETH 2000
+/* Polylines are thinned where straight to within this many pixels, in runs
+ * of at most PLOTSVG_SIMPLIFY_RUN vertices (bounds the work per vertex). */
+#define PLOTSVG_SIMPLIFY_PX 0.1
+#define PLOTSVG_SIMPLIFY_RUN 64
 /* Upper bound a user may ask for with --max-teeth. */
 #define PLOTSVG_MAX_TEETH_LIMIT 1000000
 
@@ -25,6 +33,12 @@
  * given closed flag; errors go to stderr as `prog: error: FILE:LINE: what`.
  * Returns 0, or 1 after printing an error. */
 int plotsvg_load_curve(const char *prog, const char *path, int closed, conica_curve *c);
+
+/* The arguments `conica combs` and `conica errors` share: --open, --closed
+ * and the one input file; anything else starting with '-' is an unknown
+ * option. Returns 0, or 2 after printing a usage error. */
+int plotsvg_common_arg(const char *prog, const char *cmd, const char *a, int has_next,
+                       int *closed, const char **in_path);
 
 /* ------------------------------------------------------------ curvature */
 
@@ -44,15 +58,27 @@ double plotsvg_curvatures(const double *xy, const double *nxy, size_t n, int clo
 /* Largest side of the bounding box of n points (0 for fewer than 2). */
 double plotsvg_size(const double *xy, size_t n);
 
+/* Auto comb scale (tooth length per unit curvature): the largest tooth is
+ * PLOTSVG_COMB_FRACTION of size, where "largest" ignores the top
+ * PLOTSVG_COMB_OUTLIERS fraction of teeth, so that a few spikes (e.g. next to
+ * an inflection point) do not flatten the rest of the comb; *max_len gets
+ * the length those spikes are cut at (PLOTSVG_COMB_CLIP times the largest).
+ * Needs n scratch doubles in tmp. Returns 0 when the curve is straight. */
+double plotsvg_comb_scale(const double *kappa, size_t n, double size, double *tmp,
+                          double *max_len);
+
 /* Comb tooth tips tips[i] = p_i + scale * kappa_i * n_i (seed 000, Section
  * 2.2); a tooth longer than max_len (if > 0) is cut to max_len so that one
  * wild spike does not flatten the picture. NAN kappa gives a NAN tip. */
 void plotsvg_comb_tips(const double *xy, const double *nxy, const double *kappa, size_t n,
                        double scale, double max_len, double *tips);
 
-/* Spread of the comb: max over vertices of |kappa_i - kappa_{i-1}| divided
- * by the largest |kappa|; 0 for a circle, large for a wiggly comb. */
-double plotsvg_comb_roughness(const double *kappa, size_t n, int closed);
+/* Noise of the comb: median over vertices of the second difference
+ * |kappa_{i-1} - 2 kappa_i + kappa_{i+1}|, divided by the median |kappa|.
+ * Medians, so a few genuine spikes (next to inflection points) do not
+ * decide it; a fair curve at a fine level scores near 0, numerical noise of
+ * the kind seed 000 Figure 6 shows scores high. tmp: n scratch doubles. */
+double plotsvg_comb_roughness(const double *kappa, size_t n, int closed, double *tmp);
 
 /* --------------------------------------------------------------- errors */
 
@@ -118,7 +144,7 @@ void plotsvg_begin(FILE *f, double width, double height, const char *title);
 void plotsvg_end(FILE *f);
 
 /* One <path> through n points (closed adds Z); non-finite points break the
- * line. attrs is raw attribute text (style), e.g. `stroke="#000"`. */
+ * line; vertices within PLOTSVG_SIMPLIFY_PX of a straight run are left out. attrs is raw attribute text (style), e.g. `stroke="#000"`. */
 void plotsvg_path(FILE *f, const plotsvg_frame *fr, const double *xy, size_t n, int closed,
                   const char *attrs);
 

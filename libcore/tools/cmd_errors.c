@@ -1,0 +1,197 @@
+/* `conica errors`: per subdivision level k = 0..MAX, the conic error of seed
+ * 000 (eqs. (13)-(14): mean and max of |f|/|grad f| over the vertices, when
+ * the input is sampled from one conic) and the normal angle error (scheme
+ * normals vs normals estimated from the points, Section 3.2, Figures 3-5);
+ * a table on stdout and optionally a log-scale SVG plot. */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "cli.h"
+#include "conica/curve.h"
+#include "conica/subdiv.h"
+#include "plotsvg.h"
+
+#define ERRORS_DEFAULT_MAX 8
+/* Levels beyond this measure nothing new and cost 2^k points per curve
+ * point; the output budget of the subdivision caps the size as well. */
+#define ERRORS_MAX_LEVEL 20
+
+static const char *const prog = "conica";
+
+static void usage(FILE *f)
+{
+    fprintf(f,
+            "usage: conica errors [-k MAX] [--conic Q20,Q02,Q11,Q10,Q01,Q00]\n"
+            "                     [--variant base|norm-skip|final|precise] [--open|--closed]\n"
+            "                     [--plot OUT.svg] IN\n"
+            "\n"
+            "For every level k = 0..MAX (default %d, at most %d), subdivide IN and print\n"
+            "n_k, the conic error E, E_max (seed 000, eqs. (13)-(14), only with --conic)\n"
+            "and the mean / max angle in degrees between the scheme's normals and normals\n"
+            "estimated from the points.\n"
+            "\n"
+            "  --conic ...  the conic of eq. (3), coefficients in its order:\n"
+            "               f = Q20 x^2 + Q02 y^2 + 2 Q11 xy + 2 Q10 x + 2 Q01 y + Q00\n"
+            "               (circle x^2+y^2=25: --conic 1,1,0,0,0,-25)\n"
+            "  --variant V  numerics of Section 3.2: base (normals normalised each level,\n"
+            "               plain quadratic formula), norm-skip, final (default), precise\n"
+            "               (long double)\n"
+            "  --open       the curve is open; --closed (default)\n"
+            "  --plot F     also draw the table as an SVG chart (log-scale y)\n",
+            ERRORS_DEFAULT_MAX, ERRORS_MAX_LEVEL);
+}
+
+/* Six comma-separated numbers, no locale. */
+static int parse_conic(const char *s, plotsvg_conic *q)
+{
+    double v[6];
+    char buf[64];
+    for (int i = 0; i < 6; i++) {
+        size_t len = strcspn(s, ",");
+        if (len == 0 || len >= sizeof buf)
+            return 1;
+        memcpy(buf, s, len);
+        buf[len] = '\0';
+        if (cli_parse_double(buf, &v[i]))
+            return 1;
+        s += len;
+        if (i < 5) {
+            if (*s != ',')
+                return 1;
+            s++;
+        }
+    }
+    if (*s)
+        return 1;
+    q->q20 = v[0];
+    q->q02 = v[1];
+    q->q11 = v[2];
+    q->q10 = v[3];
+    q->q01 = v[4];
+    q->q00 = v[5];
+    return 0;
+}
+
+static int write_plot(const char *path, const char *in_path, const char *variant, int have_conic,
+                      const plotsvg_errors *e, int n)
+{
+    cli_output o;
+    double x[ERRORS_MAX_LEVEL + 1], em[ERRORS_MAX_LEVEL + 1], ex[ERRORS_MAX_LEVEL + 1];
+    double nm[ERRORS_MAX_LEVEL + 1], nx[ERRORS_MAX_LEVEL + 1];
+    double w = 760.0, h = have_conic ? 760.0 : 380.0, y = 0.0;
+    char title[300];
+    for (int k = 0; k < n; k++) {
+        x[k] = k;
+        em[k] = e[k].e_mean;
+        ex[k] = e[k].e_max;
+        nm[k] = e[k].n_mean;
+        nx[k] = e[k].n_max;
+    }
+    if (cli_output_open(prog, path, &o))
+        return 1;
+    snprintf(title, sizeof title, "%s (%s)", in_path, variant);
+    plotsvg_begin(o.f, w, h, title);
+    if (have_conic) {
+        plotsvg_series s[2] = {
+            {"E (mean)", x, em, (size_t)n, "#1f77b4", 0},
+            {"E_max", x, ex, (size_t)n, "#d62728", 1},
+        };
+        snprintf(title, sizeof title, "conic error, %s (%s)", in_path, variant);
+        plotsvg_logchart(o.f, 0.0, y, w, 380.0, title, "subdivision level k", "|f| / |grad f|",
+                         s, 2);
+        y += 380.0;
+    }
+    {
+        plotsvg_series s[2] = {
+            {"mean", x, nm, (size_t)n, "#2ca02c", 0},
+            {"max", x, nx, (size_t)n, "#9467bd", 1},
+        };
+        snprintf(title, sizeof title, "normal angle error, %s (%s)", in_path, variant);
+        plotsvg_logchart(o.f, 0.0, y, w, 380.0, title, "subdivision level k", "degrees", s, 2);
+    }
+    plotsvg_end(o.f);
+    if (cli_output_commit(prog, &o)) {
+        cli_output_abort(&o);
+        return 1;
+    }
+    return 0;
+}
+
+int conica_cmd_errors(int argc, char **argv);
+int conica_cmd_errors(int argc, char **argv)
+{
+    long kmax = ERRORS_DEFAULT_MAX;
+    int closed = 1, have_conic = 0, rc = CLI_EXIT_ERROR;
+    const char *in_path = NULL, *plot_path = NULL, *variant = "final";
+    plotsvg_conic q = {0, 0, 0, 0, 0, 0};
+    plotsvg_errors e[ERRORS_MAX_LEVEL + 1];
+    conica_curve in;
+    conica_subdiv_settings set = conica_subdiv_defaults();
+    conica_status st;
+
+    for (int i = 1; i < argc; i++) {
+        const char *a = argv[i];
+        int has_next = i + 1 < argc;
+        if (!strcmp(a, "-h") || !strcmp(a, "--help")) {
+            usage(stdout);
+            return CLI_EXIT_OK;
+        } else if (!strcmp(a, "-k") && has_next) {
+            if (cli_parse_int(argv[++i], 0, ERRORS_MAX_LEVEL, &kmax))
+                return cli_usage_error(prog, "-k wants an integer 0..%d, got '%s'",
+                                       ERRORS_MAX_LEVEL, argv[i]);
+        } else if (!strcmp(a, "--conic") && has_next) {
+            if (parse_conic(argv[++i], &q))
+                return cli_usage_error(prog, "--conic wants six numbers Q20,Q02,Q11,Q10,Q01,Q00,"
+                                       " got '%s'", argv[i]);
+            have_conic = 1;
+        } else if (!strcmp(a, "--variant") && has_next) {
+            variant = argv[++i];
+            if (plotsvg_variant(variant, &set))
+                return cli_usage_error(prog, "--variant wants base, norm-skip, final or precise,"
+                                       " got '%s'", variant);
+        } else if (!strcmp(a, "--plot") && has_next) {
+            plot_path = argv[++i];
+        } else if (plotsvg_common_arg(prog, "errors", a, has_next, &closed, &in_path)) {
+            return CLI_EXIT_USAGE;
+        }
+    }
+    if (!in_path)
+        return cli_usage_error(prog, "errors: no input file");
+
+    conica_curve_init(&in);
+    if (plotsvg_load_curve(prog, in_path, closed, &in))
+        goto done;
+    /* Measure every level before printing, so a failure prints no table. */
+    for (int k = 0; k <= kmax; k++) {
+        set.levels = k;
+        if (plotsvg_measure(&in, &set, have_conic ? &q : NULL, &e[k], &st) != CONICA_OK) {
+            cli_error(prog, in_path, "subdivision to level %d failed: %s", k, st.message);
+            goto done;
+        }
+    }
+    printf("# conica errors %s, variant %s", in_path, variant);
+    if (have_conic)
+        printf(", conic (q20,q02,q11,q10,q01,q00) = (%.17g, %.17g, %.17g, %.17g, %.17g, %.17g)",
+               q.q20, q.q02, q.q11, q.q10, q.q01, q.q00);
+    printf("\n#  k    points         E_mean          E_max  normal_mean_deg  normal_max_deg\n");
+    for (int k = 0; k <= kmax; k++) {
+        printf("%4d %9zu ", k, e[k].points);
+        if (have_conic)
+            printf("%14.3e %14.3e ", e[k].e_mean, e[k].e_max);
+        else
+            printf("%14s %14s ", "-", "-");
+        printf("%16.3e %15.3e\n", e[k].n_mean, e[k].n_max);
+    }
+    if (fflush(stdout) != 0) {
+        cli_error(prog, "<stdout>", "write error");
+        goto done;
+    }
+    if (plot_path && write_plot(plot_path, in_path, variant, have_conic, e, (int)kmax + 1))
+        goto done;
+    rc = CLI_EXIT_OK;
+done:
+    conica_curve_free(&in);
+    return rc;
+}

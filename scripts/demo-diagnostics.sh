@@ -1,0 +1,39 @@
+#!/bin/sh
+# `make demo` part of issue 9: curvature combs, an error-vs-level plot and the
+# numerics ablation of seed 000 (Figure 6), as SVG rendered to PNG.
+# BUILD is $1; everything goes to $BUILD/demo/.
+set -eu
+build=${1:-build}
+out=$build/demo
+conica=$build/bin/conica
+mkdir -p "$out"
+
+render() { # svg -> png next to it (rsvg-convert, from librsvg2-bin)
+    if command -v rsvg-convert >/dev/null 2>&1; then
+        rsvg-convert -b white -o "${1%.svg}.png" "$1"
+        echo "  $1 -> ${1%.svg}.png"
+    else
+        echo "  $1 (rsvg-convert not installed: no PNG)"
+    fi
+}
+
+# The comb of a smooth subdivided shape, and of a non-convex one (teeth flip
+# at inflections with --signed).
+"$conica" combs -k 5 -o "$out/comb-ellipse.svg" examples/ellipse.txt
+render "$out/comb-ellipse.svg"
+"$conica" combs -k 5 --signed -o "$out/comb-flower.svg" examples/flower.txt
+render "$out/comb-flower.svg"
+
+# Conic and normal errors per level on the ellipse 4x^2 + 9y^2 = 36 (its
+# samples are exact), as Figures 3-4 of the seed.
+"$conica" errors -k 12 --conic 4,9,0,0,0,-36 --plot "$out/errors-ellipse.svg" \
+    examples/ellipse.txt | tee "$out/errors-ellipse.txt"
+render "$out/errors-ellipse.svg"
+
+# The ablation: E, E_max at k = 4, 8, 12 per variant, and the combs at k = 10
+# side by side (uses ../shared/data when present, else the bundled flower).
+example=../shared/data/conis/input/example9.txt
+[ -f "$example" ] || example=examples/flower.txt
+"$build/bench/bench_ablation" --example "$example" --svg "$out/ablation-combs.svg" \
+    | tee "$out/ablation.md"
+render "$out/ablation-combs.svg"
