@@ -200,6 +200,17 @@ check_true "shard 1 of 3 is the second case" test "$(grep '^marker: order' "$out
 check_exit 0 "-d yes prints durations" "$B" '[pass]' -d yes
 check_grep '^[0-9]+\.[0-9]{3} s: selftest: passes$' "$out"
 
+begin_case "a crashing case is reported"
+case $build in
+    */san) skip_case "AddressSanitizer reports crashes itself" ;;
+esac
+check_exit 139 "dies of SIGSEGV (128 + 11)" "$B" '[.crash]'
+check_grep '^due to a fatal error condition:$' "$out"
+check_grep '^  SIGSEGV - Segmentation violation signal$' "$out"
+check_grep '^test cases: 1 \| 1 failed$' "$out" "totals printed before dying"
+check_grep '^-{79}$' "$out" "header names the case"
+check_grep '^selftest: crash$' "$out"
+
 begin_case "C++17 compatibility"
 check_exit 0 "the header works from C++" "$X"
 check_grep '^All tests passed \(17 assertions in 3 test cases\)$' "$out"

@@ -12,10 +12,14 @@
 #ifndef _POSIX_C_SOURCE
 #define _POSIX_C_SOURCE 200809L
 #endif
+#ifndef _XOPEN_SOURCE
+#define _XOPEN_SOURCE 700 /* sigaltstack */
+#endif
 #include "conica_test.h"
 
 #include <math.h>
 #include <setjmp.h>
+#include <signal.h>
 #include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -742,6 +746,8 @@ static struct state {
     info *infos;
     size_t ninfos, capinfos;
     jmp_buf jump;
+    const char *last_file; /* last assertion, for fatal signals */
+    int last_line;
     char data_dir[4096];
     int data_dir_done;
 } S;
@@ -1137,6 +1143,8 @@ static void report(int kind, const char *file, int line, const char *macro, char
         free(expansion);
         return;
     }
+    S.last_file = file;
+    S.last_line = line;
     if (kind == EV_PASS) {
         S.total_pass++;
         S.cur_run->passed++;
@@ -1494,6 +1502,73 @@ static void run_case(caserec *c) {
     }
     if (S.durations && S.con) fprintf(S.con, "%.3f s: %s\n", c->secs, c->tc->name);
 }
+
+/* ---------------------------------------------------------------- signals */
+
+/* Catch2's fatal condition handler: a crashing case is reported as a failed
+ * assertion, the totals are printed, then the signal is re-raised so the
+ * process still dies of it. Not installed under AddressSanitizer, whose own
+ * report is more useful. */
+#if defined(__SANITIZE_ADDRESS__)
+#define CT_HAVE_ASAN 1
+#elif defined(__has_feature)
+#if __has_feature(address_sanitizer)
+#define CT_HAVE_ASAN 1
+#endif
+#endif
+
+#ifndef CT_HAVE_ASAN
+static const struct {
+    int sig;
+    const char *what;
+} FATAL_SIGNALS[] = {
+    {SIGINT, "SIGINT - Terminal interrupt signal"},
+    {SIGILL, "SIGILL - Illegal instruction signal"},
+    {SIGFPE, "SIGFPE - Floating point error signal"},
+    {SIGSEGV, "SIGSEGV - Segmentation violation signal"},
+    {SIGTERM, "SIGTERM - Termination request signal"},
+    {SIGABRT, "SIGABRT - Abort (abnormal termination) signal"},
+    {SIGBUS, "SIGBUS - Bus error signal"},
+};
+#define N_FATAL (sizeof FATAL_SIGNALS / sizeof FATAL_SIGNALS[0])
+
+static void on_fatal_signal(int sig) {
+    const char *what = "unknown signal";
+    for (size_t i = 0; i < N_FATAL; i++)
+        if (FATAL_SIGNALS[i].sig == sig) what = FATAL_SIGNALS[i].what;
+    if (S.in_case && S.con) {
+        console_header();
+        fprintf(S.con, "%s:%d: FAILED:\ndue to a fatal error condition:\n  %s\n\n",
+                S.last_file ? S.last_file : S.rec->tc->file,
+                S.last_file ? S.last_line : S.rec->tc->line, what);
+        S.total_fail++;
+        S.cases_fail++;
+        console_totals(S.con);
+    }
+    fflush(NULL);
+    signal(sig, SIG_DFL);
+    raise(sig);
+}
+
+static void install_fatal_handlers(void) {
+    static char altstack[1 << 16]; /* room to report a stack overflow */
+    stack_t ss;
+    memset(&ss, 0, sizeof ss);
+    ss.ss_sp = altstack;
+    ss.ss_size = sizeof altstack;
+    sigaltstack(&ss, NULL);
+    for (size_t i = 0; i < N_FATAL; i++) {
+        struct sigaction sa;
+        memset(&sa, 0, sizeof sa);
+        sa.sa_handler = on_fatal_signal;
+        sa.sa_flags = (int)(SA_ONSTACK | SA_RESETHAND);
+        sigemptyset(&sa.sa_mask);
+        sigaction(FATAL_SIGNALS[i].sig, &sa, NULL);
+    }
+}
+#else
+static void install_fatal_handlers(void) {}
+#endif
 
 /* ================================================================ CLI */
 
@@ -1997,6 +2072,7 @@ int main(int argc, char **argv) {
         fprintf(S.con, "Randomness seeded to: %lu\n", (unsigned long)S.seed);
         fflush(S.con);
     }
+    install_fatal_handlers();
     recs = (caserec *)xmalloc((nsel ? nsel : 1) * sizeof *recs);
     memset(recs, 0, (nsel ? nsel : 1) * sizeof *recs);
     double t0 = now_seconds();

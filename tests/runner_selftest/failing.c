@@ -7,6 +7,7 @@
  */
 #include "conica_test.h"
 
+#include <signal.h>
 #include <stdio.h>
 
 TEST_CASE("visible: one assertion", "[visible]") { CHECK(1 + 1 == 2); }
@@ -89,3 +90,9 @@ TEST_CASE("selftest: many failures", "[.selftest][fail][abort]") {
 TEST_CASE("order c", "[.order]") { printf("marker: order c\n"); CHECK(1); }
 TEST_CASE("order a", "[.order]") { printf("marker: order a\n"); CHECK(1); }
 TEST_CASE("order b", "[.order]") { printf("marker: order b\n"); CHECK(1); }
+
+TEST_CASE("selftest: crash", "[.crash]") {
+    CHECK(1);
+    fflush(stdout);
+    raise(SIGSEGV);
+}
