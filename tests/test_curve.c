@@ -680,3 +680,16 @@ TEST_CASE("curve_set copies and frees", "[curve]")
     conica_curve_free(&c); /* twice is fine */
     conica_curve_free(NULL);
 }
+
+TEST_CASE("line_of_point finds the line of the i-th v and vn line", "[curve][parse]")
+{
+    const char *text = "# head\nv 0 0\n\nv 1 0\r\n% c\nv 1 1\nvn 0 -1\nvn 1 0\nvn 0 1\n";
+    size_t len = strlen(text);
+    CHECK_EQ(conica_curve_line_of_point(text, len, 0, 0), 2);
+    CHECK_EQ(conica_curve_line_of_point(text, len, 1, 0), 4);
+    CHECK_EQ(conica_curve_line_of_point(text, len, 2, 0), 6);
+    CHECK_EQ(conica_curve_line_of_point(text, len, 3, 0), 0);
+    CHECK_EQ(conica_curve_line_of_point(text, len, 0, 1), 7);
+    CHECK_EQ(conica_curve_line_of_point(text, len, 2, 1), 9);
+    CHECK_EQ(conica_curve_line_of_point(NULL, 0, 0, 0), 0);
+}

@@ -433,6 +433,22 @@ fail:
     return rc;
 }
 
+size_t conica_curve_line_of_point(const char *buf, size_t len, size_t index, int normal)
+{
+    line_view ln;
+    size_t pos = 0, seen = 0;
+    enum line_kind want = normal ? LINE_VN : LINE_V;
+    if (!buf)
+        return 0;
+    memset(&ln, 0, sizeof ln);
+    while (next_line(buf, len, &pos, &ln)) {
+        const char *rest;
+        if (classify(&ln, &rest) == want && seen++ == index)
+            return ln.no;
+    }
+    return 0;
+}
+
 /* ------------------------------------------------------------------ writer */
 
 /* "%.17g" of x into buf with '.' as the decimal point whatever LC_NUMERIC

@@ -229,8 +229,8 @@ int conica_cmd_subdivide(int argc, char **argv)
     memset(&st, 0, sizeof st);
 
     code = conica_curve_parse(buf, len, &in, &st);
-    free(buf);
     if (code != CONICA_OK) {
+        free(buf);
         char where[4096];
         if (st.line > 0)
             snprintf(where, sizeof where, "%s:%zu", name, st.line);
@@ -255,6 +255,7 @@ int conica_cmd_subdivide(int argc, char **argv)
     /* Open the output first so that an unwritable target fails before a long
      * computation; the temporary file is dropped on any later failure. */
     if (cli_output_open(PROG, o.out, &co)) {
+        free(buf);
         conica_curve_free(&in);
         return CLI_EXIT_ERROR;
     }
@@ -282,7 +283,22 @@ int conica_cmd_subdivide(int argc, char **argv)
     }
     conica_curve_free(&in);
     if (code != CONICA_OK) {
-        cli_error(PROG, name, "%s", st.message[0] ? st.message : conica_strerror(code));
+        /* The engine reports a bad point by its index in st.offset and a
+         * message starting "point"/"normal" (subdiv.c); name its line. */
+        char where[4096];
+        size_t line = 0;
+        if (code == CONICA_ERR_DEGENERATE || code == CONICA_ERR_NONFINITE) {
+            if (strncmp(st.message, "point", 5) == 0)
+                line = conica_curve_line_of_point(buf, len, st.offset, 0);
+            else if (strncmp(st.message, "normal", 6) == 0)
+                line = conica_curve_line_of_point(buf, len, st.offset, 1);
+        }
+        if (line > 0)
+            snprintf(where, sizeof where, "%s:%zu", name, line);
+        else
+            snprintf(where, sizeof where, "%s", name);
+        free(buf);
+        cli_error(PROG, where, "%s", st.message[0] ? st.message : conica_strerror(code));
         cli_output_abort(&co);
         conica_curve_free(&out);
         conica_curvel_free(&outl);
@@ -290,6 +306,7 @@ int conica_cmd_subdivide(int argc, char **argv)
         return CLI_EXIT_ERROR;
     }
 
+    free(buf);
     if (o.precise)
         rc = write_precise(co.f, &outl);
     else

@@ -160,6 +160,11 @@ check_exit 1 "coincident points" "$conica" subdivide -k 1 "$tmp/same.txt"
 check_grep "^conica: error: $tmp/same.txt" "$err"
 check_true "nothing on stdout" test ! -s "$out"
 
+begin_case "error: duplicate consecutive points are named by line"
+printf '# square\nv 0 0\nv 1 0\nv 1 1\nv 1 1\nv 0 1\n' >"$tmp/dup.txt"
+check_exit 1 "zero-length edge" "$conica" subdivide -k 1 "$tmp/dup.txt"
+check_grep "^conica: error: $tmp/dup.txt:[45]: " "$err"
+
 begin_case "usage errors exit 2"
 for args in "-k 31" "-k -1" "-k x" "-k" "--bogus" "--normals foo" "--threads 0" \
     "--max-points 0" "a.txt b.txt" "-o"; do

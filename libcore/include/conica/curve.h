@@ -83,6 +83,21 @@ CONICA_API conica_code conica_curve_parse(const char *buf, size_t len, conica_cu
                                           conica_status *st);
 
 /**
+ * @brief Line of the index-th `v` line (normal == 0) or `vn` line
+ *        (normal != 0) of a text that conica_curve_parse() accepted, so
+ *        that a later error about point `index` (conica_status::offset of
+ *        a CONICA_ERR_DEGENERATE or CONICA_ERR_NONFINITE from subdivision)
+ *        can name its line.
+ * @param[in] buf    the parsed text
+ * @param[in] len    its length in bytes
+ * @param[in] index  0-based point index
+ * @param[in] normal non-zero: count `vn` lines instead of `v` lines
+ * @return the 1-based line number, or 0 when there is no such line
+ */
+CONICA_API size_t conica_curve_line_of_point(const char *buf, size_t len, size_t index,
+                                             int normal);
+
+/**
  * @brief Write `v` lines then `vn` lines (if the curve has normals),
  *        each number printed with %.17g so that it round-trips.
  * @return CONICA_OK or CONICA_ERR_IO
