@@ -233,7 +233,10 @@ def poll_curves(context):
 
 class _Result:
     __slots__ = ("index", "kind", "co", "attrs", "hl", "hr", "cyclic", "material",
-                 "smooth", "resolution", "selected")
+                 "smooth", "resolution", "selected", "t_core")
+
+    def __init__(self):
+        self.t_core = 0.0  # seconds inside libcore (measured in C)
 
 
 def write_results(cu, results, select):
@@ -319,14 +322,16 @@ class _CurveOperator:
                 bpy.ops.object.mode_set(mode="EDIT")
 
     def _run(self, context, objs, edit, t_start):
-        t_lib = 0.0
+        t_lib = t_core = t_read = 0.0
         plans = []  # (object, [results])
         problems = []
         skipped = 0
         for ob in objs:
             results = []
             for i, sp in enumerate(ob.data.splines):
+                t0 = time.perf_counter()
                 data = SplineData(sp)
+                t_read += time.perf_counter() - t0
                 if not self.wants(sp, data, edit):
                     continue
                 try:
@@ -339,6 +344,7 @@ class _CurveOperator:
                     continue
                 t_lib += r[1]
                 r = r[0]
+                t_core += r.t_core
                 r.index = i
                 r.cyclic = data.cyclic
                 r.material = sp.material_index
@@ -358,8 +364,10 @@ class _CurveOperator:
             done += len(results)
         t_end = time.perf_counter()
         last_timing.clear()
-        last_timing.update(total=t_end - t_start, libcore=t_lib, write=t_end - t_write,
-                           splines=done)
+        # read/write: bpy data transfer; extension: the _conica calls
+        # (conversion + libcore); libcore: measured inside the C code.
+        last_timing.update(total=t_end - t_start, read=t_read, extension=t_lib,
+                           libcore=t_core, write=t_end - t_write, splines=done)
         for p in problems:
             self.report({"WARNING"}, p)
         if done == 0:
@@ -436,10 +444,12 @@ class CURVE_OT_conic_subdivide(_CurveOperator, bpy.types.Operator):
             corner_angle=self.corner_angle if self.keep_corners else 0.0,
             attrs=attrs, nattrs=2, handles=kind == "BEZIER",
             plane_tol=PLANE_TOL, abs_tol=data.abs_tol(),
-            stride=4 if kind == "POLY" else 3, typecode="f", max_points=MAX_POINTS)
+            stride=4 if kind == "POLY" else 3, typecode="f", max_points=MAX_POINTS,
+            want_normals=False)
         t_lib = time.perf_counter() - t0 + t_plot
         r = _Result()
         r.kind = kind
+        r.t_core = res[4]["seconds"]
         r.co, r.attrs = res[0], res[2]
         r.hl, r.hr = (res[5], res[6]) if kind == "BEZIER" else (None, None)
         return r, t_lib

@@ -253,15 +253,23 @@ static PyObject *cx_make_array(cx_state *s, char typecode, const double *v, size
     if (bytes == NULL)
         return NULL;
     char *raw = PyBytes_AS_STRING(bytes);
-    for (size_t i = 0; i < items; i++) {
-        for (int k = 0; k < stride; k++) {
-            double x = k < dim ? v[i * (size_t)dim + (size_t)k] : pad;
-            size_t at = (i * (size_t)stride + (size_t)k) * esize;
-            if (typecode == 'f') {
-                float f = (float)x;
-                memcpy(raw + at, &f, sizeof f);
-            } else {
-                memcpy(raw + at, &x, sizeof x);
+    if (stride == dim && typecode == 'd') {
+        memcpy(raw, v, count * sizeof(double));
+    } else if (stride == dim) {
+        float *f = (float *)(void *)raw; /* PyBytes data is suitably aligned */
+        for (size_t i = 0; i < count; i++)
+            f[i] = (float)v[i];
+    } else {
+        for (size_t i = 0; i < items; i++) {
+            for (int k = 0; k < stride; k++) {
+                double x = k < dim ? v[i * (size_t)dim + (size_t)k] : pad;
+                size_t at = (i * (size_t)stride + (size_t)k) * esize;
+                if (typecode == 'f') {
+                    float f = (float)x;
+                    memcpy(raw + at, &f, sizeof f);
+                } else {
+                    memcpy(raw + at, &x, sizeof x);
+                }
             }
         }
     }
@@ -694,6 +702,14 @@ static int cx_find_anchors(const double *inxy, size_t n, int closed, const doubl
     return 1;
 }
 
+/* Distance of two 2D points (sqrt of the sum: hypot's overflow care costs
+ * 10% of a call here and plane coordinates stay far below 1e150). */
+static double cx_dist2(const double *a, const double *b)
+{
+    double dx = b[0] - a[0], dy = b[1] - a[1];
+    return sqrt(dx * dx + dy * dy);
+}
+
 /*
  * Interpolate m attributes per input vertex onto the output: the anchors
  * keep their values, the points in between get values linear in the chord
@@ -713,7 +729,7 @@ static void cx_interp_attrs(const size_t *anchor, size_t n, int closed, const do
         double total = 0.0;
         for (size_t t = a; t < b; t++) {
             size_t u = (t + 1) % N;
-            total += hypot(oxy[2 * u] - oxy[2 * t], oxy[2 * u + 1] - oxy[2 * t + 1]);
+            total += cx_dist2(oxy + 2 * t, oxy + 2 * u);
         }
         double run = 0.0;
         for (size_t t = a; t < b; t++) {
@@ -723,7 +739,7 @@ static void cx_interp_attrs(const size_t *anchor, size_t n, int closed, const do
                 oattr[t * (size_t)m + (size_t)q] = v0 + f * (v1 - v0);
             }
             size_t u = (t + 1) % N;
-            run += hypot(oxy[2 * u] - oxy[2 * t], oxy[2 * u + 1] - oxy[2 * t + 1]);
+            run += cx_dist2(oxy + 2 * t, oxy + 2 * u);
         }
     }
 }
@@ -848,7 +864,7 @@ PyDoc_STRVAR(subdivide_doc,
 "          estimate=False, normal_method='area', inflections=True, normals_out=None,\n"
 "          tangents=False, corner_angle=0.0, attrs=None, nattrs=0, handles=False,\n"
 "          plane_tol=1e-6, abs_tol=0.0, stride=0, typecode='d',\n"
-"          max_points=4194304)\n"
+"          max_points=4194304, want_normals=True)\n"
 "--\n\n"
 "Conic-preserving subdivision of one spline (seed 000, Section 1.1).\n\n"
 "points: flat x,y (dim=2) or x,y,z (dim=3) values, a buffer of float32/float64\n"
@@ -862,7 +878,8 @@ PyDoc_STRVAR(subdivide_doc,
 "are kept as corners (the pieces between are subdivided as open curves).\n"
 "attrs: nattrs values per point (radius, tilt, ...) interpolated onto the output.\n"
 "handles=True also returns Bezier handles along the conic tangents.\n"
-"stride > dim pads every output point with 1.0 (stride 4 = Blender's POLY 'co').\n\n"
+"stride > dim pads every output point with 1.0 (stride 4 = Blender's POLY 'co').\n"
+"want_normals=False skips the output normals (None is returned for them).\n\n"
 "Returns (points, normals, attrs or None, inflections, info) or, with handles=True,\n"
 "(points, normals, attrs, inflections, info, left_handles, right_handles).\n"
 "info is a dict: points, corners, inflections, seconds (libcore), plane data.");
@@ -872,20 +889,21 @@ static PyObject *cx_subdivide(PyObject *self, PyObject *args, PyObject *kw)
     static char *kwlist[] = {"points", "normals", "dim", "closed", "levels", "precise",
                              "estimate", "normal_method", "inflections", "normals_out",
                              "tangents", "corner_angle", "attrs", "nattrs", "handles",
-                             "plane_tol", "abs_tol", "stride", "typecode", "max_points", NULL};
+                             "plane_tol", "abs_tol", "stride", "typecode", "max_points",
+                             "want_normals", NULL};
     cx_state *S = cx_get_state(self);
     PyObject *opoints, *onormals = Py_None, *onormals_out = Py_None, *oattrs = Py_None;
     PyObject *otype = NULL;
     int dim = 2, closed = 0, levels = 3, precise = 0, estimate = 0, inflections = 1;
-    int tangents = 0, nattrs = 0, handles = 0, stride = 0;
+    int tangents = 0, nattrs = 0, handles = 0, stride = 0, want_normals = 1;
     const char *method = "area";
     double corner_angle = 0.0, plane_tol = 1e-6, abs_tol = 0.0;
     Py_ssize_t max_points = (Py_ssize_t)CX_DEFAULT_MAX_POINTS;
-    if (!PyArg_ParseTupleAndKeywords(args, kw, "O|O$ipippspOpdOipddiOn:subdivide", kwlist,
+    if (!PyArg_ParseTupleAndKeywords(args, kw, "O|O$ipippspOpdOipddiOnp:subdivide", kwlist,
                                      &opoints, &onormals, &dim, &closed, &levels, &precise,
                                      &estimate, &method, &inflections, &onormals_out, &tangents,
                                      &corner_angle, &oattrs, &nattrs, &handles, &plane_tol,
-                                     &abs_tol, &stride, &otype, &max_points))
+                                     &abs_tol, &stride, &otype, &max_points, &want_normals))
         return NULL;
     char typecode;
     if (!cx_typecode(otype, &typecode))
@@ -1118,7 +1136,8 @@ static PyObject *cx_subdivide(PyObject *self, PyObject *args, PyObject *kw)
             goto done;
         }
         cx_from_plane(&pl, rxy, N, o3, 0);
-        cx_from_plane(&pl, rn, N, on3, 1);
+        if (want_normals)
+            cx_from_plane(&pl, rn, N, on3, 1);
         if (handles) {
             cx_from_plane(&pl, hl, N, hl3, 0);
             cx_from_plane(&pl, hr, N, hr3, 0);
@@ -1140,7 +1159,8 @@ static PyObject *cx_subdivide(PyObject *self, PyObject *args, PyObject *kw)
         job.ninflections = keep;
     }
     PyObject *ap = cx_make_array(S, typecode, dim == 3 ? o3 : rxy, N, dim, stride, 1.0);
-    PyObject *an = cx_make_array(S, typecode, dim == 3 ? on3 : rn, N, dim, dim, 0.0);
+    PyObject *an = want_normals ? cx_make_array(S, typecode, dim == 3 ? on3 : rn, N, dim, dim, 0.0)
+                                : (Py_INCREF(Py_None), Py_None);
     PyObject *aa = nattrs > 0 ? cx_make_array(S, typecode, fin_attr, N, nattrs, nattrs, 0.0)
                               : (Py_INCREF(Py_None), Py_None);
     PyObject *infl = PyTuple_New((Py_ssize_t)job.ninflections);
