@@ -170,6 +170,8 @@ TEST_CASE("number reader: agrees with glibc strtod on long and halfway inputs", 
 
 /* ------------------------------------------------------------ parser */
 
+static void expect_error(const char *text, conica_code code, size_t line, const char *fragment);
+
 TEST_CASE("parse: points, normals, comments, blank lines, CRLF", "[curve][parse]")
 {
     conica_curve c;
@@ -196,6 +198,18 @@ TEST_CASE("parse: points, normals, comments, blank lines, CRLF", "[curve][parse]
     CHECK(c.nxy[4] == -1e-2 && c.nxy[5] == 1e2);
     conica_curve_free(&c);
     CHECK(c.xy == NULL && c.n == 0);
+}
+
+TEST_CASE("parse: a UTF-8 byte order mark is skipped", "[curve][parse]")
+{
+    conica_curve c;
+    conica_curve_init(&c);
+    REQUIRE_EQ(parse_str("\xEF\xBB\xBFv 1 2\nv 3 4\nv 5 6\n", &c, NULL), CONICA_OK);
+    CHECK_EQ(c.n, 3u);
+    CHECK(c.xy[0] == 1.0);
+    CHECK_EQ(conica_curve_line_of_point("\xEF\xBB\xBFv 1 2\nv 3 4\n", 15, 1, 0), 2);
+    conica_curve_free(&c);
+    expect_error("v 1 2\n\xEF\xBB\xBFv 3 4\n", CONICA_ERR_PARSE, 2, "unknown line");
 }
 
 TEST_CASE("parse: points without normals", "[curve][parse]")

@@ -274,6 +274,16 @@ static enum line_kind classify(const line_view *ln, const char **rest)
     return LINE_OTHER;
 }
 
+/* Where the text starts: after a UTF-8 byte order mark, which some Windows
+ * editors put in front of plain text files. */
+static size_t text_start(const char *buf, size_t len)
+{
+    return len >= 3 && (unsigned char)buf[0] == 0xEF && (unsigned char)buf[1] == 0xBB &&
+                   (unsigned char)buf[2] == 0xBF
+               ? 3
+               : 0;
+}
+
 /* Advance *ln to the next line of buf; returns 0 at the end. */
 static int next_line(const char *buf, size_t len, size_t *pos, line_view *ln)
 {
@@ -341,7 +351,7 @@ static conica_code parse_pair(const line_view *ln, const char *p, const char *wh
 conica_code conica_curve_parse(const char *buf, size_t len, conica_curve *out, conica_status *st)
 {
     line_view ln;
-    size_t pos = 0, nv = 0, nvn = 0, iv = 0, ivn = 0, last_vn_line = 0;
+    size_t pos, nv = 0, nvn = 0, iv = 0, ivn = 0, last_vn_line = 0;
     double *xy = NULL, *nxy = NULL;
     conica_code rc;
 
@@ -350,6 +360,7 @@ conica_code conica_curve_parse(const char *buf, size_t len, conica_curve *out, c
 
     /* Pass 1: classify every line and count, so that the arrays are
      * allocated once and the point cap is checked before any allocation. */
+    pos = text_start(buf, len);
     memset(&ln, 0, sizeof ln);
     while (next_line(buf, len, &pos, &ln)) {
         const char *rest;
@@ -400,7 +411,7 @@ conica_code conica_curve_parse(const char *buf, size_t len, conica_curve *out, c
     }
 
     /* Pass 2: read the numbers. */
-    pos = 0;
+    pos = text_start(buf, len);
     memset(&ln, 0, sizeof ln);
     while (next_line(buf, len, &pos, &ln)) {
         const char *rest;
@@ -436,10 +447,11 @@ fail:
 size_t conica_curve_line_of_point(const char *buf, size_t len, size_t index, int normal)
 {
     line_view ln;
-    size_t pos = 0, seen = 0;
+    size_t pos, seen = 0;
     enum line_kind want = normal ? LINE_VN : LINE_V;
     if (!buf)
         return 0;
+    pos = text_start(buf, len);
     memset(&ln, 0, sizeof ln);
     while (next_line(buf, len, &pos, &ln)) {
         const char *rest;
