@@ -211,6 +211,37 @@ check_grep '^test cases: 1 \| 1 failed$' "$out" "totals printed before dying"
 check_grep '^-{79}$' "$out" "header names the case"
 check_grep '^selftest: crash$' "$out"
 
+begin_case "the shell harness itself"
+h_lib=$(cd "$(dirname "$0")" && pwd)/harness.sh
+cat >"$tmp/mixed.sh" <<SUITE
+. "$h_lib"
+begin_case "passes"
+check "true passes" true
+begin_case "fails"
+check "true passes" true
+check_exit 3 "exit status 3 expected" sh -c 'echo oops >&2; exit 4'
+begin_case "skipped"
+skip_case "not here"
+check "ignored after skip" false
+finish
+SUITE
+check_exit 42 "a failing suite exits 42" sh "$tmp/mixed.sh"
+check_grep '^test cases: 3 \| 1 passed \| 1 failed \| 1 skipped$' "$out"
+check_grep '^assertions: 3 \| 2 passed \| 1 failed$' "$out"
+check_grep '^  exit status 4 \(expected 3\)$' "$out" "the failure says what was expected"
+check_grep '^  oops$' "$out" "the failure shows the command's stderr"
+check_grep '^  not here$' "$out" "skip reason printed"
+printf '. "%s"\nbegin_case one\ncheck a true\ncheck_grep x "%s"\nfinish\n' "$h_lib" "$tmp/mixed.sh" >"$tmp/pass.sh"
+check_exit 0 "a passing suite exits 0" sh "$tmp/pass.sh"
+check_grep '^All tests passed \(2 assertions in 1 test case\)$' "$out"
+printf '. "%s"\nbegin_case one\nskip_case why\nfinish\n' "$h_lib" >"$tmp/skip.sh"
+check_exit 4 "an all-skipped suite exits 4" sh "$tmp/skip.sh"
+check_grep '^test cases: 1 \| 1 skipped$' "$out"
+check_grep '^assertions: - none -$' "$out"
+printf '. "%s"\nfinish\n' "$h_lib" >"$tmp/none.sh"
+check_exit 2 "a suite without cases exits 2" sh "$tmp/none.sh"
+check_grep '^No tests ran$' "$out"
+
 begin_case "C++17 compatibility"
 check_exit 0 "the header works from C++" "$X"
 check_grep '^All tests passed \(17 assertions in 3 test cases\)$' "$out"
