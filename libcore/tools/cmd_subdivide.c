@@ -230,8 +230,8 @@ int conica_cmd_subdivide(int argc, char **argv)
 
     code = conica_curve_parse(buf, len, &in, &st);
     if (code != CONICA_OK) {
-        free(buf);
         char where[4096];
+        free(buf);
         if (st.line > 0)
             snprintf(where, sizeof where, "%s:%zu", name, st.line);
         else
