@@ -207,9 +207,12 @@ CONICA_API void conica_quadgrid_free(conica_quadgrid *g);
  *        approach of Section 4.1.2: phase 1 plots the isocurves u = const
  *        at every distinct knot u and collects the v-parameters they need,
  *        phase 2 plots the isocurves v = const on that refined v-grid and
- *        collects the u-parameters. Each sampled isocurve meets the
- *        tolerance (guaranteed method); quad interiors are not certified.
- *        Only CONICA_PLOT_GUARANTEED and CONICA_PLOT_ADAPTIVE are accepted.
+ *        collects the u-parameters. Each isocurve plotted is certified
+ *        with its own parameters (guaranteed method); the grid is their
+ *        union and quad interiors are not certified. A height surface
+ *        (dim 1) is plotted as (u, v, z). Only CONICA_PLOT_GUARANTEED is
+ *        accepted (CONICA_ERR_UNSUPPORTED otherwise), as are rational
+ *        height surfaces.
  * @return as conica_plot
  */
 CONICA_API conica_code conica_plot_surface(const conica_bspline_surface *s,

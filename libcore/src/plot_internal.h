@@ -1,0 +1,66 @@
+/* Internal plumbing shared by plot*.c and surface.c. */
+#ifndef CONICA_PLOT_INTERNAL_H
+#define CONICA_PLOT_INTERNAL_H
+
+#include <stddef.h>
+
+#include "conica/plot.h"
+
+/* Continuous pieces of a spline (Section 1.1.2, check_continuous): each
+ * clamped to its domain, interior knot multiplicities <= p-1. joined[k] is
+ * 1 when piece k starts where piece k-1 ends (C0 join), so the output keeps
+ * one polyline piece. */
+typedef struct conica__pieces {
+    size_t count;
+    conica_bspline *sp;
+    int *joined;
+} conica__pieces;
+
+/* Split s. With graph != 0 a spline function becomes the planar curve
+ * (t, f(t)) with control points (t*_j, c_j) (exact by linear precision;
+ * rational functions are refused with CONICA_ERR_UNSUPPORTED). */
+conica_code conica__pieces_make(const conica_bspline *s, int graph, conica__pieces *out,
+                                conica_status *st);
+void conica__pieces_free(conica__pieces *pc);
+
+/* Output accumulation with the max_points cap. */
+typedef struct conica__out {
+    conica_polyline pl;
+    size_t max_points;
+} conica__out;
+
+void conica__out_init(conica__out *o, int dim, size_t max_points);
+/* Start a new output piece unless `joined` (then the next point, equal to
+ * the last one, is skipped by the caller via conica__out_push_join). */
+conica_code conica__out_piece(conica__out *o, conica_status *st);
+conica_code conica__out_push(conica__out *o, const double *pt, conica_status *st);
+
+/* Point of s at t in plot coordinates: (t, f(t)) for a function. */
+void conica__plot_point(const conica_bspline *s, double t, double *out);
+
+/* Method implementations: each plots all pieces into o, adding flops,
+ * knots and iterations to *stats. tol is the absolute tolerance. */
+conica_code conica__plot_guaranteed(const conica__pieces *pc, const conica_plot_settings *set,
+                                    double tol, conica__out *o, conica_plot_stats *stats,
+                                    conica_status *st);
+conica_code conica__plot_adaptive(const conica__pieces *pc, const conica_plot_settings *set,
+                                  double tol, conica__out *o, conica_plot_stats *stats,
+                                  conica_status *st);
+conica_code conica__plot_baseline(const conica__pieces *pc, const conica_plot_settings *set,
+                                  double tol, conica__out *o, conica_plot_stats *stats,
+                                  conica_status *st);
+
+/* Guaranteed plot of one continuous piece returning its parameters too
+ * (used by surfaces): params (may be NULL) receives the parameter of each
+ * emitted point; *np their count. Points go to o when o != NULL. */
+conica_code conica__guaranteed_piece(const conica_bspline *g, double tol,
+                                     const conica_plot_settings *set, int first_is_join,
+                                     conica__out *o, double **params, size_t *np,
+                                     conica_plot_stats *stats, conica_status *st);
+
+/* Bounding-box diagonal of the control points (Delta c of eq. (3.26)). */
+double conica__ctrl_diagonal(const conica_bspline *s);
+
+double conica__now(void);
+
+#endif
