@@ -501,7 +501,6 @@ static char *filter_describe(const filter *f) {
     sb b = {0};
     for (size_t i = 0; i < f->n; i++) {
         /* "[.foo]" made two patterns with the same text: name it once. */
-        if (i && f->v[i].orig == f->v[i - 1].orig) continue;
         if (i && strcmp(f->v[i].orig, f->v[i - 1].orig) == 0) continue;
         if (b.n) sb_putc(&b, ' ');
         if (f->v[i].is_tag || f->v[i].orig[0] == '"')
@@ -639,10 +638,14 @@ void ct_tracker_leave(ct_tracker *t) {
     if (t->cur != &t->root) tracker_close_current(t);
 }
 
+/* RunContext::sectionEndedEarly: the innermost open section fails and its
+ * parent needs another run. A failure in the case body outside any section
+ * fails nothing: Catch2 closes the case's tracker as usual, so sections not
+ * yet visited still get their runs. */
 void ct_tracker_fail(ct_tracker *t) {
     node *n = t->cur;
-    n->state = T_FAILED;
     if (n->parent) {
+        n->state = T_FAILED;
         n->parent->state = T_NEEDS_RUN;
         t->cur = n->parent;
     }
