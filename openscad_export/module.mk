@@ -13,9 +13,12 @@ $(SCAD_A): $(SCAD_LIB_OBJS)
 	@mkdir -p $(@D)
 	rm -f $@ && ar rcs $@ $^
 
-ifneq ($(wildcard openscad_export/scadprofile.c),)
+# scadprofile reads SVG through svg_tools and splines through the plotter:
+# it is built once both are in the tree. (svg_tools/module.mk is included
+# after this file, so its library is named by path here.)
+ifneq ($(and $(wildcard svg_tools/module.mk),$(wildcard libcore/src/plot.c)),)
 BINS += $(BUILD)/bin/scadprofile
-$(BUILD)/bin/scadprofile: $(BUILD)/obj/openscad_export/scadprofile.o $(SCAD_A) $(CLI_A) $(CORE_A)
+$(BUILD)/bin/scadprofile: $(BUILD)/obj/openscad_export/scadprofile.o $(SCAD_A) $(BUILD)/lib/libconica_svg.a $(CLI_A) $(CORE_A)
 	@mkdir -p $(@D)
 	$(CC) $(LDFLAGS) -o $@ $(BUILD)/obj/openscad_export/scadprofile.o $(ALL_LIBS) $(ALL_LDLIBS)
 endif

@@ -62,6 +62,7 @@ with open("'"$tmp"'/circle.txt", "w") as f:
         f.write("vn %r %r\n" % (math.cos(t), math.sin(t)))
 '
 printf 'v 0 0\nv 2 2\nv 2 0\nv 0 2\n' >"$tmp/bowtie.txt"
+printf 'degree 2\nknots 0 0 0 1 1 1\nc 0\nc 1\nc 0\n' >"$tmp/fn.spl"
 # A plate 60 x 40 mm with a round hole (r 8) and a slot with round ends
 # (evenodd), drawn in px on a 120 x 80 viewBox spanning 60 x 40 mm.
 cat >"$tmp/plate.svg" <<'EOF'
@@ -113,6 +114,31 @@ print("points", n, "minimum", minimum, "on-circle", on, "chord error", chord)
 sys.exit(0 if (minimum <= n <= 1.1 * minimum and on <= 1e-9 * r and chord + on <= tol) else 1)
 '
 done
+
+begin_case "spline input: a rational quadratic (NURBS) circle through the plotter"
+# r = 50 about (10, 20): 9 control points, weights 1, sqrt(2)/2, ...
+py '
+import math
+h = math.sqrt(0.5)
+c = [(1,0),(1,1),(0,1),(-1,1),(-1,0),(-1,-1),(0,-1),(1,-1),(1,0)]
+with open("'"$tmp"'/circle.spl", "w") as f:
+    f.write("degree 2\nknots 0 0 0 0.25 0.25 0.5 0.5 0.75 0.75 1 1 1\n")
+    for x, y in c: f.write("c %r %r\n" % (10 + 50 * x, 20 + 50 * y))
+    f.write("w " + " ".join("1" if k % 2 == 0 else repr(h) for k in range(9)) + "\n")
+'
+check "scadprofile --tolerance 0.01 circle.spl" "$bin" --tolerance 0.01 -o "$tmp/spl.scad" "$tmp/circle.spl"
+check "points on the circle, chords within 0.01, within 1.1x of the minimum 158" py '
+import math, re, sys
+text = open("'"$tmp"'/spl.scad").read()
+m = re.search(r"function profile_points\(\) = \[(.*?)\];", text, re.S)
+pts = [tuple(map(float, p)) for p in re.findall(r"\[([-0-9.e+]+),([-0-9.e+]+)\]", m.group(1))]
+n, r = len(pts), 50.0
+on = max(abs(math.hypot(x - 10, y - 20) - r) for x, y in pts)
+chord = max(r - math.sqrt(r*r - (math.dist(pts[i], pts[(i+1) % n]) / 2) ** 2) for i in range(n))
+print(n, "points, on-circle", on, "chord", chord)
+sys.exit(0 if 158 <= n <= 1.1 * 158 and on <= 1e-9 * r and chord + on <= 0.01 else 1)
+'
+check "an open 1-D spline function is refused" fails_with 1 "planar spline" "$bin" "$tmp/fn.spl"
 
 if has_openscad; then
 begin_case "ellipse level 8: exact points, OpenSCAD export on the ellipse, area"

@@ -1,0 +1,713 @@
+/* scadprofile: smooth, exact 2D profiles as OpenSCAD modules.
+ *
+ *   scadprofile [--levels K | --tolerance T] [--module NAME] [--units U]
+ *               [--extrude H | --rotate-extrude [ANGLE]] [--select IDS]
+ *               [--force] [--stats] [-o OUT.scad] IN
+ *
+ * IN is a point-normal file (`v`/`vn`, refined by conic subdivision), an SVG
+ * document (every closed subpath of the selected elements) or a spline file
+ * (.spl, through the adaptive plotter). */
+#include <math.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+
+#include "cli.h"
+#include "conica/curve.h"
+#include "conica/subdiv.h"
+#include "conica_scad.h"
+#include "conica_svg.h"
+#include "conica/bspline.h"
+#include "conica/plot.h"
+
+#define PROG "scadprofile"
+#define VERSION "0.1.0"
+/* Tolerance (output units) when neither --levels nor --tolerance is given. */
+#define DEFAULT_TOLERANCE 0.01
+/* Curves are made dense within this fraction of the tolerance, then thinned
+ * to the fewest points within the rest (see docs/scadprofile.md). */
+#define DENSE_FRACTION (1.0 / 256.0)
+/* A spline whose end points are closer than this fraction of its bounding
+ * box diagonal is closed; otherwise a straight segment closes it. */
+#define SPLINE_CLOSE_REL 1e-9
+#define MM_PER_INCH 25.4
+#define PX_PER_INCH 96.0
+
+typedef enum kind { IN_POINTS, IN_SVG, IN_SPLINE } kind;
+typedef enum units { U_DEFAULT, U_PX, U_MM, U_IN } units;
+
+typedef struct options {
+    int levels;          /* -1: not given */
+    double tolerance;    /* 0: not given */
+    const char *module;
+    units unit;
+    int extrude, revolve;
+    double height, angle;
+    const char *select;
+    int force, stats, flatten_only;
+    size_t max_points;
+    const char *out, *in;
+} options;
+
+typedef struct stats {
+    const char *kind;
+    size_t input_points, dense_points, points;
+    int levels;
+    double seconds;
+} stats;
+
+static void usage(FILE *f)
+{
+    fputs("Usage: " PROG " [--levels K | --tolerance T] [--module NAME] [--units U]\n"
+          "                   [--extrude H | --rotate-extrude [ANGLE]] [--select IDS]\n"
+          "                   [--force] [--stats] [-o OUT.scad] IN\n"
+          "Write a 2D profile as an OpenSCAD module: function NAME_points(),\n"
+          "function NAME_paths(), module NAME() (a polygon with holes), plus\n"
+          "NAME_extruded(height, center) / NAME_revolved(angle) when asked.\n"
+          "\n"
+          "IN: a point-normal file (`v x y` / `vn nx ny`, refined by conic subdivision),\n"
+          "    an SVG file (every closed subpath of the selected elements; y flipped),\n"
+          "    or a spline file (.spl, through the adaptive plotter); - reads stdin.\n"
+          "\n"
+          "  --tolerance T     largest distance between the polygon and the curve, in\n"
+          "                    output units (default 0.01); fewest points that meet it\n"
+          "  --levels K        subdivide exactly K levels instead (0..30), keep every point\n"
+          "  --flatten-only    keep the input geometry: only flatten curves (SVG, .spl)\n"
+          "  --module NAME     module name (default: profile)\n"
+          "  --units U         SVG only: output units px, mm (default) or in; 96 px per inch,\n"
+          "                    the document's viewBox/width/height honoured\n"
+          "  --extrude H       also emit NAME_extruded(height=H, center=false) and render it\n"
+          "  --rotate-extrude [ANGLE]  also emit NAME_revolved(angle=ANGLE, default 360);\n"
+          "                    the profile must not have points with x < 0\n"
+          "  --select IDS      SVG only: comma-separated element ids (default: all)\n"
+          "  --max-points N    cap on the dense points of one curve (default 4194304)\n"
+          "  --force           write even if validation fails (warnings instead of errors)\n"
+          "  --stats           figures on stderr\n"
+          "  -o FILE           output (default stdout; written via a temporary file)\n"
+          "  -h, --help        this help;  --version  version\n"
+          "\n"
+          "Exit status: 0 success, 1 error (nothing written), 2 usage error.\n",
+          f);
+}
+
+static int is_number(const char *s)
+{
+    double d;
+    return s && cli_parse_double(s, &d) == 0;
+}
+
+static int parse_args(int argc, char **argv, options *o, int *exit_now)
+{
+    long l;
+    memset(o, 0, sizeof *o);
+    o->levels = -1;
+    o->module = "profile";
+    o->height = 10;
+    o->angle = 360;
+    o->max_points = CONICA_SCAD_DEFAULT_MAX_DENSE;
+    *exit_now = 0;
+    for (int i = 1; i < argc; i++) {
+        const char *a = argv[i];
+        const char *next = i + 1 < argc ? argv[i + 1] : NULL;
+#define NEED_ARG()                                                                         \
+    do {                                                                                   \
+        if (!next)                                                                         \
+            return cli_usage_error(PROG, "%s needs an argument", a);                       \
+        i++;                                                                               \
+    } while (0)
+        if (strcmp(a, "-h") == 0 || strcmp(a, "--help") == 0) {
+            usage(stdout);
+            *exit_now = 1;
+            return 0;
+        } else if (strcmp(a, "--version") == 0) {
+            printf(PROG " " VERSION " (Conica)\n");
+            *exit_now = 1;
+            return 0;
+        } else if (strcmp(a, "--levels") == 0 || strcmp(a, "-k") == 0) {
+            NEED_ARG();
+            if (cli_parse_int(next, 0, CONICA_SUBDIV_MAX_LEVELS, &l) != 0)
+                return cli_usage_error(PROG, "--levels needs an integer in 0..%d, not '%s'",
+                                       CONICA_SUBDIV_MAX_LEVELS, next);
+            o->levels = (int)l;
+        } else if (strcmp(a, "--tolerance") == 0 || strcmp(a, "-t") == 0) {
+            NEED_ARG();
+            if (cli_parse_double(next, &o->tolerance) != 0 || !(o->tolerance > 0))
+                return cli_usage_error(PROG, "--tolerance needs a number > 0, not '%s'", next);
+        } else if (strcmp(a, "--module") == 0) {
+            NEED_ARG();
+            if (!conica_scad_valid_name(next))
+                return cli_usage_error(PROG,
+                                       "--module '%s' is not an OpenSCAD identifier "
+                                       "([A-Za-z_][A-Za-z0-9_]*, at most %d characters)",
+                                       next, CONICA_SCAD_MAX_MODULE_NAME);
+            o->module = next;
+        } else if (strcmp(a, "--units") == 0) {
+            NEED_ARG();
+            if (strcmp(next, "px") == 0)
+                o->unit = U_PX;
+            else if (strcmp(next, "mm") == 0)
+                o->unit = U_MM;
+            else if (strcmp(next, "in") == 0)
+                o->unit = U_IN;
+            else
+                return cli_usage_error(PROG, "--units must be px, mm or in, not '%s'", next);
+        } else if (strcmp(a, "--extrude") == 0) {
+            NEED_ARG();
+            if (cli_parse_double(next, &o->height) != 0 || !(o->height > 0))
+                return cli_usage_error(PROG, "--extrude needs a height > 0, not '%s'", next);
+            o->extrude = 1;
+        } else if (strcmp(a, "--rotate-extrude") == 0 ||
+                   strncmp(a, "--rotate-extrude=", 17) == 0) {
+            const char *v = a[16] == '=' ? a + 17 : (is_number(next) ? next : NULL);
+            if (v) {
+                if (v == next)
+                    i++;
+                if (cli_parse_double(v, &o->angle) != 0 || !(o->angle > 0 && o->angle <= 360))
+                    return cli_usage_error(PROG, "--rotate-extrude angle must be in (0, 360], not '%s'", v);
+            }
+            o->revolve = 1;
+        } else if (strcmp(a, "--select") == 0) {
+            NEED_ARG();
+            o->select = next;
+        } else if (strcmp(a, "--max-points") == 0) {
+            NEED_ARG();
+            if (cli_parse_int(next, 16, (long)CONICA_SCAD_MAX_POINTS, &l) != 0)
+                return cli_usage_error(PROG, "--max-points needs an integer in 16..%zu",
+                                       (size_t)CONICA_SCAD_MAX_POINTS);
+            o->max_points = (size_t)l;
+        } else if (strcmp(a, "--flatten-only") == 0) {
+            o->flatten_only = 1;
+        } else if (strcmp(a, "--force") == 0) {
+            o->force = 1;
+        } else if (strcmp(a, "--stats") == 0) {
+            o->stats = 1;
+        } else if (strcmp(a, "-o") == 0 || strcmp(a, "--output") == 0) {
+            NEED_ARG();
+            o->out = next;
+        } else if (strcmp(a, "--") == 0) {
+            if (i + 1 < argc && !o->in)
+                o->in = argv[++i];
+            if (i + 1 < argc)
+                return cli_usage_error(PROG, "more than one input file");
+        } else if (a[0] == '-' && a[1] != '\0') {
+            return cli_usage_error(PROG, "unknown option '%s'", a);
+        } else {
+            if (o->in)
+                return cli_usage_error(PROG, "more than one input file ('%s' and '%s')", o->in, a);
+            o->in = a;
+        }
+#undef NEED_ARG
+    }
+    if (!o->in)
+        return cli_usage_error(PROG, "no input file");
+    if (o->levels >= 0 && o->tolerance > 0)
+        return cli_usage_error(PROG, "--levels and --tolerance exclude each other");
+    if (o->extrude && o->revolve)
+        return cli_usage_error(PROG, "--extrude and --rotate-extrude exclude each other");
+    if (o->flatten_only && o->levels >= 0)
+        return cli_usage_error(PROG, "--flatten-only and --levels exclude each other");
+    if (o->tolerance <= 0)
+        o->tolerance = DEFAULT_TOLERANCE;
+    return 0;
+}
+
+static int ends_with(const char *s, const char *suffix)
+{
+    size_t n = strlen(s), m = strlen(suffix);
+    if (n < m)
+        return 0;
+    for (size_t i = 0; i < m; i++) {
+        char c = s[n - m + i];
+        if (c >= 'A' && c <= 'Z')
+            c = (char)(c - 'A' + 'a');
+        if (c != suffix[i])
+            return 0;
+    }
+    return 1;
+}
+
+static kind detect(const char *path, const char *buf, size_t len)
+{
+    if (ends_with(path, ".svg"))
+        return IN_SVG;
+    if (ends_with(path, ".spl"))
+        return IN_SPLINE;
+    if (ends_with(path, ".txt") || ends_with(path, ".obj"))
+        return IN_POINTS;
+    size_t i = 0;
+    while (i < len && (buf[i] == ' ' || buf[i] == '\t' || buf[i] == '\r' || buf[i] == '\n'))
+        i++;
+    if (i < len && buf[i] == '<')
+        return IN_SVG;
+    if (len - i >= 6 && memcmp(buf + i, "degree", 6) == 0)
+        return IN_SPLINE;
+    return IN_POINTS;
+}
+
+static const char *base_name(const char *path)
+{
+    const char *s = strrchr(path, '/');
+    return s ? s + 1 : path;
+}
+
+/* `scadprofile: error: FILE[:LINE]: what` from a library status. */
+static int status_error(const char *file, const conica_status *st)
+{
+    char where[1024];
+    if (st->line)
+        snprintf(where, sizeof where, "%s:%zu", file, st->line);
+    else
+        snprintf(where, sizeof where, "%s", file);
+    return cli_error(PROG, where, "%s", st->message[0] ? st->message : conica_strerror(st->code));
+}
+
+/* ------------------------------------------------------------ point-normal */
+
+static int load_points(const options *o, const char *name, const char *buf, size_t len,
+                       conica_scad_profile *prof, stats *sx)
+{
+    conica_curve in, sub;
+    conica_status st;
+    double *pts = NULL;
+    size_t n = 0, g;
+    conica_code rc;
+    conica_curve_init(&in);
+    conica_curve_init(&sub);
+    if (conica_curve_parse(buf, len, &in, &st) != CONICA_OK) {
+        conica_curve_free(&in);
+        return status_error(name, &st);
+    }
+    in.closed = 1;
+    sx->kind = "point-normal";
+    sx->input_points = in.n;
+    if (in.n < 3) {
+        conica_curve_free(&in);
+        return cli_error(PROG, name, "a profile needs at least 3 points, the file has %zu", in.n);
+    }
+    if (o->flatten_only) {
+        rc = CONICA_OK;
+        pts = in.xy;
+        n = in.n;
+        sx->dense_points = n;
+    } else if (o->levels >= 0) {
+        conica_subdiv_settings s = conica_subdiv_defaults();
+        s.levels = o->levels;
+        s.max_points = o->max_points;
+        rc = conica_subdivide(&in, &s, &sub, NULL, &st);
+        pts = sub.xy;
+        n = sub.n;
+        sx->levels = o->levels;
+        sx->dense_points = n;
+    } else {
+        conica_scad_refine_info info;
+        memset(&info, 0, sizeof info);
+        rc = conica_scad_refine(&in, o->tolerance, o->max_points, &pts, &n, &info, &st);
+        sx->levels = info.levels;
+        sx->dense_points = info.dense_points;
+    }
+    if (rc == CONICA_OK)
+        rc = conica_scad_add_group(prof, base_name(name), CONICA_SCAD_FILL_NONZERO, 0, &g, &st);
+    if (rc == CONICA_OK)
+        rc = conica_scad_add_contour(prof, g, pts, n, &st);
+    if (pts != in.xy && pts != sub.xy)
+        free(pts);
+    conica_curve_free(&in);
+    conica_curve_free(&sub);
+    if (rc != CONICA_OK)
+        return status_error(name, &st);
+    return 0;
+}
+
+/* ------------------------------------------------------------ splines */
+
+static int load_spline(const options *o, const char *name, const char *buf, size_t len,
+                       conica_scad_profile *prof, stats *sx)
+{
+    conica_bspline s;
+    conica_polyline pl;
+    conica_status st;
+    conica_code rc;
+    double *pts = NULL;
+    size_t n = 0, g;
+    if (o->levels >= 0)
+        return cli_error(PROG, name, "--levels applies to point-normal and SVG input; "
+                                     "use --tolerance for a spline");
+    conica_bspline_init(&s);
+    conica_polyline_init(&pl);
+    if (conica_bspline_parse(buf, len, &s, &st) != CONICA_OK) {
+        conica_bspline_free(&s);
+        return status_error(name, &st);
+    }
+    sx->kind = "spline";
+    sx->input_points = s.n;
+    if (s.dim != 2) {
+        int dim = s.dim;
+        conica_bspline_free(&s);
+        return cli_error(PROG, name, "a profile needs a planar spline (2 coordinates), "
+                                     "this one has %d", dim);
+    }
+    conica_plot_settings ps = conica_plot_defaults();
+    ps.method = CONICA_PLOT_GUARANTEED;
+    ps.abs_tolerance = o->flatten_only ? o->tolerance : o->tolerance * DENSE_FRACTION;
+    ps.max_points = o->max_points;
+    rc = conica_plot(&s, &ps, &pl, NULL, &st);
+    conica_bspline_free(&s);
+    if (rc != CONICA_OK) {
+        conica_polyline_free(&pl);
+        return status_error(name, &st);
+    }
+    n = pl.n;
+    sx->dense_points = n;
+    /* drop the closing point of a closed spline (the polygon closes itself) */
+    if (n >= 2) {
+        double xmin = INFINITY, xmax = -INFINITY, ymin = INFINITY, ymax = -INFINITY;
+        for (size_t i = 0; i < n; i++) {
+            xmin = fmin(xmin, pl.xy[2 * i]);
+            xmax = fmax(xmax, pl.xy[2 * i]);
+            ymin = fmin(ymin, pl.xy[2 * i + 1]);
+            ymax = fmax(ymax, pl.xy[2 * i + 1]);
+        }
+        double gap = hypot(pl.xy[2 * n - 2] - pl.xy[0], pl.xy[2 * n - 1] - pl.xy[1]);
+        if (gap <= SPLINE_CLOSE_REL * hypot(xmax - xmin, ymax - ymin))
+            n--;
+        else
+            cli_warning(PROG, name, "the spline is open; a straight segment closes the profile");
+    }
+    if (n >= 3 && !o->flatten_only) {
+        rc = conica_scad_thin(pl.xy, n, 1, o->tolerance * (1 - DENSE_FRACTION), &pts, &n, &st);
+    } else {
+        rc = CONICA_OK;
+        pts = pl.xy;
+    }
+    if (rc == CONICA_OK)
+        rc = conica_scad_add_group(prof, base_name(name), CONICA_SCAD_FILL_NONZERO, 0, &g, &st);
+    if (rc == CONICA_OK)
+        rc = conica_scad_add_contour(prof, g, pts, n, &st);
+    if (pts != pl.xy)
+        free(pts);
+    conica_polyline_free(&pl);
+    if (rc != CONICA_OK)
+        return status_error(name, &st);
+    return 0;
+}
+
+/* ------------------------------------------------------------ SVG */
+
+/* SVG layer warnings as `scadprofile: warning: FILE[:LINE]: what`; ctx is
+ * the file name. */
+static void svg_warn(void *ctx, size_t line, const char *message)
+{
+    char where[1024];
+    if (line)
+        snprintf(where, sizeof where, "%s:%zu", (const char *)ctx, line);
+    cli_warning(PROG, line ? where : (const char *)ctx, "%s", message);
+}
+
+/* Split "a,b,c" into a NULL-terminated array of copies (caller frees both). */
+static char **split_ids(const char *s, size_t *count)
+{
+    size_t n = 1, k = 0;
+    for (const char *p = s; *p; p++)
+        n += *p == ',';
+    char **ids = calloc(n + 1, sizeof *ids);
+    char *copy = malloc(strlen(s) + 1);
+    if (!ids || !copy) {
+        free(ids);
+        free(copy);
+        return NULL;
+    }
+    strcpy(copy, s);
+    for (char *p = copy, *tok; p; p = tok) {
+        tok = strchr(p, ',');
+        if (tok)
+            *tok++ = '\0';
+        if (*p)
+            ids[k++] = p;
+    }
+    if (k == 0)
+        free(copy);
+    *count = k;
+    return ids;
+}
+
+static int load_svg(const options *o, const char *name, const char *buf, size_t len,
+                    conica_scad_profile *prof, stats *sx)
+{
+    conica_svg_doc *doc = NULL;
+    conica_svg_shapes shapes;
+    conica_svg_viewport vp;
+    conica_status st;
+    conica_code rc;
+    char **ids = NULL;
+    size_t nids = 0;
+    int result = 0;
+
+    if (conica_svg_doc_load(buf, len, NULL, &doc, &st) != CONICA_OK)
+        return status_error(name, &st);
+    if (conica_svg_doc_viewport(doc, &vp, &st) != CONICA_OK) {
+        conica_svg_doc_free(doc);
+        return status_error(name, &st);
+    }
+    /* Output units per user unit, from mm per user unit (the viewBox and
+     * width/height); without an absolute size a user unit is a CSS px. */
+    double mmx = vp.mm_per_unit_x, mmy = vp.mm_per_unit_y;
+    if (!(isfinite(mmx) && mmx > 0) || !(isfinite(mmy) && mmy > 0)) {
+        cli_warning(PROG, name, "the document's size is relative or missing: 1 user unit = 1 px");
+        mmx = mmy = MM_PER_INCH / PX_PER_INCH;
+    }
+    double per_mm = o->unit == U_PX ? PX_PER_INCH / MM_PER_INCH
+                    : o->unit == U_IN ? 1.0 / MM_PER_INCH
+                                      : 1.0;
+    double sxu = mmx * per_mm, syu = mmy * per_mm;
+    /* y flipped about the viewBox (or the height): the drawing keeps its
+     * place in the first quadrant, y up as in OpenSCAD. */
+    double x0 = vp.has_viewbox ? vp.viewbox[0] : 0;
+    double ytop = vp.has_viewbox ? vp.viewbox[1] + vp.viewbox[3]
+                  : vp.has_height && isfinite(vp.height_mm) ? vp.height_mm / mmy
+                                                            : 0;
+    double tol_user = o->tolerance / fmax(sxu, syu);
+
+    conica_svg_settings set = conica_svg_defaults();
+    set.convert_shapes = 1;
+    set.warn = svg_warn;
+    set.warn_ctx = (void *)name;
+    set.limits.max_points = o->max_points * 16;
+    if (o->flatten_only) {
+        set.mode = CONICA_SVG_FLATTEN;
+        set.tolerance = tol_user;
+    } else if (o->levels >= 0) {
+        set.mode = CONICA_SVG_SMOOTH;
+        set.levels = o->levels;
+        set.tolerance = 0;
+    } else {
+        set.mode = CONICA_SVG_SMOOTH;
+        set.tolerance = tol_user * DENSE_FRACTION;
+    }
+    if (o->select) {
+        ids = split_ids(o->select, &nids);
+        if (!ids) {
+            conica_svg_doc_free(doc);
+            return cli_error(PROG, name, "out of memory");
+        }
+        set.select = (const char *const *)ids;
+        set.nselect = nids;
+    }
+    conica_svg_shapes_init(&shapes);
+    rc = conica_svg_extract(doc, &set, &shapes, &st);
+    conica_svg_doc_free(doc);
+    if (rc != CONICA_OK) {
+        result = status_error(name, &st);
+        goto done;
+    }
+    sx->kind = "SVG";
+    for (size_t e = 0; e < shapes.nelements && result == 0; e++) {
+        const conica_svg_element *el = &shapes.elements[e];
+        char gname[64], where[1024];
+        size_t g;
+        snprintf(where, sizeof where, "%s:%zu", name, el->line);
+        if (el->has_transform)
+            cli_warning(PROG, where, "<%s%s%s> has a transform, which is not applied", el->tag,
+                        el->id ? " id=" : "", el->id ? el->id : "");
+        if (el->id)
+            snprintf(gname, sizeof gname, "%s", el->id);
+        else
+            snprintf(gname, sizeof gname, "<%s>", el->tag);
+        if (conica_scad_add_group(prof, gname,
+                                  el->fill_rule == CONICA_SVG_EVENODD ? CONICA_SCAD_FILL_EVENODD
+                                                                      : CONICA_SCAD_FILL_NONZERO,
+                                  el->line, &g, &st) != CONICA_OK) {
+            result = status_error(name, &st);
+            break;
+        }
+        for (size_t k = 0; k < el->nsubpaths; k++) {
+            const conica_svg_subpath *sp = &shapes.subpaths[el->first_subpath + k];
+            double *xy, *pts = NULL;
+            size_t n = sp->n;
+            if (!sp->closed) {
+                cli_warning(PROG, where, "subpath %zu of '%s' is open and is left out", k + 1,
+                            gname);
+                continue;
+            }
+            sx->dense_points += n;
+            xy = malloc(2 * (n ? n : 1) * sizeof *xy);
+            if (!xy) {
+                result = cli_error(PROG, name, "out of memory");
+                break;
+            }
+            for (size_t i = 0; i < n; i++) {
+                xy[2 * i] = (sp->xy[2 * i] - x0) * sxu;
+                xy[2 * i + 1] = (ytop - sp->xy[2 * i + 1]) * syu;
+            }
+            rc = CONICA_OK;
+            if (!o->flatten_only && o->levels < 0 && n > 3) {
+                rc = conica_scad_thin(xy, n, 1, o->tolerance * (1 - DENSE_FRACTION), &pts, &n,
+                                      &st);
+                if (rc == CONICA_OK) {
+                    free(xy);
+                    xy = pts;
+                }
+            }
+            if (rc == CONICA_OK)
+                rc = conica_scad_add_contour(prof, g, xy, n, &st);
+            free(xy);
+            if (rc != CONICA_OK) {
+                result = cli_error(PROG, where, "%s", st.message);
+                break;
+            }
+        }
+    }
+    if (result == 0 && prof->ncontours == 0)
+        result = cli_error(PROG, name, "no closed subpath in the %s elements",
+                           o->select ? "selected" : "document's");
+done:
+    conica_svg_shapes_free(&shapes);
+    if (ids) {
+        if (nids)
+            free(ids[0]);
+        free(ids);
+    }
+    return result;
+}
+
+/* ------------------------------------------------------------ main */
+
+static char *header_text(int argc, char **argv, const options *o, const char *kind_name)
+{
+    size_t cap = 512;
+    for (int i = 0; i < argc; i++)
+        cap += strlen(argv[i]) + 3;
+    char *h = malloc(cap), num[40];
+    if (!h)
+        return NULL;
+    size_t n = (size_t)snprintf(h, cap, "Generated by " PROG " " VERSION " (Conica).\ncommand:");
+    for (int i = 0; i < argc && n < cap; i++)
+        n += (size_t)snprintf(h + n, cap - n, " %s", i == 0 ? PROG : argv[i]);
+    conica_scad_format_double(o->tolerance, num, sizeof num);
+    if (n < cap)
+        n += (size_t)snprintf(h + n, cap - n, "\nsource: %s (%s)\n", o->in, kind_name);
+    if (n < cap) {
+        const char *u = o->unit == U_PX ? "px" : o->unit == U_IN ? "in" : "mm";
+        if (o->levels >= 0)
+            snprintf(h + n, cap - n, "refinement: %d subdivision levels, every point kept", o->levels);
+        else if (o->flatten_only)
+            snprintf(h + n, cap - n, "tolerance: %s %s (curves flattened, input geometry kept)",
+                     num, u);
+        else
+            snprintf(h + n, cap - n,
+                     "tolerance: %s %s (largest distance between the polygon and the curve)", num,
+                     u);
+    }
+    return h;
+}
+
+int main(int argc, char **argv)
+{
+    options o;
+    int exit_now = 0, rc;
+    char *buf = NULL;
+    size_t len = 0;
+    conica_scad_profile prof;
+    conica_scad_layout lay;
+    conica_scad_violation viol;
+    conica_status st;
+    stats sx;
+    struct timespec t0, t1;
+    const char *name;
+
+    if ((rc = parse_args(argc, argv, &o, &exit_now)) != 0 || exit_now)
+        return rc;
+    clock_gettime(CLOCK_MONOTONIC, &t0);
+    if (cli_read_file(PROG, o.in, CLI_DEFAULT_MAX_INPUT, &buf, &len) != 0)
+        return CLI_EXIT_ERROR;
+    name = strcmp(o.in, "-") == 0 ? "<stdin>" : o.in;
+    kind k = detect(o.in, buf, len);
+    if (k != IN_SVG && (o.unit != U_DEFAULT || o.select)) {
+        free(buf);
+        return cli_usage_error(PROG, "--units and --select apply to SVG input only");
+    }
+    memset(&sx, 0, sizeof sx);
+    sx.levels = -1;
+    conica_scad_profile_init(&prof);
+    conica_scad_layout_init(&lay);
+    if (k == IN_SVG)
+        rc = load_svg(&o, name, buf, len, &prof, &sx);
+    else if (k == IN_SPLINE)
+        rc = load_spline(&o, name, buf, len, &prof, &sx);
+    else
+        rc = load_points(&o, name, buf, len, &prof, &sx);
+    free(buf);
+    if (rc != 0)
+        goto fail;
+
+    if (conica_scad_validate(&prof, o.revolve, &viol, &st) != CONICA_OK) {
+        char where[1024];
+        const conica_scad_group *g = viol.problem != CONICA_SCAD_OK
+                                         ? &prof.groups[prof.contours[viol.contour_a].group]
+                                         : NULL;
+        if (g && g->line)
+            snprintf(where, sizeof where, "%s:%zu", name, g->line);
+        else
+            snprintf(where, sizeof where, "%s", name);
+        if (!o.force) {
+            cli_error(PROG, where, "%s (nothing written; --force writes it anyway)", st.message);
+            goto fail;
+        }
+        cli_warning(PROG, where, "%s (written anyway: --force)", st.message);
+    }
+    if (conica_scad_arrange(&prof, &lay, &st) != CONICA_OK) {
+        status_error(name, &st);
+        goto fail;
+    }
+    {
+        static const char *const kinds[3] = {"point-normal", "SVG", "spline"};
+        char *header = header_text(argc, argv, &o, kinds[k]);
+        conica_scad_write_options wo = conica_scad_write_defaults();
+        cli_output out;
+        if (!header) {
+            cli_error(PROG, NULL, "out of memory");
+            goto fail;
+        }
+        wo.module = o.module;
+        wo.header = header;
+        wo.extrude = o.extrude;
+        wo.extrude_height = o.height;
+        wo.revolve = o.revolve;
+        wo.revolve_angle = o.angle;
+        if (cli_output_open(PROG, o.out, &out) != 0) {
+            free(header);
+            goto fail;
+        }
+        if (conica_scad_write(out.f, &prof, &lay, &wo, &st) != CONICA_OK) {
+            cli_output_abort(&out);
+            free(header);
+            cli_error(PROG, o.out ? o.out : "<stdout>", "%s", st.message);
+            goto fail;
+        }
+        free(header);
+        if (cli_output_commit(PROG, &out) != 0)
+            goto fail;
+    }
+    clock_gettime(CLOCK_MONOTONIC, &t1);
+    if (o.stats) {
+        size_t pts = 0;
+        for (size_t i = 0; i < lay.npaths; i++)
+            pts += prof.contours[lay.paths[i].contour].n;
+        fprintf(stderr,
+                PROG ": input %s, %zu input points; %zu dense points%s; levels %d\n" PROG
+                     ": %zu points written in %zu paths (%zu outer, %zu holes, %zu dropped), "
+                     "convexity %d; %.3f ms\n",
+                sx.kind ? sx.kind : "?", sx.input_points, sx.dense_points,
+                o.flatten_only ? " (flatten only)" : "", sx.levels, pts, lay.npaths, lay.outers,
+                lay.holes, lay.dropped, lay.convexity,
+                1e3 * ((double)(t1.tv_sec - t0.tv_sec) + 1e-9 * (double)(t1.tv_nsec - t0.tv_nsec)));
+    }
+    conica_scad_layout_free(&lay);
+    conica_scad_profile_free(&prof);
+    return CLI_EXIT_OK;
+fail:
+    conica_scad_layout_free(&lay);
+    conica_scad_profile_free(&prof);
+    return CLI_EXIT_ERROR;
+}
