@@ -66,6 +66,11 @@ $(shell mkdir -p $(BUILD)/gen && { echo '$(CMD_LIST)' | cmp -s - $(CMD_DEF) || e
 CONICA_OBJS := $(BUILD)/obj/libcore/tools/conica.o $(CMD_SRCS:%.c=$(BUILD)/obj/%.o)
 $(BUILD)/obj/libcore/tools/%.o: CPPFLAGS += -Ilibcore/tools -I$(BUILD)/gen
 
+# The Catch2-compatible runner every test binary links (modules use RUNNER_A).
+RUNNER_SRCS := $(wildcard tests/runner/*.c)
+RUNNER_OBJS := $(RUNNER_SRCS:%.c=$(BUILD)/obj/%.o)
+RUNNER_A    := $(BUILD)/lib/libconica_test.a
+
 # Static libraries of the other modules, in link order (modules append).
 MODULE_LIBS :=
 MODULE_LIBS_FIRST :=
@@ -116,9 +121,6 @@ $(BUILD)/conica.pc: Makefile
 	  'Cflags: -I$${includedir}' > $@
 
 # ---------------------------------------------------------------- tests
-RUNNER_SRCS := $(wildcard tests/runner/*.c)
-RUNNER_OBJS := $(RUNNER_SRCS:%.c=$(BUILD)/obj/%.o)
-RUNNER_A    := $(BUILD)/lib/libconica_test.a
 $(BUILD)/obj/tests/%.o: CPPFLAGS += -Itests/runner -Ilibcore/src -Ilibcore/tools
 $(RUNNER_A): $(RUNNER_OBJS)
 	@mkdir -p $(@D)
