@@ -443,7 +443,7 @@ static double seg_dist2(const double *p, const double *a, const double *b, int d
  * order) and moving the hint. The result is the distance to a set of
  * polyline segments, hence never below the true distance: a conservative
  * (upper) estimate that keeps dense checks linear. */
-#define DEV_WINDOW 48
+#define DEV_WINDOW 16
 static double poly_dist(const conica_polyline *pl, const double *q, size_t *hint)
 {
     double best = INFINITY;
@@ -506,20 +506,72 @@ conica_code conica_plot_deviation(const conica_bspline *s, const conica_polyline
         *curve_to_poly = c2p;
     }
     if (poly_to_curve) {
-        /* vertices and segment quarter points to the nearest sample (an
-         * upper estimate of the true distance to the curve up to the
-         * sampling step) */
-        double p2c = 0.0;
+        /* vertices and segment quarter points to the nearest sample (exact
+         * nearest neighbour through a uniform grid on the first two
+         * coordinates): the true distance to the curve plus at most half a
+         * sampling step */
         size_t d = (size_t)pl->dim;
+        double lo[2] = {INFINITY, INFINITY}, hi[2] = {-INFINITY, -INFINITY};
+        for (size_t j = 0; j < m; j++)
+            for (int c = 0; c < 2; c++) {
+                lo[c] = pts[3 * j + (size_t)c] < lo[c] ? pts[3 * j + (size_t)c] : lo[c];
+                hi[c] = pts[3 * j + (size_t)c] > hi[c] ? pts[3 * j + (size_t)c] : hi[c];
+            }
+        for (size_t i = 0; i < pl->n; i++)
+            for (int c = 0; c < 2; c++) {
+                lo[c] = pl->xy[i * d + (size_t)c] < lo[c] ? pl->xy[i * d + (size_t)c] : lo[c];
+                hi[c] = pl->xy[i * d + (size_t)c] > hi[c] ? pl->xy[i * d + (size_t)c] : hi[c];
+            }
+        size_t G = (size_t)sqrt((double)m / 2.0) + 1;
+        G = G > 2048 ? 2048 : G;
+        double cw = (hi[0] - lo[0]) / (double)G, ch = (hi[1] - lo[1]) / (double)G;
+        if (!(cw > 0))
+            cw = 1.0;
+        if (!(ch > 0))
+            ch = 1.0;
+        double cs = cw < ch ? cw : ch;
+        size_t *start = calloc(G * G + 1, sizeof *start), *idx = malloc(m * sizeof *idx);
+        if (!start || !idx) {
+            free(start);
+            free(idx);
+            free(pts);
+            return conica__fail(st, CONICA_ERR_NOMEM, 0, 0, "out of memory");
+        }
+#define CELL_OF(x, y, cx, cy)                                                                 \
+    do {                                                                                      \
+        double fx_ = ((x) - lo[0]) / cw, fy_ = ((y) - lo[1]) / ch;                             \
+        cx = fx_ <= 0 ? 0 : (fx_ >= (double)G ? G - 1 : (size_t)fx_);                          \
+        cy = fy_ <= 0 ? 0 : (fy_ >= (double)G ? G - 1 : (size_t)fy_);                          \
+    } while (0)
+        for (size_t j = 0; j < m; j++) {
+            size_t cx, cy;
+            CELL_OF(pts[3 * j], pts[3 * j + 1], cx, cy);
+            start[cy * G + cx + 1]++;
+        }
+        for (size_t c = 0; c < G * G; c++)
+            start[c + 1] += start[c];
+        {
+            size_t *fill = malloc(G * G * sizeof *fill);
+            if (!fill) {
+                free(start);
+                free(idx);
+                free(pts);
+                return conica__fail(st, CONICA_ERR_NOMEM, 0, 0, "out of memory");
+            }
+            memcpy(fill, start, G * G * sizeof *fill);
+            for (size_t j = 0; j < m; j++) {
+                size_t cx, cy;
+                CELL_OF(pts[3 * j], pts[3 * j + 1], cx, cy);
+                idx[fill[cy * G + cx]++] = j;
+            }
+            free(fill);
+        }
+        double p2c = 0.0;
         for (size_t i = 0; i < pl->n; i++) {
             for (int q = 0; q < 4; q++) {
-                double x[3];
+                double x[3] = {0, 0, 0};
                 if (q > 0 && i + 1 >= pl->n)
                     break;
-                for (size_t c = 0; c < d; c++) {
-                    double a0 = pl->xy[i * d + c];
-                    x[c] = q == 0 ? a0 : a0 + 0.25 * q * (pl->xy[(i + 1) * d + c] - a0);
-                }
                 if (q > 0) { /* skip segments across piece boundaries */
                     int across = 0;
                     for (size_t k = 1; k < pl->npieces; k++)
@@ -527,17 +579,41 @@ conica_code conica_plot_deviation(const conica_bspline *s, const conica_polyline
                     if (across)
                         break;
                 }
+                for (size_t c = 0; c < d; c++) {
+                    double a0 = pl->xy[i * d + c];
+                    x[c] = q == 0 ? a0 : a0 + 0.25 * q * (pl->xy[(i + 1) * d + c] - a0);
+                }
+                size_t cx, cy;
+                CELL_OF(x[0], x[1], cx, cy);
                 double best = INFINITY;
-                for (size_t j = 0; j < m; j++) {
-                    double r = 0;
-                    for (size_t c = 0; c < d; c++)
-                        r += (x[c] - pts[3 * j + c]) * (x[c] - pts[3 * j + c]);
-                    best = r < best ? r : best;
+                for (size_t r = 0; r <= G; r++) {
+                    size_t x0 = cx >= r ? cx - r : 0, x1 = cx + r < G ? cx + r : G - 1;
+                    size_t y0 = cy >= r ? cy - r : 0, y1 = cy + r < G ? cy + r : G - 1;
+                    for (size_t yy = y0; yy <= y1; yy++)
+                        for (size_t xx = x0; xx <= x1; xx++) {
+                            size_t ring = xx + r == cx || xx == cx + r || yy + r == cy ||
+                                          yy == cy + r;
+                            if (!ring)
+                                continue;
+                            for (size_t e = start[yy * G + xx]; e < start[yy * G + xx + 1]; e++) {
+                                const double *sp = pts + 3 * idx[e];
+                                double dd = 0;
+                                for (size_t c = 0; c < d; c++)
+                                    dd += (x[c] - sp[c]) * (x[c] - sp[c]);
+                                best = dd < best ? dd : best;
+                            }
+                        }
+                    double reach = (double)r * cs;
+                    if (best <= reach * reach)
+                        break;
                 }
                 best = sqrt(best);
                 p2c = best > p2c ? best : p2c;
             }
         }
+#undef CELL_OF
+        free(start);
+        free(idx);
         *poly_to_curve = p2c;
     }
     free(pts);
