@@ -22,6 +22,11 @@
  * L0*L1, y^2 degenerate (the tangent runs through the other end point, as
  * on collinear runs); such patches use the general fit. */
 #define CONICA__FAST_MIN_SINE 1e-13
+/* Irregular patches (S-shaped, or end normals that do not tilt apart):
+ * the new point may lie at most this many edge lengths from the edge's
+ * midpoint along its normal. Regular (convex) patches, which every conic
+ * produces, are not limited. */
+#define CONICA__IRREGULAR_MAX_T 1.0
 /* One-sided Jacobi: sweeps before giving up (converges in < 10 here). */
 #define CONICA__JACOBI_MAX_SWEEPS 60
 /* Dekker's splitter for the 64-bit significand of x87 long double: 2^32+1. */

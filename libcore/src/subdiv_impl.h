@@ -65,6 +65,15 @@ typedef struct SFX(frame) {
 
 /* ------------------------------------------------------------ arithmetic */
 
+/* max(|a|, |b|) inline (libm's fmax is a call at -O2, for NaN rules we do
+ * not need: callers check finiteness). */
+static REAL SFX(maxabs)(REAL a, REAL b)
+{
+    a = M(fabs)(a);
+    b = M(fabs)(b);
+    return a > b ? a : b;
+}
+
 #if REAL_IS_DOUBLE
 /* a*b - c*d with Kahan's FMA trick (seed 000, Code 4): error <= 1.5 ulp. */
 static REAL SFX(diffprod)(REAL a, REAL b, REAL c, REAL d)
@@ -268,7 +277,7 @@ static int SFX(make_frame)(const SFX(job) *j, size_t i, size_t i1, SFX(frame) *f
     f->hy = RC(0.5) * y1 - RC(0.5) * y0;
     f->mx = RC(0.5) * x0 + RC(0.5) * x1;
     f->my = RC(0.5) * y0 + RC(0.5) * y1;
-    mag = M(fmax)(M(fabs)(f->hx), M(fabs)(f->hy));
+    mag = SFX(maxabs)(f->hx, f->hy);
     if (!(mag > 0) || !isfinite(mag))
         return 0;
     f->sc = M(ldexp)(RC(1.0), -M(ilogb)(mag));
@@ -368,7 +377,7 @@ static int SFX(fast_fit)(const SFX(job) *j, const SFX(pair) *P, int cnt, REAL *p
             mu = r - h;
             lam = -n12;
         }
-        s = M(fmax)(M(fabs)(mu), M(fabs)(lam));
+        s = SFX(maxabs)(mu, lam);
         mu /= s;
         lam /= s;
     }
@@ -523,26 +532,78 @@ static int SFX(svd_fit)(SFX(worker) *w, const SFX(pair) *P, int cnt, REAL *q)
     return 0;
 }
 
-/* Fit and sample in the local frame with the general fit: x = 0 meets the
- * conic where q02 y^2 + 2 q01 y + q00 = 0; normal from Code 5. */
-static int SFX(svd_local)(SFX(worker) *w, const SFX(pair) *P, int cnt, REAL *py, REAL *gx,
-                          REAL *gy)
+/*
+ * General fit in the translate-and-scale frame: p -> (p - m) / |p1 - p0|,
+ * the frame of REFERENCE.md's measured local-frame variant of the reference
+ * (no rotation, so that on data that lie on no conic the fit's ||q|| = 1
+ * normalisation stays close to the reference's and its shapes follow the
+ * reference's). l(t) of eq. (7) becomes t * e with e the unit edge normal;
+ * a, b, c of Section 2.3 with m~ = (0,0,1), n~ = (e, 0); normal from
+ * Code 5. Writes the new point and its (unnormalised) normal in global
+ * coordinates. With `bounded` (an irregular patch, see SFX(edge)) an
+ * intersection farther than CONICA__IRREGULAR_MAX_T edge lengths from the
+ * midpoint counts as none. Returns 1 on success, 0 when the fit or the
+ * intersection fails.
+ */
+static int SFX(svd_tframe)(SFX(worker) *w, const SFX(frame) *f, const size_t *idx, int cnt,
+                           int bounded, REAL *ox, REAL *oy, REAL *nx, REAL *ny)
 {
-    REAL q[6];
-    if (cnt < 3 || SFX(svd_fit)(w, P, cnt, q) != 0)
+    const SFX(job) *j = w->job;
+    SFX(pair) P[CONICA__FIT_MAX_PAIRS];
+    REAL q[6], dx = 2 * f->hx, dy = 2 * f->hy, len, inv, ex, ey, a, b, t, x, y;
+    int k;
+
+    if (cnt < 3)
+        return 0;
+    len = M(sqrt)(FMA(f->hsx, f->hsx, f->hsy * f->hsy)) * 2 / f->sc;
+    inv = 1 / len;
+    if (!isfinite(inv) || !(inv > 0))
+        return 0;
+    for (k = 0; k < cnt; k++) {
+        size_t qi = idx[k];
+        REAL mx = j->nxy[2 * qi], my = j->nxy[2 * qi + 1];
+        REAL mag = SFX(maxabs)(mx, my), nl;
+        mx /= mag;
+        my /= mag;
+        nl = M(sqrt)(FMA(mx, mx, my * my));
+        P[k].x = (j->xy[2 * qi] - f->mx) * inv;
+        P[k].y = (j->xy[2 * qi + 1] - f->my) * inv;
+        P[k].nx = mx / nl;
+        P[k].ny = my / nl;
+        P[k].wv = k < 2 ? j->wev : j->wov;
+        P[k].wn = k < 2 ? j->wen : j->won;
+    }
+    if (SFX(svd_fit)(w, P, cnt, q) != 0)
         return 0;
     if (q[0] == 0 && q[1] == 0 && q[2] == 0 && q[3] == 0 && q[4] == 0 && q[5] == 0)
         return 0;
-    if (!SFX(nearest_root)(q[1], q[4], q[5], w->job->plain ? 2 : 0, py))
-        return 0;
-    if (w->job->plain) {
-        *gx = q[2] * *py + q[3];
-        *gy = q[1] * *py + q[4];
+    ex = -dy * inv;
+    ey = dx * inv;
+    if (j->plain) {
+        a = q[0] * ex * ex + 2 * q[2] * ex * ey + q[1] * ey * ey;
+        b = q[3] * ex + q[4] * ey;
     } else {
-        *gx = FMA(q[2], *py, q[3]);
-        *gy = FMA(q[1], *py, q[4]);
+        a = FMA(q[0] * ex, ex, FMA(2 * q[2] * ex, ey, q[1] * ey * ey));
+        b = FMA(q[3], ex, q[4] * ey);
     }
-    return isfinite(*gx) && isfinite(*gy) && !(*gx == 0 && *gy == 0);
+    if (!SFX(nearest_root)(a, b, q[5], j->plain ? 2 : 0, &t))
+        return 0;
+    if (bounded && !(M(fabs)(t) <= RC(CONICA__IRREGULAR_MAX_T)))
+        return 0;
+    x = t * ex;
+    y = t * ey;
+    if (j->plain) {
+        *nx = q[0] * x + q[2] * y + q[3];
+        *ny = q[2] * x + q[1] * y + q[4];
+    } else {
+        *nx = FMA(q[0], x, FMA(q[2], y, q[3]));
+        *ny = FMA(q[2], x, FMA(q[1], y, q[4]));
+    }
+    /* m + t * len * e = m + t * perp(p1 - p0) */
+    *ox = FMA(-t, dy, f->mx);
+    *oy = FMA(t, dx, f->my);
+    return isfinite(*nx) && isfinite(*ny) && !(*nx == 0 && *ny == 0) && isfinite(*ox) &&
+           isfinite(*oy);
 }
 
 /* ------------------------------------------------------- edge points */
@@ -637,8 +698,8 @@ static void SFX(edge)(SFX(worker) *w, size_t i, REAL *oxy, REAL *on)
     size_t idx[CONICA__FIT_MAX_PAIRS], i1;
     SFX(pair) P[CONICA__FIT_MAX_PAIRS];
     SFX(frame) f;
-    REAL y = 0, gx = 0, gy = 0, ox, oy, nx, ny;
-    int cnt, ok = 0, g, maxl = 1, maxr = 1;
+    REAL y = 0, gx = 0, gy = 0, ox = 0, oy = 0, nx = 0, ny = 0;
+    int cnt, ok = 0, g, maxl = 1, maxr = 1, regular = 1;
 
     if (j->ref) {
         SFX(edge_ref)(w, i, oxy, on);
@@ -662,10 +723,41 @@ static void SFX(edge)(SFX(worker) *w, size_t i, REAL *oxy, REAL *on)
     }
     cnt = SFX(collect)(j, i, maxl, maxr, idx);
     SFX(local_pairs)(j, &f, idx, cnt, P);
-    if (j->fast)
-        ok = SFX(fast_fit)(j, P, cnt, &y, &gx, &gy);
+    /* The pencil describes a convex arc between the end points; it is used
+     * when the patch looks like one: the end normals tilt apart (a0*b0 and
+     * a1*b1 of opposite signs, whatever the normals' orientation) and the
+     * first outer neighbours lie on one side of the edge. Elsewhere
+     * (S-shaped or inconsistent patches, which only data on no conic
+     * produce) the general fit decides, as in the reference; no conic is
+ * consistent with such a patch, so its fit is ill-conditioned and an
+ * intersection far off the edge is an artefact: it must lie within
+ * CONICA__IRREGULAR_MAX_T edge lengths of the midpoint, else the patch
+ * grows and finally falls back to the midpoint. (Measured on the
+ * reference's examples: without the bound lG2's shape leaves the
+ * reference's by 0.37 of its diagonal through one such edge; with it every
+ * example stays within 2.7e-2.) */
+    if (j->fast) {
+        int k;
+        regular = (P[0].nx * P[0].ny) * (P[1].nx * P[1].ny) < 0;
+        for (k = 3; regular && k < cnt; k++)
+            if ((P[2].y > 0 && P[k].y < 0) || (P[2].y < 0 && P[k].y > 0))
+                regular = 0;
+        if (regular)
+            ok = SFX(fast_fit)(j, P, cnt, &y, &gx, &gy);
+        else
+            ok = -1;
+        if (ok > 0) {
+            /* Back to global coordinates: (gx, gy) in the frame is
+             * gx*hs + gy*perp(hs) (a rotation times |hs| in [1, 2*sqrt2),
+             * so magnitudes stay O(|g|)). */
+            ox = FMA(-y, f.hy, f.mx);
+            oy = FMA(y, f.hx, f.my);
+            nx = FMA(gx, f.hsx, -gy * f.hsy);
+            ny = FMA(gx, f.hsy, gy * f.hsx);
+        }
+    }
     if (!j->fast || ok < 0)
-        ok = SFX(svd_local)(w, P, cnt, &y, &gx, &gy);
+        ok = SFX(svd_tframe)(w, &f, idx, cnt, !regular, &ox, &oy, &nx, &ny);
     /* No real intersection: grow the patch one neighbour a side at a time
      * (REFERENCE.md section 1) and refit with the general fit. */
     for (g = 2; !ok && g <= j->maxgrow; g++) {
@@ -673,42 +765,32 @@ static void SFX(edge)(SFX(worker) *w, size_t i, REAL *oxy, REAL *on)
         if (c2 <= cnt)
             continue;
         cnt = c2;
-        SFX(local_pairs)(j, &f, idx, cnt, P);
-        ok = SFX(svd_local)(w, P, cnt, &y, &gx, &gy);
+        ok = SFX(svd_tframe)(w, &f, idx, cnt, !regular, &ox, &oy, &nx, &ny);
         if (ok)
             w->grown++;
     }
-    if (ok) {
-        /* Orient the sampled normal like the edge's end normals (their sum;
-         * the frame's y axis, n_edge, if they cancel). */
-        REAL sx = P[0].nx + P[1].nx, sy = P[0].ny + P[1].ny;
-        if (sx == 0 && sy == 0)
-            sy = 1;
-        if (gx * sx + gy * sy < 0) {
-            gx = -gx;
-            gy = -gy;
-        }
-        ox = FMA(-y, f.hy, f.mx);
-        oy = FMA(y, f.hx, f.my);
-    } else {
+    if (!ok || !isfinite(ox) || !isfinite(oy) || !isfinite(nx) || !isfinite(ny) ||
+        (nx == 0 && ny == 0)) {
         /* Last resort: the midpoint with the edge normal (as the reference). */
-        REAL sx = P[0].nx + P[1].nx, sy = P[0].ny + P[1].ny;
-        w->fallbacks++;
-        ox = f.mx;
-        oy = f.my;
-        gx = 0;
-        gy = (sy < 0 && !(sx == 0 && sy == 0)) ? -1 : 1;
-    }
-    /* Back to global coordinates: (gx, gy) in the frame is gx*hs + gy*perp(hs)
-     * (a rotation times |hs| in [1, 2*sqrt2), so magnitudes stay O(|g|)). */
-    nx = FMA(gx, f.hsx, -gy * f.hsy);
-    ny = FMA(gx, f.hsy, gy * f.hsx);
-    if (!isfinite(ox) || !isfinite(oy) || !isfinite(nx) || !isfinite(ny) || (nx == 0 && ny == 0)) {
         w->fallbacks++;
         ox = f.mx;
         oy = f.my;
         nx = -f.hsy;
         ny = f.hsx;
+    }
+    {
+        /* Orient the normal like the edge's end normals (their sum; n_edge
+         * if they cancel), so the output keeps the input's orientation. */
+        REAL sx = FMA(P[0].nx, f.hsx, -P[0].ny * f.hsy) + FMA(P[1].nx, f.hsx, -P[1].ny * f.hsy);
+        REAL sy = FMA(P[0].nx, f.hsy, P[0].ny * f.hsx) + FMA(P[1].nx, f.hsy, P[1].ny * f.hsx);
+        if (sx == 0 && sy == 0) {
+            sx = -f.hsy;
+            sy = f.hsx;
+        }
+        if (nx * sx + ny * sy < 0) {
+            nx = -nx;
+            ny = -ny;
+        }
     }
     SFX(store)(j, ox, oy, nx, ny, oxy, on);
 }
@@ -1052,7 +1134,7 @@ static conica_code SFX(run)(const SFX(input) *in, const conica_subdiv_settings *
      * and never a NaN. */
     for (i = 0; i < N; i++) {
         REAL nx = An[2 * i], ny = An[2 * i + 1], len;
-        REAL mag = M(fmax)(M(fabs)(nx), M(fabs)(ny));
+        REAL mag = SFX(maxabs)(nx, ny);
         if (!isfinite(A[2 * i]) || !isfinite(A[2 * i + 1]) || !(mag > 0) || !isfinite(mag)) {
             code = conica__fail(st, CONICA_ERR_NUMERIC, 0, i,
                                 "point %zu of the output is not finite or has no normal", i);
