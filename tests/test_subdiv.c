@@ -450,6 +450,30 @@ TEST_CASE("random ellipse and hyperbola arcs are reproduced", "[subdiv][conic][r
     }
 }
 
+TEST_CASE("a narrow ellipse sampled at its vertices is reproduced", "[subdiv][conic]")
+{
+    /* Tangents at the samples are parallel or perpendicular to the edges'
+     * neighbours: the pencil's corner cases. x^2/100 + y^2 = 1. */
+    double xy[8] = {10, 0, 0, 1, -10, 0, 0, -1}, nn[8] = {1, 0, 0, 1, -1, 0, 0, -1};
+    conica_curve in = {4, 4, xy, nn, 1}, out;
+    conica_subdiv_settings s = conica_subdiv_defaults();
+    conica_subdiv_info info;
+    conic q = {0.01L, 1, 0, 0, 0, -1};
+    int mode;
+    conica_curve_init(&out);
+    conica_subdiv_info_init(&info);
+    for (mode = 0; mode < 2; mode++) {
+        s.levels = 8;
+        s.force_svd = mode;
+        INFO("force_svd %d", mode);
+        REQUIRE(conica_subdivide(&in, &s, &out, &info, NULL) == CONICA_OK);
+        CHECK_EQ_U(info.midpoint_fallbacks, 0);
+        CHECK_LE((double)errors_d(&q, &out).Emax, 1e-13);
+        conica_subdiv_info_free(&info);
+    }
+    conica_curve_free(&out);
+}
+
 /* -------------------------------------------- fast path == SVD path */
 
 /* On exact conic samples both paths reproduce the conic, so they may only

@@ -724,21 +724,21 @@ static void SFX(edge)(SFX(worker) *w, size_t i, REAL *oxy, REAL *on)
     cnt = SFX(collect)(j, i, maxl, maxr, idx);
     SFX(local_pairs)(j, &f, idx, cnt, P);
     /* The pencil describes a convex arc between the end points; it is used
-     * when the patch looks like one: the end normals tilt apart (a0*b0 and
-     * a1*b1 of opposite signs, whatever the normals' orientation) and the
-     * first outer neighbours lie on one side of the edge. Elsewhere
-     * (S-shaped or inconsistent patches, which only data on no conic
-     * produce) the general fit decides, as in the reference; no conic is
- * consistent with such a patch, so its fit is ill-conditioned and an
- * intersection far off the edge is an artefact: it must lie within
- * CONICA__IRREGULAR_MAX_T edge lengths of the midpoint, else the patch
- * grows and finally falls back to the midpoint. (Measured on the
- * reference's examples: without the bound lG2's shape leaves the
- * reference's by 0.37 of its diagonal through one such edge; with it every
- * example stays within 2.7e-2.) */
+     * when the patch looks like one: the end normals do not tilt the same
+     * way (a0*b0 and a1*b1 not of one strict sign, whatever the normals'
+     * orientation) and the first outer neighbours lie on one side of the
+     * edge. Elsewhere (S-shaped or inconsistent patches, which only data on
+     * no conic produce) the general fit decides, as in the reference; no
+     * conic is consistent with such a patch, so its fit is ill-conditioned
+     * and an intersection far off the edge is an artefact: it must lie
+     * within CONICA__IRREGULAR_MAX_T edge lengths of the midpoint, else the
+     * patch grows and finally falls back to the midpoint. (Measured on the
+     * reference's examples: without the bound lG2's shape leaves the
+     * reference's by 0.37 of its diagonal through one such edge; with it
+     * every example stays within 2.7e-2.) */
     if (j->fast) {
         int k;
-        regular = (P[0].nx * P[0].ny) * (P[1].nx * P[1].ny) < 0;
+        regular = (P[0].nx * P[0].ny) * (P[1].nx * P[1].ny) <= 0;
         for (k = 3; regular && k < cnt; k++)
             if ((P[2].y > 0 && P[k].y < 0) || (P[2].y < 0 && P[k].y > 0))
                 regular = 0;
