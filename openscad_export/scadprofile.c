@@ -588,7 +588,11 @@ static char *header_text(int argc, char **argv, const options *o, const char *ki
     if (n < cap)
         n += (size_t)snprintf(h + n, cap - n, "\nsource: %s (%s)\n", o->in, kind_name);
     if (n < cap) {
-        const char *u = o->unit == U_PX ? "px" : o->unit == U_IN ? "in" : "mm";
+        /* SVG output units are chosen; other inputs keep their own units */
+        const char *u = strcmp(kind_name, "SVG") != 0 ? "(input units)"
+                        : o->unit == U_PX                ? "px"
+                        : o->unit == U_IN                ? "in"
+                                                         : "mm";
         if (o->levels >= 0)
             snprintf(h + n, cap - n, "refinement: %d subdivision levels, every point kept", o->levels);
         else if (o->flatten_only)
