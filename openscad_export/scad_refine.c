@@ -72,6 +72,37 @@ conica_code conica_scad_refine(const conica_curve *in, double tol, size_t max_de
                                  CONICA_SUBDIV_MAX_LEVELS);
     }
     rc = conica_scad_thin(dense.xy, dense.n, 1, tol - err, out, nout, st);
+    /* A chord spans a whole number of dense points, and subdivision doubles
+     * them, so the count can sit a few per cent above the optimum (a circle
+     * at 0.001 of its radius 50: chords of 32.97 dense steps become 32). One
+     * more level halves that granularity; keep it when it saves points. */
+    if (rc == CONICA_OK && level < CONICA_SUBDIV_MAX_LEVELS) {
+        size_t count = conica_subdiv_count(in->n, 1, level + 1);
+        conica_curve finer;
+        conica_curve_init(&finer);
+        set.levels = level + 1;
+        if (count != 0 && count <= max_dense &&
+            conica_subdivide(in, &set, &finer, NULL, NULL) == CONICA_OK) {
+            double fe = SAGITTA_TO_CHORD_ERROR * max_sagitta(finer.xy, finer.n), *pts = NULL;
+            size_t m = 0;
+            if (fe < tol && conica_scad_thin(finer.xy, finer.n, 1, tol - fe, &pts, &m, NULL) ==
+                                CONICA_OK) {
+                if (m < *nout) {
+                    free(*out);
+                    *out = pts;
+                    *nout = m;
+                    level++;
+                    err = fe;
+                    conica_curve_free(&dense);
+                    dense = finer;
+                    conica_curve_init(&finer);
+                } else {
+                    free(pts);
+                }
+            }
+        }
+        conica_curve_free(&finer);
+    }
     if (rc == CONICA_OK && info) {
         info->levels = level;
         info->dense_points = dense.n;
