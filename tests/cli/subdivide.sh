@@ -95,6 +95,22 @@ check_true "stdout empty with -o" test ! -s "$out"
 check_true "-o output equals stdout output" cmp -s "$tmp/outdir/c.txt" "$tmp/ref.txt"
 check_true "no other file in the directory" test "$(ls "$tmp/outdir" | wc -l)" -eq 1
 
+begin_case "-o to a FIFO or device writes in place (never renames over it)"
+# Renaming a temporary over /dev/null as root replaces the device with a
+# regular file; a FIFO shows the same without risking the machine.
+if mkfifo "$tmp/fifo" 2>/dev/null; then
+    cat "$tmp/fifo" >"$tmp/fifo.out" &
+    reader=$!
+    check "-o FIFO" "$conica" subdivide -k 2 -o "$tmp/fifo" "$tmp/circle.txt"
+    wait "$reader"
+    check_true "still a FIFO" test -p "$tmp/fifo"
+    check_true "the reader got the curve" cmp -s "$tmp/fifo.out" "$tmp/ref.txt"
+else
+    skip_case "mkfifo not available"
+fi
+check_exit 1 "-o a directory" "$conica" subdivide -k 1 -o "$tmp" "$tmp/circle.txt"
+check_grep "is a directory" "$err"
+
 begin_case "--time prints exactly one line on stderr in the documented format"
 check "--time" "$conica" subdivide -k 4 --time "$tmp/circle.txt"
 check_true "one stderr line" test "$(wc -l <"$err")" -eq 1
