@@ -228,7 +228,8 @@ typedef struct conica_scad_refine_info {
  * @brief A closed point-normal curve refined by conic subdivision until the
  *        dense polyline is within tol/256 of the limit curve (estimated from
  *        its three-point sagittas), then thinned to the fewest points with
- *        chords within the rest of the tolerance (conica_scad_thin).
+ *        chords within the rest of the tolerance (conica_scad_thin); one
+ *        more level is thinned as well and kept when it needs fewer points.
  * @param[in]  in          closed input curve (normals optional)
  * @param[in]  tol         > 0, in the curve's units
  * @param[in]  max_dense   cap on dense points (0: CONICA_SCAD_DEFAULT_MAX_DENSE)
