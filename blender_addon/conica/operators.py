@@ -239,20 +239,33 @@ class _Result:
         self.t_core = 0.0  # seconds inside libcore (measured in C)
 
 
+def _fill_poly(sp, r, select):
+    n = len(r.co) // 4
+    have = len(sp.points)
+    if n > have:
+        sp.points.add(n - have)
+    sp.points.foreach_set("co", r.co)
+    sp.points.foreach_set("radius", r.attrs[0::2])
+    sp.points.foreach_set("tilt", r.attrs[1::2])
+    if select:
+        sp.points.foreach_set("select", [r.selected] * n)
+
+
 def write_results(cu, results, select):
-    """Append the new splines, then remove the ones they replace (spline
-    order: untouched splines first, then the new ones in input order)."""
+    """Write the results. A POLY spline that stays POLY is refilled in place
+    (it only gains points: cheaper, and it keeps its place); other splines
+    are appended and the ones they replace removed afterwards."""
     old = list(cu.splines)
+    replaced = []
     for r in results:
+        src = old[r.index]
+        if r.kind == "POLY" and src.type == "POLY" and len(r.co) // 4 >= len(src.points):
+            _fill_poly(src, r, select)
+            continue
+        replaced.append(src)
         if r.kind == "POLY":
-            n = len(r.co) // 4
             sp = cu.splines.new("POLY")
-            sp.points.add(n - 1)
-            sp.points.foreach_set("co", r.co)
-            sp.points.foreach_set("radius", r.attrs[0::2])
-            sp.points.foreach_set("tilt", r.attrs[1::2])
-            if select:
-                sp.points.foreach_set("select", [r.selected] * n)
+            _fill_poly(sp, r, select)
         else:
             n = len(r.co) // 3
             sp = cu.splines.new("BEZIER")
@@ -273,8 +286,8 @@ def write_results(cu, results, select):
         sp.material_index = r.material
         sp.use_smooth = r.smooth
         sp.resolution_u = r.resolution
-    for r in results:
-        cu.splines.remove(old[r.index])
+    for sp in replaced:
+        cu.splines.remove(sp)
 
 
 def _new_object_copy(context, ob):
