@@ -710,6 +710,57 @@ def degenerate_splines_reported():
 
 
 @case
+def keep_corners_and_modes():
+    fresh_scene()
+    ob = new_curve("square")
+    sq = [(0, 0, 0), (2, 0, 0), (2, 2, 0), (0, 2, 0)]
+    add_poly(ob.data, sq, True)
+    select_only(ob)
+    bpy.ops.curve.conic_subdivide(levels=2, keep_corners=True, corner_angle=math.radians(60))
+    st = poly_co(ob.data.splines[0])
+    off = max(min(abs(p[0]), abs(p[0] - 2), abs(p[1]), abs(p[1] - 2)) for p in st)
+    report("keep_corners_straight_edges", len(st) == 16 and off < 1e-6,
+           "%d points, %.3g off the square" % (len(st), off))
+    fresh_scene()
+    ob = new_curve("square_round")
+    add_poly(ob.data, sq, True)
+    select_only(ob)
+    bpy.ops.curve.conic_subdivide(levels=2)
+    st = poly_co(ob.data.splines[0])
+    off = max(min(abs(p[0]), abs(p[0] - 2), abs(p[1]), abs(p[1] - 2)) for p in st)
+    report("no_corners_rounds_the_square", off > 0.05, "%.3g" % off)
+    # precise and estimated normals on the circle
+    for name, kw, tol in (("precise", dict(precise=True), 4 * F32),
+                          ("estimate_normals", dict(normals="ESTIMATE"), 2e-3)):
+        fresh_scene()
+        ob = new_curve("c_" + name)
+        circle_bezier(ob.data)
+        select_only(ob)
+        r = bpy.ops.curve.conic_subdivide(levels=3, **kw)
+        st = poly_co(ob.data.splines[0])
+        check_on_conic("mode_" + name, st, lambda p: math.hypot(p[0], p[1]) - 1.0, tol)
+        report("mode_%s_finished" % name, r == {"FINISHED"} and len(st) == 32, str(r))
+    # a 2D curve keeps z exactly 0
+    fresh_scene()
+    ob = new_curve("flat")
+    ob.data.dimensions = "2D"
+    add_poly(ob.data, [(math.cos(i), math.sin(i) * 0.5, 0) for i in range(6)], True)
+    select_only(ob)
+    bpy.ops.curve.conic_subdivide(levels=2)
+    st = poly_co(ob.data.splines[0])
+    report("curve_2d_z_exact", len(st) >= 24 and all(p[2] == 0.0 for p in st))
+    # non-planar alone: cancelled, unchanged
+    fresh_scene()
+    ob = new_curve("twisted")
+    add_poly(ob.data, [(0, 0, 0), (1, 0, 0.5), (1, 1, 0), (0, 1, 0.5)], True)
+    before = curve_snapshot(ob.data)
+    select_only(ob)
+    r = bpy.ops.curve.conic_subdivide(levels=2)
+    report("nonplanar_unchanged", r == {"CANCELLED"} and curve_snapshot(ob.data) == before,
+           str(r))
+
+
+@case
 def save_and_reload():
     fresh_scene()
     ob = new_curve("saved")
