@@ -865,6 +865,55 @@ TEST_CASE("limits: levels and the output budget", "[subdiv][limits]")
     CHECK_EQ_U(conica_subdiv_count(SIZE_MAX / 2, 1, 2), 0);
 }
 
+TEST_CASE("threads give bit-identical results", "[subdiv][threads]")
+{
+    size_t n = 3000, i, k;
+    double *xy = malloc(2 * n * sizeof *xy);
+    conica_curve in, ref, out;
+    conica_subdiv_settings s = conica_subdiv_defaults();
+    conica_subdiv_info i1, i2;
+    int th, mode;
+    REQUIRE(xy != NULL);
+    for (i = 0; i < n; i++) { /* r = 1 + 0.3 cos 5t: inflection points too */
+        double t = 2 * M_PI * (double)i / (double)n, r = 1 + 0.3 * cos(5 * t);
+        xy[2 * i] = r * cos(t);
+        xy[2 * i + 1] = r * sin(t);
+    }
+    in.n = in.cap = n;
+    in.xy = xy;
+    in.nxy = NULL;
+    in.closed = 1;
+    conica_curve_init(&ref);
+    conica_curve_init(&out);
+    conica_subdiv_info_init(&i1);
+    conica_subdiv_info_init(&i2);
+    for (mode = 0; mode < 2; mode++) {
+        s.levels = 3;
+        s.precise = mode;
+        s.threads = 1;
+        REQUIRE(conica_subdivide(&in, &s, &ref, &i1, NULL) == CONICA_OK);
+        CHECK_GT((double)i1.inflections, 0.0);
+        for (th = 2; th <= 5; th += 3) {
+            s.threads = th;
+            INFO("precise %d threads %d", mode, th);
+            REQUIRE(conica_subdivide(&in, &s, &out, &i2, NULL) == CONICA_OK);
+            REQUIRE_EQ_U(out.n, ref.n);
+            CHECK(memcmp(out.xy, ref.xy, 2 * ref.n * sizeof(double)) == 0);
+            CHECK(memcmp(out.nxy, ref.nxy, 2 * ref.n * sizeof(double)) == 0);
+            CHECK_EQ_U(i2.inflections, i1.inflections);
+            CHECK_EQ_U(i2.patch_grown, i1.patch_grown);
+            CHECK_EQ_U(i2.midpoint_fallbacks, i1.midpoint_fallbacks);
+            for (k = 0; k < i1.inflections; k++)
+                CHECK_EQ_U(i2.inflection_index[k], i1.inflection_index[k]);
+            conica_subdiv_info_free(&i2);
+        }
+        conica_subdiv_info_free(&i1);
+    }
+    conica_curve_free(&ref);
+    conica_curve_free(&out);
+    free(xy);
+}
+
 /* ------------------------------------------------------ misc settings */
 
 TEST_CASE("estimated normals, ablations and statistics", "[subdiv][settings]")

@@ -5,6 +5,7 @@
 
 #include <float.h>
 #include <math.h>
+#include <pthread.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -27,6 +28,10 @@
  * midpoint along its normal. Regular (convex) patches, which every conic
  * produces, are not limited. */
 #define CONICA__IRREGULAR_MAX_T 1.0
+/* Threads: at most this many, and only with at least this many edges
+ * each (below that, thread start-up costs more than it saves). */
+#define CONICA__MAX_THREADS 16
+#define CONICA__THREAD_MIN_EDGES 4096
 /* One-sided Jacobi: sweeps before giving up (converges in < 10 here). */
 #define CONICA__JACOBI_MAX_SWEEPS 60
 /* Dekker's splitter for the 64-bit significand of x87 long double: 2^32+1. */

@@ -811,6 +811,54 @@ static void SFX(level)(SFX(worker) *w, REAL *dxy, REAL *dn, size_t e_begin, size
     }
 }
 
+/* Optional threads (settings.threads): the edges of one level split into
+ * contiguous chunks, one worker each. Every edge point depends only on the
+ * previous level, so results are bit-identical for any thread count. */
+typedef struct SFX(task) {
+    SFX(worker) *w;
+    REAL *dxy, *dn;
+    size_t begin, end;
+} SFX(task);
+
+static void *SFX(task_main)(void *arg)
+{
+    SFX(task) *t = arg;
+    SFX(level)(t->w, t->dxy, t->dn, t->begin, t->end);
+    return NULL;
+}
+
+static void SFX(level_threads)(SFX(worker) *wk, int nth, REAL *dxy, REAL *dn, size_t n)
+{
+    SFX(task) task[CONICA__MAX_THREADS];
+    pthread_t tid[CONICA__MAX_THREADS];
+    int started[CONICA__MAX_THREADS], t;
+    size_t chunk;
+
+    if (nth > 1 && n / (size_t)nth < CONICA__THREAD_MIN_EDGES)
+        nth = (int)(n / CONICA__THREAD_MIN_EDGES) > 1 ? (int)(n / CONICA__THREAD_MIN_EDGES) : 1;
+    if (nth <= 1) {
+        SFX(level)(wk, dxy, dn, 0, n);
+        return;
+    }
+    chunk = (n + (size_t)nth - 1) / (size_t)nth;
+    for (t = 0; t < nth; t++) {
+        task[t].w = &wk[t];
+        task[t].dxy = dxy;
+        task[t].dn = dn;
+        task[t].begin = (size_t)t * chunk < n ? (size_t)t * chunk : n;
+        task[t].end = (size_t)(t + 1) * chunk < n ? (size_t)(t + 1) * chunk : n;
+    }
+    for (t = 1; t < nth; t++)
+        started[t] = pthread_create(&tid[t], NULL, SFX(task_main), &task[t]) == 0;
+    SFX(task_main)(&task[0]);
+    for (t = 1; t < nth; t++) {
+        if (started[t])
+            pthread_join(tid[t], NULL);
+        else
+            SFX(task_main)(&task[t]); /* no thread: do it here */
+    }
+}
+
 /* ----------------------------------------------------- inflection points */
 
 /* Input accessor: the caller's double or long double arrays. */
@@ -1030,10 +1078,12 @@ static conica_code SFX(run)(const SFX(input) *in, const conica_subdiv_settings *
     unsigned char *flags = NULL;
     size_t *infl = NULL;
     SFX(job) job;
-    SFX(worker) wk;
+    SFX(worker) wk[CONICA__MAX_THREADS];
 #if REAL_IS_DOUBLE
-    conica__svdws ws;
+    conica__svdws ws[CONICA__MAX_THREADS];
 #endif
+    int nth = s->threads > 1 ? (s->threads < CONICA__MAX_THREADS ? s->threads : CONICA__MAX_THREADS)
+                             : 1, t;
     conica_code code = CONICA_OK;
 
     N = conica_subdiv_count(n0, in->closed, L);
@@ -1057,9 +1107,11 @@ static conica_code SFX(run)(const SFX(input) *in, const conica_subdiv_settings *
         infl = malloc(ninfl * sizeof *infl);
     }
 #if REAL_IS_DOUBLE
-    ws.work = NULL;
-    if (L > 0 && conica__svdws_init(&ws) != 0)
-        code = CONICA_ERR_NOMEM;
+    for (t = 0; t < nth; t++)
+        ws[t].work = NULL;
+    for (t = 0; t < nth && L > 0; t++)
+        if (conica__svdws_init(&ws[t]) != 0)
+            code = CONICA_ERR_NOMEM;
 #endif
     if (!A || !An || (NB && (!B || !Bn)) || (ninfl && (!flags || !infl)))
         code = CONICA_ERR_NOMEM;
@@ -1071,7 +1123,8 @@ static conica_code SFX(run)(const SFX(input) *in, const conica_subdiv_settings *
         free(flags);
         free(infl);
 #if REAL_IS_DOUBLE
-        conica__svdws_free(&ws);
+        for (t = 0; t < nth; t++)
+            conica__svdws_free(&ws[t]);
 #endif
         return conica__fail(st, code, 0, 0, "out of memory for %zu output points", N);
     }
@@ -1093,12 +1146,14 @@ static conica_code SFX(run)(const SFX(input) *in, const conica_subdiv_settings *
         job.closed = in->closed;
         job.maxgrow = ref ? (s->patch_grow < 3 ? s->patch_grow : 3) : s->patch_grow;
         job.infl = ninfl ? flags : NULL;
-        wk.job = &job;
+        for (t = 0; t < nth; t++) {
+            wk[t].job = &job;
 #if REAL_IS_DOUBLE
-        wk.ws = &ws;
+            wk[t].ws = &ws[t];
 #endif
-        wk.grown = 0;
-        wk.fallbacks = 0;
+            wk[t].grown = 0;
+            wk[t].fallbacks = 0;
+        }
         stats->edge_points = 0;
         for (lev = 1; lev <= L; lev++) {
             REAL *dx = ((L - lev) % 2) ? B : A, *dn = ((L - lev) % 2) ? Bn : An;
@@ -1106,7 +1161,7 @@ static conica_code SFX(run)(const SFX(input) *in, const conica_subdiv_settings *
             job.n = cur;
             job.xy = sx;
             job.nxy = sn;
-            SFX(level)(&wk, dx, dn, 0, cur);
+            SFX(level_threads)(wk, nth, dx, dn, cur);
             stats->edge_points += ne;
             if (flags) {
                 /* Inflection flags follow their points: index i -> 2i. */
@@ -1120,15 +1175,20 @@ static conica_code SFX(run)(const SFX(input) *in, const conica_subdiv_settings *
             sx = dx;
             sn = dn;
         }
-        stats->patch_grown = wk.grown;
-        stats->midpoint_fallbacks = wk.fallbacks;
+        stats->patch_grown = 0;
+        stats->midpoint_fallbacks = 0;
+        for (t = 0; t < nth; t++) {
+            stats->patch_grown += wk[t].grown;
+            stats->midpoint_fallbacks += wk[t].fallbacks;
+        }
         (void)cur;
     }
     free(B);
     free(Bn);
     free(flags);
 #if REAL_IS_DOUBLE
-    conica__svdws_free(&ws);
+    for (t = 0; t < nth; t++)
+        conica__svdws_free(&ws[t]);
 #endif
     /* Unit normals out (kept unnormalised between levels, Section 2.3),
      * and never a NaN. */
