@@ -45,7 +45,10 @@ int plotsvg_common_arg(const char *prog, const char *cmd, const char *a, int has
 
 double plotsvg_curvature(const double a[2], const double b[2], const double c[2])
 {
-    /* seed 000, Code 3: |ab x cb| / (|ab| |cb| |ac|) = 2 sin(angle)/|ac| = 1/R */
+    /* seed 000, Code 3: |ab x cb| / (|ab| |cb| |ac|) = sin(angle at b) / |ac|,
+     * and the circumradius is R = |ac| / (2 sin(angle at b)), so 1/R is twice
+     * what Code 3 returns (a constant factor its comb scale absorbs; we want
+     * the true curvature so that --scale and the tests mean what they say). */
     double abx = a[0] - b[0], aby = a[1] - b[1];
     double cbx = c[0] - b[0], cby = c[1] - b[1];
     double acx = a[0] - c[0], acy = a[1] - c[1];
@@ -54,7 +57,7 @@ double plotsvg_curvature(const double a[2], const double b[2], const double c[2]
     if (denom == 0.0)
         return 0.0;
     t = abx * cby - aby * cbx;
-    return sqrt(t * t / denom);
+    return 2.0 * sqrt(t * t / denom);
 }
 
 double plotsvg_curvatures(const double *xy, const double *nxy, size_t n, int closed,

@@ -43,7 +43,8 @@ int plotsvg_common_arg(const char *prog, const char *cmd, const char *a, int has
 /* ------------------------------------------------------------ curvature */
 
 /* Curvature 1/R of the circle through a, b, c (seed 000, Code 3, in
- * double); 0 when two of the points coincide. */
+ * double, times the factor 2 Code 3 leaves out); 0 when two of the points
+ * coincide. */
 double plotsvg_curvature(const double a[2], const double b[2], const double c[2]);
 
 /* kappa[i] at every vertex from its two neighbours (closed: all vertices;
