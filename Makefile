@@ -113,12 +113,9 @@ $(BUILD)/bin/conica: $(CONICA_OBJS) $(ALL_LIBS)
 
 $(BUILD)/obj/libcore/tools/conica.o: $(CMD_DEF)
 
-$(BUILD)/conica.pc: Makefile
-	@mkdir -p $(@D)
-	printf '%s\n' 'prefix=$(PREFIX)' 'libdir=$${prefix}/lib' 'includedir=$${prefix}/include' '' \
-	  'Name: conica' 'Description: Conic-preserving curve subdivision and adaptive spline plotting' \
-	  'Version: $(VERSION)' 'Libs: -L$${libdir} -lconica' 'Libs.private: $(CORE_LIBS)' \
-	  'Cflags: -I$${includedir}' > $@
+# conica.pc is rewritten whenever PREFIX changes (and only then).
+PC_TEXT := prefix=$(PREFIX)\nlibdir=$${prefix}/lib\nincludedir=$${prefix}/include\n\nName: conica\nDescription: Conic-preserving curve subdivision and adaptive spline plotting\nVersion: $(VERSION)\nLibs: -L$${libdir} -lconica\nLibs.private: $(CORE_LIBS)\nCflags: -I$${includedir}\n
+$(shell mkdir -p $(BUILD) && { printf '$(PC_TEXT)' | cmp -s - $(BUILD)/conica.pc || printf '$(PC_TEXT)' > $(BUILD)/conica.pc; })
 
 # ---------------------------------------------------------------- tests
 $(BUILD)/obj/tests/%.o: CPPFLAGS += -Itests/runner -Ilibcore/src -Ilibcore/tools

@@ -112,6 +112,7 @@ int cli_read_file(const char *prog, const char *path, size_t max_bytes, char **b
 int cli_output_open(const char *prog, const char *path, cli_output *out)
 {
     static const char suffix[] = ".tmpXXXXXX";
+    struct stat sb;
     size_t plen;
     int fd;
 
@@ -120,6 +121,14 @@ int cli_output_open(const char *prog, const char *path, cli_output *out)
     out->tmp = NULL;
     if (path == NULL || strcmp(path, "-") == 0) {
         out->f = stdout;
+        return 0;
+    }
+    if (stat(path, &sb) == 0 && !S_ISREG(sb.st_mode)) {
+        if (S_ISDIR(sb.st_mode))
+            return cli_error(prog, path, "is a directory");
+        out->f = fopen(path, "wb");
+        if (!out->f)
+            return cli_error(prog, path, "cannot open output: %s", strerror(errno));
         return 0;
     }
     plen = strlen(path);
@@ -163,9 +172,18 @@ int cli_output_commit(const char *prog, cli_output *out)
     if (!out->f)
         return cli_error(prog, out->path, "output not open");
     if (!out->tmp) {
-        if (fflush(out->f) != 0 || ferror(out->f))
-            return cli_error(prog, "<stdout>", "write error: %s", strerror(errno));
+        /* stdout, or a device written in place */
+        int bad = fflush(out->f) != 0 || ferror(out->f);
+        int err = errno;
+        int is_stdout = out->f == stdout;
+        if (!is_stdout && fclose(out->f) != 0 && !bad) {
+            bad = 1;
+            err = errno;
+        }
         out->f = NULL;
+        if (bad)
+            return cli_error(prog, is_stdout ? "<stdout>" : "<output>", "write error: %s",
+                             strerror(err));
         return 0;
     }
     if (fflush(out->f) != 0 || ferror(out->f) || fsync(fileno(out->f)) != 0) {
@@ -199,11 +217,10 @@ int cli_output_commit(const char *prog, cli_output *out)
 
 void cli_output_abort(cli_output *out)
 {
-    if (out->tmp) {
-        if (out->f)
-            fclose(out->f);
+    if (out->f && out->f != stdout)
+        fclose(out->f);
+    if (out->tmp)
         unlink(out->tmp);
-    }
     free(out->tmp);
     free(out->path);
     out->f = NULL;

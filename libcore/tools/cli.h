@@ -34,11 +34,14 @@ int cli_read_file(const char *prog, const char *path, size_t max_bytes, char **b
 
 /* Output that never leaves a half-written file: data goes to a temporary
  * file in the target's directory and is renamed over the target only by
- * cli_output_commit(). "-" or NULL writes to stdout directly. */
+ * cli_output_commit(). "-" or NULL writes to stdout directly. An existing
+ * target that is not a regular file (/dev/null, a FIFO, a terminal) is
+ * written in place: renaming over it would replace the device node with a
+ * regular file (as root that succeeds). A directory is an error. */
 typedef struct cli_output {
     FILE *f;          /* where to write */
     char *path;       /* final path, NULL for stdout */
-    char *tmp;        /* temporary path, NULL for stdout */
+    char *tmp;        /* temporary path, NULL for stdout and devices */
 } cli_output;
 
 /* Returns 0, or 1 after printing an error. */

@@ -169,32 +169,6 @@ static int parse_args(int argc, char **argv, options *o)
     return -1;
 }
 
-/* cli_output_open() writes a temporary file and renames it over the
- * target. That is right for regular files, but renaming over /dev/null, a
- * FIFO or a terminal would replace the device node with a regular file (as
- * root it succeeds: `-o /dev/null` destroyed /dev/null once). An existing
- * target that is not a regular file is therefore written in place, like
- * stdout. Returns 0, or 1 after an error. */
-static int output_open(const char *path, cli_output *co, FILE **direct)
-{
-    struct stat sb;
-    *direct = NULL;
-    if (path && strcmp(path, "-") != 0 && stat(path, &sb) == 0 && !S_ISREG(sb.st_mode)) {
-        FILE *f;
-        if (S_ISDIR(sb.st_mode))
-            return cli_error(PROG, path, "is a directory");
-        f = fopen(path, "wb");
-        if (!f)
-            return cli_error(PROG, path, "cannot open output: %s", strerror(errno));
-        co->f = f;
-        co->path = NULL;
-        co->tmp = NULL;
-        *direct = f;
-        return 0;
-    }
-    return cli_output_open(PROG, path, co);
-}
-
 static double now_seconds(void)
 {
     struct timespec ts;
@@ -241,7 +215,6 @@ int conica_cmd_subdivide(int argc, char **argv)
     conica_subdiv_info info;
     conica_status st;
     cli_output co;
-    FILE *direct = NULL; /* set when writing to a device in place */
     conica_code code;
     double best = 0.0;
 
@@ -283,7 +256,7 @@ int conica_cmd_subdivide(int argc, char **argv)
 
     /* Open the output first so that an unwritable target fails before a long
      * computation; the temporary file is dropped on any later failure. */
-    if (output_open(o.out, &co, &direct)) {
+    if (cli_output_open(PROG, o.out, &co)) {
         free(buf);
         conica_curve_free(&in);
         return CLI_EXIT_ERROR;
@@ -329,8 +302,6 @@ int conica_cmd_subdivide(int argc, char **argv)
         free(buf);
         cli_error(PROG, where, "%s", st.message[0] ? st.message : conica_strerror(code));
         cli_output_abort(&co);
-        if (direct)
-            fclose(direct);
         conica_curve_free(&out);
         conica_curvel_free(&outl);
         conica_subdiv_info_free(&info);
@@ -347,20 +318,10 @@ int conica_cmd_subdivide(int argc, char **argv)
     if (rc) {
         cli_error(PROG, o.out && strcmp(o.out, "-") != 0 ? o.out : "<stdout>", "write error");
         cli_output_abort(&co);
-        if (direct)
-            fclose(direct);
         conica_subdiv_info_free(&info);
         return CLI_EXIT_ERROR;
     }
-    if (direct) {
-        int bad = fflush(direct) != 0 || ferror(direct);
-        bad |= fclose(direct) != 0;
-        if (bad) {
-            cli_error(PROG, o.out, "write error: %s", strerror(errno));
-            conica_subdiv_info_free(&info);
-            return CLI_EXIT_ERROR;
-        }
-    } else if (cli_output_commit(PROG, &co)) {
+    if (cli_output_commit(PROG, &co)) {
         conica_subdiv_info_free(&info);
         return CLI_EXIT_ERROR;
     }
