@@ -386,8 +386,8 @@ TEST_CASE("thinning a dense circle comes near the minimum point count", "[scad][
         REQUIRE_EQ(conica_scad_thin(xy, n, 1, tol, &out, &m, NULL), CONICA_OK);
         double minimum = ceil(M_PI / acos(1 - tol / r));
         INFO("tol %g: %zu points, minimum %g", tol, m, minimum);
-        CHECK(m >= minimum);
-        CHECK(m <= 1.1 * minimum);
+        CHECK((double)m >= minimum);
+        CHECK((double)m <= 1.1 * minimum);
         /* every chord within tol of the true circle: sagitta of its angle */
         double worst = 0;
         for (size_t i = 0; i < m; i++) {
@@ -457,8 +457,8 @@ TEST_CASE("refining exact circle samples to a tolerance", "[scad][refine]")
         double minimum = ceil(M_PI / acos(1 - tols[k] / r));
         INFO("tol %g: %zu points (minimum %g), level %d, %zu dense", tols[k], m, minimum,
              info.levels, info.dense_points);
-        CHECK(m >= minimum);
-        CHECK(m <= 1.1 * minimum);
+        CHECK((double)m >= minimum);
+        CHECK((double)m <= 1.1 * minimum);
         double worst_on = 0, worst_chord = 0;
         for (size_t i = 0; i < m; i++) {
             const double *a = &out[2 * i], *b = &out[2 * ((i + 1) % m)];
