@@ -54,6 +54,7 @@ typedef struct options {
 typedef struct stats {
     const char *kind;
     size_t input_points, dense_points, points;
+    size_t elements, subpaths;  /* SVG */
     int levels;
     double seconds;
 } stats;
@@ -502,6 +503,7 @@ static int load_svg(const options *o, const char *name, const char *buf, size_t 
         goto done;
     }
     sx->kind = "SVG";
+    sx->elements = shapes.nelements;
     for (size_t e = 0; e < shapes.nelements && result == 0; e++) {
         const conica_svg_element *el = &shapes.elements[e];
         char gname[64], where[1024];
@@ -531,6 +533,7 @@ static int load_svg(const options *o, const char *name, const char *buf, size_t 
                 continue;
             }
             sx->dense_points += n;
+            sx->subpaths++;
             xy = malloc(2 * (n ? n : 1) * sizeof *xy);
             if (!xy) {
                 result = cli_error(PROG, name, "out of memory");
@@ -698,13 +701,20 @@ int main(int argc, char **argv)
         size_t pts = 0;
         for (size_t i = 0; i < lay.npaths; i++)
             pts += prof.contours[lay.paths[i].contour].n;
+        if (k == IN_SVG)
+            fprintf(stderr, PROG ": input SVG, %zu elements, %zu closed subpaths", sx.elements,
+                    sx.subpaths);
+        else
+            fprintf(stderr, PROG ": input %s, %zu input points", sx.kind ? sx.kind : "?",
+                    sx.input_points);
+        fprintf(stderr, "; %zu dense points%s", sx.dense_points,
+                o.flatten_only ? " (flatten only)" : "");
+        if (sx.levels >= 0)
+            fprintf(stderr, "; level %d", sx.levels);
         fprintf(stderr,
-                PROG ": input %s, %zu input points; %zu dense points%s; levels %d\n" PROG
-                     ": %zu points written in %zu paths (%zu outer, %zu holes, %zu dropped), "
-                     "convexity %d; %.3f ms\n",
-                sx.kind ? sx.kind : "?", sx.input_points, sx.dense_points,
-                o.flatten_only ? " (flatten only)" : "", sx.levels, pts, lay.npaths, lay.outers,
-                lay.holes, lay.dropped, lay.convexity,
+                "\n" PROG ": %zu points written in %zu paths (%zu outer, %zu holes, %zu dropped), "
+                "convexity %d; %.3f ms\n",
+                pts, lay.npaths, lay.outers, lay.holes, lay.dropped, lay.convexity,
                 1e3 * ((double)(t1.tv_sec - t0.tv_sec) + 1e-9 * (double)(t1.tv_nsec - t0.tv_nsec)));
     }
     conica_scad_layout_free(&lay);
