@@ -14,6 +14,7 @@ if ! command -v blender >/dev/null 2>&1; then
 fi
 [ -f "$zip" ] || { echo "demo-blender: error: $zip missing (make BUILD=$build blender-addon)" >&2; exit 1; }
 mkdir -p "$out"
+rm -f "$out/conica-demo.blend" "$out/conica-demo.blend1"
 tmp=$(mktemp -d "${TMPDIR:-/tmp}/conica-demo-blender.XXXXXX")
 trap 'rm -rf "$tmp"' EXIT INT TERM
 mkdir -p "$tmp/scripts" "$tmp/config"
