@@ -134,12 +134,16 @@ def nurbs_spline(sp, data):
     return order - 1, knots, ctrl, w, attrs
 
 
-def plot_nurbs(sp, data, tolerance):
+def plot_nurbs(sp, data, tolerance, tangents=False):
+    """(points, attrs) of the plotted NURBS spline, plus its exact tangents
+    (first derivatives) at the points when asked."""
     degree, knots, ctrl, w, attrs = nurbs_spline(sp, data)
-    pts, att, _info = _conica.plot(ctrl, dim=3, degree=degree, knots=knots, weights=w,
-                                   tolerance=tolerance, attrs=attrs, nattrs=2,
-                                   max_points=MAX_POINTS)
-    return pts, att
+    res = _conica.plot(ctrl, dim=3, degree=degree, knots=knots, weights=w,
+                       tolerance=tolerance, attrs=attrs, nattrs=2,
+                       max_points=MAX_POINTS, tangents=tangents)
+    if tangents:
+        return res[0], res[1], res[3]
+    return res[0], res[1]
 
 
 def plot_bezier(data, tolerance):
@@ -435,14 +439,19 @@ class CURVE_OT_conic_subdivide(_CurveOperator, bpy.types.Operator):
             if not size > 0:
                 raise _conica.DegenerateError("NURBS spline has no extent")
             t0 = time.perf_counter()
-            pts, att = plot_nurbs(sp, data, self.tolerance * size)
+            pts, att, tans = plot_nurbs(sp, data, self.tolerance * size, tangents=True)
             t_plot = time.perf_counter() - t0
             if data.cyclic and len(pts) >= 6:
                 # the plot of a cyclic spline ends where it starts
                 if pts[-3:] == pts[:3]:
                     del pts[-3:]
                     del att[-2:]
+                    del tans[-3:]
             co, attrs = pts, att
+            if self.normals == "AUTO":
+                # the NURBS's own tangents: exact normals for the scheme
+                normals = tans
+                tangents = True
         else:
             t_plot = 0.0
             co, attrs = data.co, data.attrs()

@@ -1218,59 +1218,134 @@ done:
 /* ------------------------------------------------------------ plotting */
 
 /*
- * Attributes (radius, tilt) along a plotted spline: they are a spline
- * function with the curve's knots and weights; each output point gets the
- * value at the parameter that splits the parameter range in the same ratio
- * as the point splits the polyline's length (exact at the ends, smooth in
- * between; the plotter does not report parameters).
+ * Parameters of the plotted points. The plotter reports points, not
+ * parameters; its vertices lie on the curve and come in parameter order, so
+ * each one is found again: the nearest of a dense sampling (32 per knot
+ * span) at or after the previous point's sample, then Newton steps on
+ * f(t) = C'(t).(C(t) - q) inside the neighbouring samples. The ends are the
+ * domain ends. Needed for the exact tangents and the attributes.
  */
+#define CX_SAMPLES_PER_SPAN 32
+
+static conica_code cx_plot_params(const conica_bspline *sp, const double *pts, int dim, size_t N,
+                                  double *params, conica_status *st)
+{
+    if (sp->dim == 1) { /* a function plots as (t, f(t)): the parameter is x */
+        for (size_t i = 0; i < N; i++)
+            params[i] = pts[i * (size_t)dim];
+        return CONICA_OK;
+    }
+    double a, b;
+    conica_bspline_domain(sp, &a, &b);
+    size_t spans = 0;
+    for (size_t i = (size_t)sp->degree; i < sp->n; i++)
+        if (sp->knots[i + 1] > sp->knots[i])
+            spans++;
+    size_t M = spans * CX_SAMPLES_PER_SPAN + 1;
+    double *ts = malloc(M * sizeof *ts), *ps = malloc(M * (size_t)dim * sizeof *ps);
+    if (ts == NULL || ps == NULL) {
+        free(ts);
+        free(ps);
+        return CONICA_ERR_NOMEM;
+    }
+    size_t m = 0;
+    for (size_t i = (size_t)sp->degree; i < sp->n; i++) {
+        double k0 = sp->knots[i], k1 = sp->knots[i + 1];
+        if (!(k1 > k0))
+            continue;
+        for (int j = 0; j < CX_SAMPLES_PER_SPAN; j++)
+            ts[m++] = k0 + (k1 - k0) * (double)j / CX_SAMPLES_PER_SPAN;
+    }
+    ts[m++] = b;
+    conica_code rc = CONICA_OK;
+    for (size_t j = 0; j < m && rc == CONICA_OK; j++)
+        rc = conica_bspline_eval(sp, ts[j], ps + j * (size_t)dim, st);
+    size_t jprev = 0;
+    for (size_t i = 0; i < N && rc == CONICA_OK; i++) {
+        const double *q = pts + i * (size_t)dim;
+        if (i == 0 || i + 1 == N) {
+            params[i] = i == 0 ? a : b;
+            continue;
+        }
+        size_t best = jprev;
+        double bd = INFINITY;
+        for (size_t j = jprev; j < m; j++) {
+            double d2 = 0.0;
+            for (int k = 0; k < dim; k++) {
+                double d = ps[j * (size_t)dim + (size_t)k] - q[k];
+                d2 += d * d;
+            }
+            if (d2 < bd) {
+                bd = d2;
+                best = j;
+            }
+        }
+        double lo = ts[best > 0 ? best - 1 : 0], hi = ts[best + 1 < m ? best + 1 : m - 1];
+        double t = ts[best];
+        for (int it = 0; it < 12 && rc == CONICA_OK; it++) {
+            double c0[3], c1[3], c2[3] = {0, 0, 0};
+            rc = conica_bspline_eval(sp, t, c0, st);
+            if (rc == CONICA_OK)
+                rc = conica_bspline_eval_deriv(sp, t, 1, c1, st);
+            if (rc == CONICA_OK && sp->degree >= 2)
+                rc = conica_bspline_eval_deriv(sp, t, 2, c2, st);
+            if (rc != CONICA_OK)
+                break;
+            double f = 0.0, fp = 0.0;
+            for (int k = 0; k < dim; k++) {
+                double d = c0[k] - q[k];
+                f += c1[k] * d;
+                fp += c2[k] * d + c1[k] * c1[k];
+            }
+            if (!(fp > 0))
+                break;
+            double tn = t - f / fp;
+            if (tn < lo) tn = lo;
+            if (tn > hi) tn = hi;
+            if (tn == t)
+                break;
+            t = tn;
+        }
+        params[i] = t;
+        jprev = best;
+    }
+    free(ts);
+    free(ps);
+    return rc;
+}
+
+/* Attributes (radius, tilt): spline functions with the curve's knots and
+ * weights, evaluated at the plotted points' parameters. */
 static conica_code cx_plot_attrs(int degree, const double *knots, size_t nknots,
                                  const double *attrs, int nattrs, size_t n, const double *w,
-                                 const double *pts, int dim, size_t N, double *out,
-                                 conica_status *st)
+                                 const double *params, size_t N, double *out, conica_status *st)
 {
     conica_bspline fs;
     conica_bspline_init(&fs);
-    /* one scalar spline per attribute keeps dim = 1 (any nattrs) */
     double *col = malloc((n ? n : 1) * sizeof *col);
-    double *len = malloc((N ? N : 1) * sizeof *len);
-    if (col == NULL || len == NULL) {
-        free(col);
-        free(len);
+    if (col == NULL)
         return CONICA_ERR_NOMEM;
-    }
-    len[0] = 0.0;
-    for (size_t i = 1; i < N; i++) {
-        double d2 = 0.0;
-        for (int k = 0; k < dim; k++) {
-            double d = pts[i * (size_t)dim + (size_t)k] - pts[(i - 1) * (size_t)dim + (size_t)k];
-            d2 += d * d;
-        }
-        len[i] = len[i - 1] + sqrt(d2);
-    }
-    double t0 = knots[degree], t1 = knots[n];
     conica_code rc = CONICA_OK;
     for (int q = 0; q < nattrs && rc == CONICA_OK; q++) {
         for (size_t i = 0; i < n; i++)
             col[i] = attrs[i * (size_t)nattrs + (size_t)q];
         rc = conica_bspline_set(degree, 1, knots, nknots, col, n, w, &fs, st);
         for (size_t i = 0; i < N && rc == CONICA_OK; i++) {
-            double f = len[N - 1] > 0 ? len[i] / len[N - 1] : (N > 1 ? (double)i / (double)(N - 1) : 0.0);
-            double t = i + 1 == N ? t1 : t0 + f * (t1 - t0);
-            double v;
-            rc = conica_bspline_eval(&fs, t, &v, st);
-            out[i * (size_t)nattrs + (size_t)q] = v;
+            double v[2];
+            rc = conica_bspline_eval(&fs, params[i], v, st);
+            out[i * (size_t)nattrs + (size_t)q] = v[0];
         }
         conica_bspline_free(&fs);
     }
     free(col);
-    free(len);
     return rc;
 }
 
 PyDoc_STRVAR(plot_doc,
 "plot(ctrl, *, dim=3, degree, knots, weights=None, tolerance, attrs=None, nattrs=0,\n"
-"     typecode='d', max_points=4194304) -> (points, attrs or None, info)\n"
+"     typecode='d', max_points=4194304, tangents=False)\n"
+"    -> (points, attrs or None, info) or, with tangents=True,\n"
+"       (points, attrs or None, info, tangents, params)\n"
 "--\n\n"
 "Plot a (rational) B-spline with libconica's guaranteed adaptive plotter\n"
 "(seed 004): the polyline stays within `tolerance` (absolute, curve units)\n"
@@ -1278,20 +1353,22 @@ PyDoc_STRVAR(plot_doc,
 "points of dim values, knots n + degree + 1 values, weights n positive values\n"
 "or None. attrs (nattrs values per control point, e.g. radius and tilt) are\n"
 "evaluated as a spline function with the same knots at the output points.\n"
+"tangents=True also returns the curve's first derivative at each point and the\n"
+"points' parameters (recovered by projection: the plotter reports points only).\n"
 "info: dict with points and knots_inserted.");
 
 static PyObject *cx_plot(PyObject *self, PyObject *args, PyObject *kw)
 {
     static char *kwlist[] = {"ctrl", "dim", "degree", "knots", "weights", "tolerance",
-                             "attrs", "nattrs", "typecode", "max_points", NULL};
+                             "attrs", "nattrs", "typecode", "max_points", "tangents", NULL};
     cx_state *S = cx_get_state(self);
     PyObject *octrl, *oknots, *ow = Py_None, *oattrs = Py_None, *otype = NULL;
-    int dim = 3, degree = -1, nattrs = 0;
+    int dim = 3, degree = -1, nattrs = 0, want_tan = 0;
     double tol = -1.0;
     Py_ssize_t max_points = (Py_ssize_t)CX_DEFAULT_MAX_POINTS;
-    if (!PyArg_ParseTupleAndKeywords(args, kw, "O|$iiOOdOiOn:plot", kwlist, &octrl, &dim,
+    if (!PyArg_ParseTupleAndKeywords(args, kw, "O|$iiOOdOiOnp:plot", kwlist, &octrl, &dim,
                                      &degree, &oknots, &ow, &tol, &oattrs, &nattrs, &otype,
-                                     &max_points))
+                                     &max_points, &want_tan))
         return NULL;
     char typecode;
     if (!cx_typecode(otype, &typecode))
@@ -1314,6 +1391,7 @@ static PyObject *cx_plot(PyObject *self, PyObject *args, PyObject *kw)
 
     PyObject *result = NULL;
     double *ctrl = NULL, *knots = NULL, *w = NULL, *attrs = NULL, *oatt = NULL;
+    double *params = NULL, *tans = NULL;
     size_t nc = 0, nk = 0, nw = 0, na = 0;
     conica_bspline sp;
     conica_bspline_init(&sp);
@@ -1368,13 +1446,28 @@ static PyObject *cx_plot(PyObject *self, PyObject *args, PyObject *kw)
         memset(&stats, 0, sizeof stats);
         rc = conica_plot(&sp, &set, &pl, &stats, &st);
     }
+    if (rc == CONICA_OK && (attrs || want_tan)) {
+        params = malloc((pl.n ? pl.n : 1) * sizeof *params);
+        rc = params ? cx_plot_params(&sp, pl.xy, pl.dim, pl.n, params, &st) : CONICA_ERR_NOMEM;
+    }
     if (rc == CONICA_OK && attrs) {
         oatt = malloc((pl.n ? pl.n : 1) * (size_t)nattrs * sizeof *oatt);
-        if (oatt == NULL)
+        rc = oatt ? cx_plot_attrs(degree, knots, nk, attrs, nattrs, n, w, params, pl.n, oatt, &st)
+                  : CONICA_ERR_NOMEM;
+    }
+    if (rc == CONICA_OK && want_tan) {
+        tans = malloc((pl.n ? pl.n : 1) * (size_t)pl.dim * sizeof *tans);
+        if (tans == NULL)
             rc = CONICA_ERR_NOMEM;
-        else
-            rc = cx_plot_attrs(degree, knots, nk, attrs, nattrs, n, w, pl.xy, pl.dim, pl.n,
-                               oatt, &st);
+        for (size_t i = 0; i < pl.n && rc == CONICA_OK; i++) {
+            double *ti = tans + i * (size_t)pl.dim;
+            if (sp.dim == 1) { /* graph (t, f(t)): tangent (1, f'(t)) */
+                ti[0] = 1.0;
+                rc = conica_bspline_eval_deriv(&sp, params[i], 1, ti + 1, &st);
+            } else {
+                rc = conica_bspline_eval_deriv(&sp, params[i], 1, ti, &st);
+            }
+        }
     }
     Py_END_ALLOW_THREADS
     if (rc != CONICA_OK) {
@@ -1387,11 +1480,19 @@ static PyObject *cx_plot(PyObject *self, PyObject *args, PyObject *kw)
                              : (Py_INCREF(Py_None), Py_None);
         PyObject *info = Py_BuildValue("{s:n,s:n}", "points", (Py_ssize_t)pl.n, "pieces",
                                        (Py_ssize_t)pl.npieces);
-        if (ap && aa && info)
-            result = PyTuple_Pack(3, ap, aa, info);
+        PyObject *at = NULL, *apar = NULL;
+        if (want_tan) {
+            at = cx_make_array(S, typecode, tans, pl.n, pl.dim, pl.dim, 0.0);
+            apar = cx_make_array(S, 'd', params, pl.n, 1, 1, 0.0);
+        }
+        if (ap && aa && info && (!want_tan || (at && apar)))
+            result = want_tan ? PyTuple_Pack(5, ap, aa, info, at, apar)
+                              : PyTuple_Pack(3, ap, aa, info);
         Py_XDECREF(ap);
         Py_XDECREF(aa);
         Py_XDECREF(info);
+        Py_XDECREF(at);
+        Py_XDECREF(apar);
     }
 done:
     PyMem_Free(ctrl);
@@ -1399,6 +1500,8 @@ done:
     PyMem_Free(w);
     PyMem_Free(attrs);
     free(oatt);
+    free(params);
+    free(tans);
     conica_bspline_free(&sp);
     conica_polyline_free(&pl);
     return result;

@@ -501,8 +501,18 @@ def nurbs_circle():
     r = bpy.ops.curve.conic_subdivide(levels=2, tolerance=1e-4)
     st = poly_co(ob.data.splines[0])
     report("nurbs_conic_subdivide", r == {"FINISHED"} and len(st) > 8, "%r %d" % (r, len(st)))
+    # plotted points lie on the circle and get its exact tangents, so the
+    # refinement stays on it up to float32 storage
     check_on_conic("nurbs_conic_subdivide_on_circle", st,
-                   lambda p: math.hypot(p[0], p[1]) - 1.0, 1e-4 * 2.83 + 4 * F32)
+                   lambda p: math.hypot(p[0], p[1]) - 1.0, 4 * F32)
+    ext = conica_pkg()._conica
+    ctrl = [c for p in pts for c in p]
+    r = ext.plot(ctrl, degree=2, knots=[0, 0, 0, 1, 1, 2, 2, 3, 3, 4, 4, 4], weights=w,
+                 tolerance=1e-4, tangents=True)
+    P, T = r[0], r[3]
+    worst = max(abs(P[3 * i] * T[3 * i] + P[3 * i + 1] * T[3 * i + 1]) /
+                math.hypot(T[3 * i], T[3 * i + 1]) for i in range(len(P) // 3))
+    report("nurbs_exact_tangents", worst < 1e-12, "%.3g" % worst)
 
 
 @case
