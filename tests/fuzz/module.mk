@@ -1,0 +1,39 @@
+# tests/fuzz: libFuzzer targets (clang, -fsanitize=fuzzer,address,undefined).
+#
+#   make fuzz FUZZ_SECONDS=N   build every fuzzer, run each N seconds (default 60)
+#   make fuzz-build            build them only ($(BUILD)/fuzz/bin/fuzz_*)
+#   make memcheck              valgrind memcheck over the CLI tools
+#
+# The libraries are rebuilt by a recursive make in $(BUILD)/fuzz with clang
+# and SAN="-fsanitize=fuzzer-no-link,address,undefined" (SAN reaches CFLAGS
+# and LDFLAGS); only the final link of a target adds the fuzzer's main.
+FUZZ_NAMES   := curve_parse spline_parse svg_path svgsmooth scadprofile subdivide plot
+FUZZ_CC      ?= clang
+FUZZ_SAN     := -fsanitize=fuzzer-no-link,address,undefined -fno-sanitize-recover=undefined \
+                -fno-omit-frame-pointer
+FUZZ_SECONDS ?= 60
+
+# Inside the recursive make (BUILD=.../fuzz): the rules for the targets.
+$(BUILD)/obj/tests/fuzz/%.o: CPPFLAGS += -Itests/fuzz -Isvg_tools -Iopenscad_export $(XML_CFLAGS)
+# (ALL_LIBS is defined after the fragments are read: name the libraries.)
+$(BUILD)/bin/fuzz_%: $(BUILD)/obj/tests/fuzz/fuzz_%.o $(MODULE_LIBS_FIRST) $(MODULE_LIBS) $(CLI_A) $(CORE_A)
+	@mkdir -p $(@D)
+	$(CC) $(LDFLAGS) -fsanitize=fuzzer -o $@ $< $(ALL_LIBS) $(ALL_LDLIBS)
+
+# From the normal build: recurse once.
+ifeq ($(filter %/fuzz,$(BUILD)),)
+FUZZ_BINS := $(FUZZ_NAMES:%=$(BUILD)/fuzz/bin/fuzz_%)
+
+fuzz-build:
+	$(MAKE) --no-print-directory BUILD=$(BUILD)/fuzz CC=$(FUZZ_CC) OPT=-O1 \
+	  SAN="$(FUZZ_SAN)" $(FUZZ_BINS)
+
+fuzz: fuzz-build
+	sh tests/fuzz/run.sh $(BUILD)/fuzz $(FUZZ_SECONDS) $(FUZZ_NAMES)
+
+memcheck: all
+	sh scripts/memcheck.sh $(BUILD)
+
+TEST_EXTRA += fuzz-build
+.PHONY: fuzz fuzz-build memcheck
+endif
