@@ -8,7 +8,8 @@
 //     edge midpoint, and the refined pieces between consecutive inflection
 //     points turn one way only; turning-sign changes never grow with k.
 // Plus: the closed contours the exporters write (scadprofile, svgsmooth) are
-// simple with the orientation they claim.
+// simple with the orientation they claim (the tools are run from BUILD/bin;
+// SKIPped with a notice when not built).
 //
 // Every sidedness/convexity/simplicity decision is made by CGAL's exact
 // predicates (Epick), never by our own floating-point code. The test
@@ -20,6 +21,8 @@
 #include <CGAL/convex_hull_2.h>
 
 #include <algorithm>
+#include <cctype>
+#include <cstring>
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
@@ -28,6 +31,7 @@
 #include <sstream>
 #include <string>
 #include <sys/wait.h>
+#include <unistd.h>
 #include <vector>
 
 #include "conica/curve.h"
@@ -714,6 +718,248 @@ void run_inflection_suite(const conica_subdiv_settings &set, bool synthetic, boo
     t.print();
 }
 
+// ------------------------------------------------------------ exporters
+// The closed contours scadprofile writes and the closed subpaths svgsmooth
+// writes (from simple input) must be simple, with the orientation each tool
+// claims: scadprofile "outer counter-clockwise, holes clockwise" (nesting
+// decided here with CGAL), svgsmooth the orientation of the input subpath.
+// The tools are run as the user runs them, from BUILD/bin next to this
+// test's BUILD/tests, and their text is parsed with the readers below.
+
+std::string build_bin(const char *tool) {
+    char buf[4096];
+    ssize_t n = readlink("/proc/self/exe", buf, sizeof buf - 1);
+    if (n <= 0)
+        return std::string();
+    std::string self(buf, size_t(n));
+    size_t slash = self.rfind('/');
+    return self.substr(0, slash) + "/../bin/" + tool;
+}
+
+bool executable(const std::string &path) {
+    return !path.empty() && access(path.c_str(), X_OK) == 0;
+}
+
+std::string slurp(const std::string &path) {
+    std::ifstream f(path, std::ios::binary);
+    std::stringstream ss;
+    ss << f.rdbuf();
+    return ss.str();
+}
+
+// Runs a shell command; returns its exit status (-1 if it did not exit).
+int run_command(const std::string &cmd) {
+    int st = std::system(cmd.c_str());
+    return (st != -1 && WIFEXITED(st)) ? WEXITSTATUS(st) : -1;
+}
+
+// Numbers of `[[x,y],...]` after `key` up to the closing `];` of that list.
+bool scad_list(const std::string &text, const std::string &key, std::string &body) {
+    size_t at = text.find(key);
+    if (at == std::string::npos)
+        return false;
+    size_t open = text.find('[', at + key.size());
+    size_t end = text.find("];", at);
+    if (open == std::string::npos || end == std::string::npos || end < open)
+        return false;
+    body = text.substr(open + 1, end - open - 1);
+    return true;
+}
+
+// Parses scadprofile's NAME_points() and NAME_paths() into contours.
+bool parse_scad(const std::string &text, const std::string &name,
+                std::vector<std::vector<Point>> &contours, std::string &why) {
+    std::string pb, cb;
+    if (!scad_list(text, "function " + name + "_points()", pb) ||
+        !scad_list(text, "function " + name + "_paths()", cb)) {
+        why = "no " + name + "_points()/_paths() in the .scad";
+        return false;
+    }
+    std::vector<double> nums;
+    for (const char *p = pb.c_str(); *p;) {
+        if ((*p >= '0' && *p <= '9') || *p == '-' || *p == '+' || *p == '.') {
+            char *e;
+            nums.push_back(std::strtod(p, &e));
+            p = e;
+        } else {
+            p++;
+        }
+    }
+    if (nums.size() % 2) {
+        why = "odd count of coordinates";
+        return false;
+    }
+    contours.clear();
+    std::vector<Point> cur;
+    int depth = 0;
+    for (const char *p = cb.c_str(); *p; p++) {
+        if (*p == '[') {
+            depth++;
+            cur.clear();
+        } else if (*p == ']') {
+            if (depth == 1)
+                contours.push_back(cur);
+            depth--;
+        } else if (*p >= '0' && *p <= '9') {
+            char *e;
+            unsigned long i = std::strtoul(p, &e, 10);
+            if (2 * i + 1 >= nums.size()) {
+                why = "path index out of range";
+                return false;
+            }
+            cur.push_back(Point(nums[2 * i], nums[2 * i + 1]));
+            p = e - 1;
+        }
+    }
+    return !contours.empty() || (why = "no paths", false);
+}
+
+// Closed subpaths of the path data of every ` d="..."` in an SVG text, for
+// the polyline data svgsmooth writes (M, L, H, V, Z, absolute or relative).
+bool parse_svg_subpaths(const std::string &text, std::vector<std::vector<Point>> &closed,
+                        std::string &why) {
+    closed.clear();
+    for (size_t at = text.find(" d=\""); at != std::string::npos;
+         at = text.find(" d=\"", at + 1)) {
+        size_t end = text.find('"', at + 4);
+        std::string d = text.substr(at + 4, end - at - 4);
+        std::vector<Point> cur;
+        double x = 0, y = 0, sx = 0, sy = 0;
+        char cmd = 0;
+        const char *p = d.c_str();
+        while (*p) {
+            if (std::isspace((unsigned char)*p) || *p == ',') {
+                p++;
+                continue;
+            }
+            if (std::isalpha((unsigned char)*p)) {
+                cmd = *p++;
+                if (cmd == 'Z' || cmd == 'z') {
+                    if (cur.size() >= 3)
+                        closed.push_back(cur);
+                    cur.clear();
+                    x = sx;
+                    y = sy;
+                }
+                else if (!std::strchr("MmLlHhVv", cmd)) {
+                    why = std::string("unexpected path command ") + cmd;
+                    return false;
+                }
+                continue;
+            }
+            char *e;
+            double a = std::strtod(p, &e), b = 0;
+            if (e == p) {
+                why = "bad number in path data";
+                return false;
+            }
+            p = e;
+            if (cmd != 'H' && cmd != 'h' && cmd != 'V' && cmd != 'v') {
+                while (std::isspace((unsigned char)*p) || *p == ',')
+                    p++;
+                b = std::strtod(p, &e);
+                if (e == p) {
+                    why = "missing y in path data";
+                    return false;
+                }
+                p = e;
+            }
+            bool rel = std::islower((unsigned char)cmd);
+            switch (cmd) {
+            case 'M': case 'm':
+                cur.clear(); // an open subpath before it: not claimed closed
+
+                x = rel ? x + a : a;
+                y = rel ? y + b : b;
+                sx = x;
+                sy = y;
+                cur.push_back(Point(x, y));
+                cmd = rel ? 'l' : 'L'; // implicit lineto after moveto
+                break;
+            case 'L': case 'l':
+                x = rel ? x + a : a;
+                y = rel ? y + b : b;
+                cur.push_back(Point(x, y));
+                break;
+            case 'H': case 'h':
+                x = rel ? x + a : a;
+                cur.push_back(Point(x, y));
+                break;
+            case 'V': case 'v':
+                y = rel ? y + a : a;
+                cur.push_back(Point(x, y));
+                break;
+            default:
+                why = "number before any command";
+                return false;
+            }
+        }
+    }
+    return true;
+}
+
+// Nesting depth of contour i among the others (CGAL's bounded_side).
+int nesting_depth(const std::vector<Polygon> &polys, size_t i) {
+    int depth = 0;
+    for (size_t j = 0; j < polys.size(); j++)
+        if (j != i && polys[j].is_simple() &&
+            polys[j].bounded_side(polys[i].vertex(0)) == CGAL::ON_BOUNDED_SIDE)
+            depth++;
+    return depth;
+}
+
+// A point-normal file of s in tmp.
+std::string write_curve(const std::string &dir, const std::string &name, const Shape &s) {
+    std::string path = dir + "/" + name;
+    FILE *f = std::fopen(path.c_str(), "w");
+    for (size_t i = 0; f && i < s.n(); i++)
+        std::fprintf(f, "v %.17g %.17g\n", s.xy[2 * i], s.xy[2 * i + 1]);
+    for (size_t i = 0; f && i < s.nxy.size() / 2; i++)
+        std::fprintf(f, "vn %.17g %.17g\n", s.nxy[2 * i], s.nxy[2 * i + 1]);
+    if (f)
+        std::fclose(f);
+    return path;
+}
+
+// Path data "M..L..Z" of a closed shape (SVG user space: y down).
+std::string svg_d(const Shape &s) {
+    std::string d;
+    char buf[96];
+    for (size_t i = 0; i < s.n(); i++) {
+        std::snprintf(buf, sizeof buf, "%c%.17g %.17g", i ? 'L' : 'M', s.xy[2 * i],
+                      s.xy[2 * i + 1]);
+        d += buf;
+    }
+    return d + "Z";
+}
+
+// Smooth closed shapes for the exporters: no vertex turns by more than the
+// tools' default corner angle (40 degrees), so every vertex is smoothed.
+std::vector<Shape> exporter_shapes() {
+    std::vector<Shape> v;
+    Rng g(0xE4907E25ull);
+    for (int i = 0; i < 12; i++) {
+        // convex: ellipse samples with >= 12 points
+        Shape s = random_ellipse_polygon(g, g.range(12, 40), false, i);
+        v.push_back(s);
+    }
+    for (int i = 0; i < 12; i++) {
+        // non-convex blobs r = 1 + a sin(m t + phase), 40..60 points
+        Shape s;
+        int n = g.range(40, 60), m = g.range(2, 5);
+        double a = g.uniform(0.1, 0.3), ph = g.uniform(0.0, 6.0), sc = g.uniform(1.0, 80.0);
+        double cx = g.uniform(-50.0, 150.0), cy = g.uniform(-50.0, 150.0);
+        s.name = "blob #" + std::to_string(i);
+        for (int j = 0; j < n; j++) {
+            double t = 2.0 * kPi * j / n, r = sc * (1.0 + a * std::sin(m * t + ph));
+            s.xy.push_back(cx + r * std::cos(t));
+            s.xy.push_back(cy + r * std::sin(t));
+        }
+        v.push_back(g.uniform() < 0.5 ? reversed(s) : s);
+    }
+    return v;
+}
+
 } // namespace
 
 TEST_CASE("convexity: random convex polygons, exact and estimated normals", "[cgal][convex]") {
@@ -855,6 +1101,137 @@ TEST_CASE("inflections: reference examples: inserted where CGAL says, no more wi
     run_inflection_suite(defaults(), false, true, t);
     INFO("%s", t.report().c_str());
     CHECK_GE(t.shapes, 7);
+    CHECK_EQ(t.failures, 0);
+}
+
+TEST_CASE("exporters: scadprofile contours are simple, outer counter-clockwise, holes "
+          "clockwise", "[cgal][export]") {
+    bool have = executable(build_bin("scadprofile"));
+    if (!have)
+        SKIP("%s", "BUILD/bin/scadprofile not built: exporter check skipped");
+    Tally t;
+    t.family = "scadprofile contours";
+    char dir[] = "/tmp/conica-cgal-XXXXXX";
+    REQUIRE(mkdtemp(dir) != nullptr);
+    std::string tool = build_bin("scadprofile"), d = dir;
+    std::vector<std::pair<std::string, std::string>> inputs; // name, file
+    std::vector<Shape> shapes = exporter_shapes();
+    for (size_t i = 0; i < shapes.size(); i++)
+        inputs.push_back({shapes[i].name, write_curve(d, "c" + std::to_string(i) + ".txt",
+                                                      shapes[i])});
+    // An SVG ring: outer blob and an inner reversed blob in one path (a hole).
+    {
+        Shape outer = shapes[12], inner = reversed(shapes[12]);
+        double cx = 0, cy = 0;
+        for (size_t i = 0; i < outer.n(); i++) {
+            cx += outer.xy[2 * i] / double(outer.n());
+            cy += outer.xy[2 * i + 1] / double(outer.n());
+        }
+        for (size_t i = 0; i < inner.n(); i++) {
+            inner.xy[2 * i] = cx + 0.3 * (inner.xy[2 * i] - cx);
+            inner.xy[2 * i + 1] = cy + 0.3 * (inner.xy[2 * i + 1] - cy);
+        }
+        std::ofstream f(d + "/ring.svg");
+        f << "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"400mm\" height=\"400mm\" "
+             "viewBox=\"-200 -200 400 400\"><path fill-rule=\"evenodd\" d=\""
+          << svg_d(outer) << svg_d(inner) << "\"/></svg>\n";
+        inputs.push_back({"SVG ring with a hole", d + "/ring.svg"});
+    }
+    long contours = 0;
+    for (const auto &in : inputs) {
+        std::string out = d + "/out.scad";
+        std::remove(out.c_str());
+        t.shapes++;
+        int rc = run_command("'" + tool + "' --levels 4 --module p -o '" + out + "' '" +
+                             in.second + "' 2>'" + d + "/err.txt'");
+        if (rc != 0) {
+            t.fail(in.first + ": scadprofile exit " + std::to_string(rc) + ": " +
+                   slurp(d + "/err.txt"));
+            continue;
+        }
+        std::vector<std::vector<Point>> cs;
+        std::string why;
+        if (!parse_scad(slurp(out), "p", cs, why)) {
+            t.fail(in.first + ": " + why);
+            continue;
+        }
+        std::vector<Polygon> polys;
+        for (const auto &c : cs)
+            polys.push_back(Polygon(c.begin(), c.end()));
+        for (size_t i = 0; i < polys.size(); i++) {
+            t.polygons++;
+            contours++;
+            if (!polys[i].is_simple()) {
+                t.fail(in.first + ": contour " + std::to_string(i) + " not simple");
+                continue;
+            }
+            int depth = nesting_depth(polys, i);
+            CGAL::Orientation want = depth % 2 ? CGAL::CLOCKWISE : CGAL::COUNTERCLOCKWISE;
+            if (polys[i].orientation() != want)
+                t.fail(in.first + ": contour " + std::to_string(i) + (depth % 2 ? " (hole)" : "") +
+                       " has the wrong orientation");
+        }
+        if (in.first == "SVG ring with a hole" && polys.size() != 2)
+            t.fail(in.first + ": " + std::to_string(polys.size()) + " contours, expected 2");
+    }
+    run_command(std::string("rm -rf '") + dir + "'");
+    t.print();
+    INFO("%s", t.report().c_str());
+    CHECK_EQ(t.shapes, 25);
+    CHECK_GE(contours, 26);
+    CHECK_EQ(t.failures, 0);
+}
+
+TEST_CASE("exporters: svgsmooth closed subpaths from simple input are simple, orientation "
+          "kept", "[cgal][export]") {
+    bool have = executable(build_bin("svgsmooth"));
+    if (!have)
+        SKIP("%s", "BUILD/bin/svgsmooth not built: exporter check skipped");
+    Tally t;
+    t.family = "svgsmooth subpaths";
+    char dir[] = "/tmp/conica-cgal-XXXXXX";
+    REQUIRE(mkdtemp(dir) != nullptr);
+    std::string tool = build_bin("svgsmooth"), d = dir;
+    std::vector<Shape> shapes = exporter_shapes();
+    {
+        std::ofstream f(d + "/in.svg");
+        f << "<svg xmlns=\"http://www.w3.org/2000/svg\" viewBox=\"-200 -200 400 400\">\n";
+        for (size_t i = 0; i < shapes.size(); i++)
+            f << "<path id=\"s" << i << "\" d=\"" << svg_d(shapes[i]) << "\"/>\n";
+        f << "</svg>\n";
+    }
+    std::vector<std::vector<Point>> in_paths, out_paths;
+    std::string why;
+    t.shapes = long(shapes.size());
+    int rc = run_command("'" + tool + "' --levels 4 -o '" + d + "/out.svg' '" + d +
+                         "/in.svg' 2>'" + d + "/err.txt'");
+    if (rc != 0)
+        t.fail("svgsmooth exit " + std::to_string(rc) + ": " + slurp(d + "/err.txt"));
+    else if (!parse_svg_subpaths(slurp(d + "/in.svg"), in_paths, why) ||
+             !parse_svg_subpaths(slurp(d + "/out.svg"), out_paths, why))
+        t.fail("cannot read the path data: " + why);
+    else if (in_paths.size() != out_paths.size())
+        t.fail(std::to_string(out_paths.size()) + " closed subpaths written for " +
+               std::to_string(in_paths.size()));
+    else
+        for (size_t i = 0; i < in_paths.size(); i++) {
+            Polygon a(in_paths[i].begin(), in_paths[i].end());
+            Polygon b(out_paths[i].begin(), out_paths[i].end());
+            t.polygons++;
+            if (!a.is_simple())
+                continue; // only simple input is promised a simple output
+            if (b.size() <= a.size())
+                t.fail(shapes[i].name + ": not refined (" + std::to_string(b.size()) +
+                       " points)");
+            if (!b.is_simple())
+                t.fail(shapes[i].name + ": output subpath not simple");
+            else if (b.orientation() != a.orientation())
+                t.fail(shapes[i].name + ": output subpath orientation changed");
+        }
+    run_command(std::string("rm -rf '") + dir + "'");
+    t.print();
+    INFO("%s", t.report().c_str());
+    CHECK_EQ(t.polygons, 24);
     CHECK_EQ(t.failures, 0);
 }
 
