@@ -17,3 +17,12 @@ $(BENCH_SUBDIV): $(BUILD)/obj/bench/bench_subdiv.o $(CORE_A)
 	@mkdir -p $(@D)
 	$(CC) $(LDFLAGS) -o $@ $< $(CORE_A) $(CORE_LIBS)
 BENCH_BINS += $(BENCH_SUBDIV)
+
+# ---- bench_svg (issue 6): SVG layer (XML + path I/O) against the geometry it feeds
+BENCH_SVG := $(BUILD)/bench/bench_svg
+$(BUILD)/obj/bench/bench_svg.o: CPPFLAGS += -Isvg_tools $(XML_CFLAGS)
+# (ALL_LIBS is complete only after every fragment: name the libraries by path)
+$(BENCH_SVG): $(BUILD)/obj/bench/bench_svg.o $(BUILD)/lib/libconica_svg.a $(CORE_A)
+	@mkdir -p $(@D)
+	$(CC) $(LDFLAGS) -o $@ $< $(BUILD)/lib/libconica_svg.a $(CORE_A) $(ALL_LDLIBS)
+BENCH_BINS += $(BENCH_SVG)

@@ -23,6 +23,8 @@
  * reference. Anything else (nested references: billion laughs; SYSTEM or
  * PUBLIC: XXE; parameter entities) is refused. */
 #define SVG_MAX_ENTITY_TEXT 1024
+/* Bytes handed to libxml2's push parser at a time. */
+#define SVG_PARSE_CHUNK ((size_t)1 << 16)
 
 conica_code conica_svg__path_polylines(const conica_svg_path *p, const conica_svg_settings *s,
                                        const char *what, size_t element, int force_closed,
@@ -144,13 +146,28 @@ conica_code conica_svg_doc_load(const char *buf, size_t len, const conica_svg_li
                                 lim->max_bytes);
     if (len > (size_t)0x7fffffff)
         return conica__fail(st, CONICA_ERR_LIMIT, 0, 0, "document larger than 2 GiB");
-    ctxt = xmlNewParserCtxt();
-    if (!ctxt)
-        return conica__fail(st, CONICA_ERR_NOMEM, 0, 0, "out of memory");
-    memset(&ls, 0, sizeof ls);
-    ctxt->_private = &ls;
-    ctxt->sax->entityDecl = entity_decl;
-    xml = xmlCtxtReadMemory(ctxt, buf, (int)len, NULL, NULL, opts);
+    /* The push parser, fed in chunks: it lets go of consumed input, so
+     * large documents parse without XML_PARSE_HUGE (whose absence keeps
+     * libxml2's own caps on names, text nodes and entity amplification). */
+    {
+        size_t first = len < 4 ? len : 4, off;
+        ctxt = xmlCreatePushParserCtxt(NULL, NULL, buf, (int)first, NULL);
+        if (!ctxt)
+            return conica__fail(st, CONICA_ERR_NOMEM, 0, 0, "out of memory");
+        xmlCtxtUseOptions(ctxt, opts);
+        memset(&ls, 0, sizeof ls);
+        ctxt->_private = &ls;
+        ctxt->sax->entityDecl = entity_decl;
+        for (off = first; !ls.refused;) {
+            size_t k = len - off < SVG_PARSE_CHUNK ? len - off : SVG_PARSE_CHUNK;
+            int last = off + k == len;
+            if (xmlParseChunk(ctxt, buf + off, (int)k, last) != 0 || last)
+                break;
+            off += k;
+        }
+        xml = ctxt->myDoc;
+        ctxt->myDoc = NULL;
+    }
     if (ls.refused) {
         size_t line = (size_t)xmlSAX2GetLineNumber(ctxt);
         xmlFreeDoc(xml);
@@ -805,7 +822,12 @@ static conica_code collect(const conica_svg_doc *doc, const conica_svg_settings 
         n = next_element(n, root, &depth);
     }
     conica_svg_path_free(&p);
-    stats->out_points = s->limits.max_points - budget;
+    {
+        size_t i;
+        stats->out_points = 0;
+        for (i = 0; i < shapes->nsubpaths; i++)
+            stats->out_points += shapes->subpaths[i].n;
+    }
     return rc;
 }
 

@@ -34,8 +34,13 @@
 /* Points of a run of straight segments count as collinear when they lie
  * within this fraction of the run's extent from the line through its ends. */
 #define SVG_COLLINEAR_REL 1e-12
+/* A closed subpath's last vertex this close to its first (relative to the
+ * subpath's extent) is the first: rounding, not a real edge. */
+#define SVG_MERGE_REL 1e-12
 /* Largest arc part between two vertices (radians). */
 #define SVG_MAX_ARC_PART (0.5 * M_PI)
+/* Three points closer to a line than this sine of their angle give no circle. */
+#define SVG_CIRCLE_COLLINEAR_SIN 1e-9
 /* Level cap for --tolerance smoothing (each level doubles the points). */
 #define SVG_TOL_MAX_LEVELS 16
 
@@ -336,7 +341,7 @@ static conica_code smooth_piece(geom_ctx *g, const double *xy, double *nxy, cons
     if (rc == CONICA_OK && nknown < n) {
         /* Estimate where the path has no tangent; keep the exact ones but
          * orient them like the estimate so the field is consistent. */
-        rc = conica_curve_estimate_normals(&in, CONICA_NORMALS_AREA, &est);
+        rc = conica_curve_estimate_normals(&in, CONICA_NORMALS_CIRCLE, &est);
         if (rc == CONICA_OK && nknown) {
             double agree = 0.0;
             for (i = 0; i < n; i++)
@@ -390,7 +395,7 @@ static conica_code smooth_piece(geom_ctx *g, const double *xy, double *nxy, cons
         conica_curve_set(xy, NULL, n, closed, &out, NULL);
     }
     conica_curve_free(&in);
-    if ((rc = take_budget(g, out.n)) != CONICA_OK) {
+    if ((rc = take_budget(g, out.n - (skip_first && out.n ? 1 : 0))) != CONICA_OK) {
         conica_curve_free(&out);
         return rc;
     }
@@ -429,6 +434,27 @@ static int collinear_lines(const sub *b, size_t first, size_t count)
             return 0; /* doubles back: not a straight run */
     }
     return 1;
+}
+
+/* Replace the normal n at p0 by the normal at p0 of the circle through
+ * p0, p1, p2 (same side as n); n stays when the points are collinear. */
+static void end_circle_normal(const double *p0, const double *p1, const double *p2, double *n)
+{
+    double ax = p1[0] - p0[0], ay = p1[1] - p0[1], bx = p2[0] - p0[0], by = p2[1] - p0[1];
+    double aa = ax * ax + ay * ay, bb = bx * bx + by * by, d = 2.0 * (ax * by - ay * bx);
+    double cx, cy, m[2];
+    if (!(fabs(d) > SVG_CIRCLE_COLLINEAR_SIN * 2.0 * sqrt(aa) * sqrt(bb)))
+        return;
+    cx = (by * aa - ay * bb) / d; /* centre relative to p0 */
+    cy = (ax * bb - bx * aa) / d;
+    if (!unit(-cx, -cy, m))
+        return;
+    if (m[0] * n[0] + m[1] * n[1] < 0.0) {
+        m[0] = -m[0];
+        m[1] = -m[1];
+    }
+    n[0] = m[0];
+    n[1] = m[1];
 }
 
 static conica_code smooth_sub(geom_ctx *g, sub *b, pts *o)
@@ -537,6 +563,16 @@ static conica_code smooth_sub(geom_ctx *g, sub *b, pts *o)
                     nxy[2 * j + 1] = -t[0];
                 }
             }
+            /* A run of straight segments ending at a corner: the normal at
+             * that end from the circle through the three end points (exact
+             * for a polygon sampled from a circle) instead of the end chord. */
+            if (cnt >= 3) {
+                if (!b->e[start % b->ne].curve && !b->e[(start + 1) % b->ne].curve)
+                    end_circle_normal(pxy, pxy + 2, pxy + 4, nxy);
+                if (!b->e[(start + cnt - 2) % b->ne].curve && !b->e[(start + cnt - 3) % b->ne].curve)
+                    end_circle_normal(pxy + 2 * (cnt - 1), pxy + 2 * (cnt - 2), pxy + 2 * (cnt - 3),
+                                      nxy + 2 * (cnt - 1));
+            }
             if (collinear_lines(b, start, cnt)) {
                 /* straight edges stay straight: the vertices as they are */
                 for (j = first_piece ? 0 : 1; j < cnt; j++)
@@ -544,7 +580,7 @@ static conica_code smooth_sub(geom_ctx *g, sub *b, pts *o)
                         rc = conica__fail(g->st, CONICA_ERR_NOMEM, 0, 0, "out of memory");
                         goto done;
                     }
-                rc = take_budget(g, cnt);
+                rc = take_budget(g, first_piece ? cnt : cnt - 1);
             } else {
                 rc = smooth_piece(g, pxy, nxy, known, cnt, 0, !first_piece, o);
             }
@@ -709,6 +745,25 @@ static conica_code flatten_sub(geom_ctx *g, const sub *b, pts *o)
 
 /* ------------------------------------------------------------ driver */
 
+/* Vertices i and j coincide up to SVG_MERGE_REL of the subpath's extent. */
+static int same_point(const sub *b, size_t i, size_t j)
+{
+    double lo[2] = {b->xy[0], b->xy[1]}, hi[2] = {b->xy[0], b->xy[1]};
+    size_t k;
+    if (b->xy[2 * i] == b->xy[2 * j] && b->xy[2 * i + 1] == b->xy[2 * j + 1])
+        return 1;
+    for (k = 1; k < b->nv; k++) {
+        int c;
+        for (c = 0; c < 2; c++) {
+            double v = b->xy[2 * k + (size_t)c];
+            lo[c] = v < lo[c] ? v : lo[c];
+            hi[c] = v > hi[c] ? v : hi[c];
+        }
+    }
+    return hypot(b->xy[2 * i] - b->xy[2 * j], b->xy[2 * i + 1] - b->xy[2 * j + 1]) <=
+           SVG_MERGE_REL * hypot(hi[0] - lo[0], hi[1] - lo[1]);
+}
+
 static conica_code finish_sub(geom_ctx *g, sub *b, size_t element, conica_svg_shapes *out,
                               size_t *in_vertices)
 {
@@ -716,9 +771,9 @@ static conica_code finish_sub(geom_ctx *g, sub *b, size_t element, conica_svg_sh
     conica_code rc = CONICA_OK;
     if (b->nv == 0)
         return CONICA_OK;
-    /* A closed subpath that returns to its start: the last vertex is the first. */
-    if (b->closed && b->nv > 1 && b->xy[2 * (b->nv - 1)] == b->xy[0] &&
-        b->xy[2 * (b->nv - 1) + 1] == b->xy[1])
+    /* A closed subpath that returns to its start: the last vertex is the
+     * first (also when rounding left it a hair away, e.g. sin(2 pi)). */
+    if (b->closed && b->nv > 1 && same_point(b, b->nv - 1, 0))
         b->nv--;
     else if (b->closed && b->nv > 1) {
         /* Z draws a straight edge back to the start */

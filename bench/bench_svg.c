@@ -1,0 +1,157 @@
+/* bench_svg: what the SVG layer costs next to the geometry it feeds
+ * (issue 6). A generated document of 10 000 closed subpaths with 100
+ * on-curve vertices each (10^6 vertices; half the segments straight, half
+ * cubic with exact tangents) goes through svgsmooth's pipeline in process:
+ * XML parse, path parse + geometry + path writing (conica_svg_process,
+ * which splits its own time), XML save. Modes: smoothing with 3 levels and
+ * flattening within 0.01 units. Prints figures, asserts nothing.
+ *
+ *   build/bench/bench_svg [SUBPATHS [VERTICES]]
+ */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+
+#include "conica_svg.h"
+
+#ifndef M_PI
+#define M_PI 3.14159265358979323846
+#endif
+
+static double now(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts);
+    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+}
+
+typedef struct text {
+    char *s;
+    size_t n, cap;
+} text;
+
+static void put(text *t, const char *fmt, double a, double b)
+{
+    int k;
+    if (t->cap - t->n < 128) {
+        t->cap = 2 * t->cap + 4096;
+        t->s = realloc(t->s, t->cap);
+        if (!t->s) {
+            fprintf(stderr, "bench_svg: out of memory\n");
+            exit(1);
+        }
+    }
+    k = snprintf(t->s + t->n, t->cap - t->n, fmt, a, b);
+    t->n += (size_t)k;
+}
+
+/* Polar blob r(th) = R (1 + 0.15 sin(3 th + ph)) and its derivative. */
+static void blob(double cx, double cy, double ph, double th, double p[2], double d[2])
+{
+    const double R = 20.0;
+    double r = R * (1.0 + 0.15 * sin(3.0 * th + ph)), dr = R * 0.45 * cos(3.0 * th + ph);
+    p[0] = cx + r * cos(th);
+    p[1] = cy + r * sin(th);
+    d[0] = dr * cos(th) - r * sin(th);
+    d[1] = dr * sin(th) + r * cos(th);
+}
+
+static text make_doc(size_t nsub, size_t nv)
+{
+    text t = {NULL, 0, 0};
+    size_t i, j, side = (size_t)ceil(sqrt((double)nsub));
+    double h = 2.0 * M_PI / (double)nv;
+    put(&t, "<?xml version=\"1.0\"?>\n<svg xmlns=\"http://www.w3.org/2000/svg\">\n", 0, 0);
+    for (i = 0; i < nsub; i++) {
+        double cx = 50.0 * (double)(i % side), cy = 50.0 * (double)(i / side), ph = 0.37 * (double)i;
+        double p[2], d[2], q[2], e[2];
+        if (i % 10 == 0)
+            put(&t, "<path d=\"", 0, 0);
+        blob(cx, cy, ph, 0.0, p, d);
+        put(&t, "M%.7g %.7g", p[0], p[1]);
+        for (j = 1; j <= nv; j++) {
+            double th = (double)(j % nv) * h;
+            blob(cx, cy, ph, th, q, e);
+            if (j % 2) {
+                put(&t, "L%.7g %.7g", q[0], q[1]);
+            } else {
+                put(&t, "C%.7g %.7g", p[0] + d[0] * h / 3.0, p[1] + d[1] * h / 3.0);
+                put(&t, " %.7g %.7g", q[0] - e[0] * h / 3.0, q[1] - e[1] * h / 3.0);
+                put(&t, " %.7g %.7g", q[0], q[1]);
+            }
+            p[0] = q[0], p[1] = q[1], d[0] = e[0], d[1] = e[1];
+        }
+        put(&t, "Z", 0, 0);
+        if (i % 10 == 9 || i + 1 == nsub)
+            put(&t, "\"/>\n", 0, 0);
+    }
+    put(&t, "</svg>\n", 0, 0);
+    return t;
+}
+
+static int run(const char *label, const text *doc, const conica_svg_settings *s)
+{
+    conica_svg_doc *d = NULL;
+    conica_svg_stats stats;
+    conica_status st;
+    char *out = NULL;
+    size_t outlen = 0;
+    double t0, t_load, t_proc, t_save, layer;
+    t0 = now();
+    if (conica_svg_doc_load(doc->s, doc->n, &s->limits, &d, &st) != CONICA_OK) {
+        fprintf(stderr, "bench_svg: load: %s\n", st.message);
+        return 1;
+    }
+    t_load = now() - t0;
+    t0 = now();
+    if (conica_svg_process(d, s, &stats, &st) != CONICA_OK) {
+        fprintf(stderr, "bench_svg: %s: %s\n", label, st.message);
+        conica_svg_doc_free(d);
+        return 1;
+    }
+    t_proc = now() - t0;
+    t0 = now();
+    if (conica_svg_doc_save(d, &out, &outlen, &st) != CONICA_OK) {
+        fprintf(stderr, "bench_svg: save: %s\n", st.message);
+        conica_svg_doc_free(d);
+        return 1;
+    }
+    t_save = now() - t0;
+    layer = t_load + stats.io_seconds + t_save;
+    printf("%-22s %10zu %10zu %11.1f %8.3f %8.3f %8.3f %9.3f %8.3f %6.2f\n", label,
+           stats.in_vertices, stats.out_points, (double)outlen / 1e6, t_load, stats.io_seconds,
+           t_save, stats.geometry_seconds, t_load + t_proc + t_save,
+           stats.geometry_seconds > 0 ? layer / stats.geometry_seconds : 0.0);
+    conica_svg_buffer_free(out);
+    conica_svg_doc_free(d);
+    return 0;
+}
+
+int main(int argc, char **argv)
+{
+    size_t nsub = argc > 1 ? (size_t)atol(argv[1]) : 10000;
+    size_t nv = argc > 2 ? (size_t)atol(argv[2]) : 100;
+    conica_svg_settings s = conica_svg_defaults();
+    text doc;
+    int rc = 0;
+    if (nsub == 0 || nv < 4 || nv % 2) {
+        fprintf(stderr, "usage: bench_svg [SUBPATHS [EVEN VERTICES >= 4]]\n");
+        return 2;
+    }
+    doc = make_doc(nsub, nv);
+    printf("bench_svg: %zu subpaths x %zu vertices (half lines, half cubics), %.1f MB of SVG\n",
+           nsub, nv, (double)doc.n / 1e6);
+    printf("SVG layer = XML parse + path parse/write + XML save; ratio = SVG layer / geometry\n\n");
+    printf("%-22s %10s %10s %11s %8s %8s %8s %9s %8s %6s\n", "mode", "vertices", "points",
+           "out MB", "XML in", "path I/O", "XML out", "geometry", "total s", "ratio");
+    s.levels = 3;
+    rc |= run("smooth --levels 3", &doc, &s);
+    s = conica_svg_defaults();
+    s.mode = CONICA_SVG_FLATTEN;
+    s.tolerance = 0.01;
+    rc |= run("flatten --tolerance .01", &doc, &s);
+    free(doc.s);
+    return rc;
+}

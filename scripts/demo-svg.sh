@@ -1,0 +1,41 @@
+#!/bin/sh
+# `make demo`, SVG part (called by scripts/demo.sh with the build directory):
+# smooth and flatten every examples/*.svg with svgsmooth into BUILD/demo/,
+# render input and outputs with rsvg-convert and put them side by side
+# (BUILD/demo/svg-NAME.compare.png: input | smoothed | flattened).
+set -eu
+build=${1:-build}
+out=$build/demo
+svgsmooth=$build/bin/svgsmooth
+mkdir -p "$out"
+have_rsvg=1
+command -v rsvg-convert >/dev/null 2>&1 || have_rsvg=0
+for f in examples/*.svg; do
+    [ -f "$f" ] || continue
+    name=svg-$(basename "$f" .svg)
+    cp "$f" "$out/$name.in.svg"
+    "$svgsmooth" --stats -o "$out/$name.smooth.svg" "$f" 2>"$out/$name.smooth.stats"
+    "$svgsmooth" --stats --flatten --tolerance 0.5 -o "$out/$name.flat.svg" "$f" 2>"$out/$name.flat.stats"
+    echo "  $f -> $out/$name.smooth.svg ($(sed -n 's/.*, \([0-9]*\) output points.*/\1/p' "$out/$name.smooth.stats") points)," \
+         "$out/$name.flat.svg ($(sed -n 's/.*, \([0-9]*\) output points.*/\1/p' "$out/$name.flat.stats") points)"
+    [ "$have_rsvg" -eq 1 ] || continue
+    for v in in smooth flat; do
+        rsvg-convert -w 360 -b white -o "$out/$name.$v.png" "$out/$name.$v.svg"
+    done
+    h=$(python3 -c "import struct,sys; d=open(sys.argv[1],'rb').read(24); print(struct.unpack('>I', d[20:24])[0])" "$out/$name.in.png")
+    cat >"$out/$name.compare.svg" <<EOF
+<svg xmlns="http://www.w3.org/2000/svg" xmlns:xlink="http://www.w3.org/1999/xlink" width="1120" height="$((h + 30))">
+  <rect width="1120" height="$((h + 30))" fill="#fff"/>
+  <g font-family="sans-serif" font-size="16" text-anchor="middle">
+    <text x="180" y="20">input</text><text x="560" y="20">svgsmooth (4 levels)</text>
+    <text x="940" y="20">svgsmooth --flatten --tolerance 0.5</text>
+  </g>
+  <image x="0" y="30" width="360" height="$h" xlink:href="$name.in.png"/>
+  <image x="380" y="30" width="360" height="$h" xlink:href="$name.smooth.png"/>
+  <image x="760" y="30" width="360" height="$h" xlink:href="$name.flat.png"/>
+</svg>
+EOF
+    (cd "$out" && rsvg-convert -o "$name.compare.png" "$name.compare.svg")
+    echo "  before/after: $out/$name.compare.png"
+done
+[ "$have_rsvg" -eq 1 ] || echo "  (rsvg-convert not installed: no PNGs; scripts/deps.sh demo installs it)"
