@@ -61,6 +61,7 @@ typedef struct SFX(frame) {
     REAL hx, hy;   /* half edge (p1 - p0)/2 */
     REAL hsx, hsy; /* half edge times sc (a power of two): |hs| in [1, 2*sqrt2) */
     REAL sc, hh;   /* the power of two, |hs|^2 */
+    REAL ihh;      /* 1 / hh */
 } SFX(frame);
 
 /* ------------------------------------------------------------ arithmetic */
@@ -235,7 +236,7 @@ static int SFX(collect)(const SFX(job) *j, size_t i, int maxl, int maxr, size_t 
             if (j->closed) {
                 if (!j->ref && (size_t)k + 2 > n)
                     break;
-                jj = (i + n - (size_t)k % n) % n;
+                jj = i >= (size_t)k % n ? i - (size_t)k % n : i + n - (size_t)k % n;
             } else {
                 if ((size_t)k > i)
                     break;
@@ -253,7 +254,9 @@ static int SFX(collect)(const SFX(job) *j, size_t i, int maxl, int maxr, size_t 
             if (j->closed) {
                 if (!j->ref && (size_t)(nl + k) + 2 > n)
                     break;
-                jj = (i1 + (size_t)k) % n;
+                jj = i1 + (size_t)k % n;
+                if (jj >= n)
+                    jj -= n;
             } else {
                 if (i1 + (size_t)k >= n)
                     break;
@@ -284,6 +287,7 @@ static int SFX(make_frame)(const SFX(job) *j, size_t i, size_t i1, SFX(frame) *f
     f->hsx = f->hx * f->sc;
     f->hsy = f->hy * f->sc;
     f->hh = FMA(f->hsx, f->hsx, f->hsy * f->hsy);
+    f->ihh = 1 / f->hh;
     return 1;
 }
 
@@ -303,8 +307,8 @@ static void SFX(local_pairs)(const SFX(job) *j, const SFX(frame) *f, const size_
             P[k].wn = j->wen;
         } else {
             REAL wx = (j->xy[2 * q] - f->mx) * f->sc, wy = (j->xy[2 * q + 1] - f->my) * f->sc;
-            P[k].x = FMA(wx, f->hsx, wy * f->hsy) / f->hh;
-            P[k].y = DIFFPROD_WP(f->hsx, wy, f->hsy, wx) / f->hh;
+            P[k].x = FMA(wx, f->hsx, wy * f->hsy) * f->ihh;
+            P[k].y = DIFFPROD_WP(f->hsx, wy, f->hsy, wx) * f->ihh;
             P[k].wv = j->wov;
             P[k].wn = j->won;
         }
@@ -312,9 +316,9 @@ static void SFX(local_pairs)(const SFX(job) *j, const SFX(frame) *f, const size_
          * unit so that the fit's weights mean the same at every level. */
         lx = FMA(nx, f->hsx, ny * f->hsy);
         ly = DIFFPROD_WP(f->hsx, ny, f->hsy, nx);
-        len = M(sqrt)(FMA(lx, lx, ly * ly));
-        P[k].nx = lx / len;
-        P[k].ny = ly / len;
+        len = 1 / M(sqrt)(FMA(lx, lx, ly * ly));
+        P[k].nx = lx * len;
+        P[k].ny = ly * len;
     }
 }
 
@@ -377,9 +381,9 @@ static int SFX(fast_fit)(const SFX(job) *j, const SFX(pair) *P, int cnt, REAL *p
             mu = r - h;
             lam = -n12;
         }
-        s = SFX(maxabs)(mu, lam);
-        mu /= s;
-        lam /= s;
+        s = 1 / SFX(maxabs)(mu, lam);
+        mu *= s;
+        lam *= s;
     }
     if (!isfinite(mu) || !isfinite(lam))
         return -1;
