@@ -23,6 +23,9 @@
  * reference. Anything else (nested references: billion laughs; SYSTEM or
  * PUBLIC: XXE; parameter entities) is refused. */
 #define SVG_MAX_ENTITY_TEXT 1024
+/* Cap on other attributes we read (id, style, fill-rule, lengths): longer
+ * values are treated as absent. */
+#define SVG_MAX_PLAIN_ATTR ((size_t)1 << 16)
 /* Bytes handed to libxml2's push parser at a time. */
 #define SVG_PARSE_CHUNK ((size_t)1 << 16)
 
@@ -278,9 +281,39 @@ void conica_svg_buffer_free(char *buf)
 
 /* ------------------------------------------------------------ attributes */
 
+/* The value of attribute `name` (no namespace), entity references expanded,
+ * or NULL when absent or when the expanded value would exceed cap bytes
+ * (then *too_long is set, if given). The length is summed before anything
+ * is expanded: a value made of many references to a 1 KB entity must not
+ * grow a few bytes of input into gigabytes. Free with xmlFree(). */
+static char *get_attr_cap(xmlNodePtr n, const char *name, size_t cap, int *too_long)
+{
+    xmlAttrPtr a = xmlHasNsProp(n, BAD_CAST name, NULL);
+    xmlNodePtr c;
+    size_t total = 0;
+    if (too_long)
+        *too_long = 0;
+    if (!a || a->type != XML_ATTRIBUTE_NODE)
+        return NULL;
+    for (c = a->children; c; c = c->next) {
+        if (c->type == XML_TEXT_NODE && c->content) {
+            total += (size_t)xmlStrlen(c->content);
+        } else if (c->type == XML_ENTITY_REF_NODE) {
+            xmlEntityPtr ent = xmlGetDocEntity(n->doc, c->name);
+            total += ent && ent->content ? (size_t)xmlStrlen(ent->content) : 0;
+        }
+        if (total > cap) {
+            if (too_long)
+                *too_long = 1;
+            return NULL;
+        }
+    }
+    return (char *)xmlNodeListGetString(n->doc, a->children, 1);
+}
+
 static char *get_attr(xmlNodePtr n, const char *name)
 {
-    return (char *)xmlGetNoNsProp(n, BAD_CAST name);
+    return get_attr_cap(n, name, SVG_MAX_PLAIN_ATTR, NULL);
 }
 
 /* A number at s (after optional whitespace), locale free; returns the
@@ -671,18 +704,18 @@ static int element_path(const conica_svg_settings *s, xmlNodePtr n, int kind, co
     size_t line = (size_t)xmlGetLineNo(n);
     *rc = CONICA_OK;
     if (kind == 0) {
-        char *d = get_attr(n, "d");
+        int too_long;
+        char *d = get_attr_cap(n, "d", s->limits.max_path_bytes, &too_long);
         size_t len;
+        if (too_long) {
+            *rc = conica__fail(st, CONICA_ERR_LIMIT, line, 0,
+                               "%s: path data exceeds the limit of %zu bytes (--max-path-bytes)",
+                               what, s->limits.max_path_bytes);
+            return 0;
+        }
         if (!d)
             return 0;
         len = strlen(d);
-        if (len > s->limits.max_path_bytes) {
-            xmlFree(d);
-            *rc = conica__fail(st, CONICA_ERR_LIMIT, line, 0,
-                                   "%s: path data of %zu bytes exceeds the limit of %zu (--max-path-bytes)",
-                                   what, len, s->limits.max_path_bytes);
-            return 0;
-        }
         *rc = conica_svg_path_parse(d, len, 0, p, st);
         xmlFree(d);
         if (*rc != CONICA_OK) {
@@ -696,20 +729,20 @@ static int element_path(const conica_svg_settings *s, xmlNodePtr n, int kind, co
         return p->n > 0;
     }
     if (kind == 1 || kind == 2) {
-        char *a = get_attr(n, "points");
+        int too_long;
+        char *a = get_attr_cap(n, "points", s->limits.max_path_bytes, &too_long);
         double *xy = NULL;
         size_t np = 0, bad = 0, len, i;
         pbuild b;
+        if (too_long) {
+            *rc = conica__fail(st, CONICA_ERR_LIMIT, line, 0,
+                               "%s: points exceed the limit of %zu bytes (--max-path-bytes)", what,
+                               s->limits.max_path_bytes);
+            return 0;
+        }
         if (!a)
             return 0;
         len = strlen(a);
-        if (len > s->limits.max_path_bytes) {
-            xmlFree(a);
-            *rc = conica__fail(st, CONICA_ERR_LIMIT, line, 0,
-                                   "%s: points of %zu bytes exceeds the limit of %zu (--max-path-bytes)",
-                                   what, len, s->limits.max_path_bytes);
-            return 0;
-        }
         *rc = conica_svg_points_parse(a, len, 0, &xy, &np, &bad, st);
         xmlFree(a);
         if (*rc != CONICA_OK)

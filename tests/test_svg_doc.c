@@ -526,6 +526,38 @@ TEST_CASE("hostile XML is refused", "[svg][doc][security]")
         free(out);
         conica_svg_doc_free(doc);
     }
+    SECTION("entity references cannot amplify through attribute values")
+    {
+        /* 200 000 references to a 1000-byte entity: 200 MB if expanded */
+        size_t nref = 200000, i, n = 0;
+        char *t = malloc(nref * 4 + 2000);
+        conica_svg_doc *doc;
+        conica_svg_settings s = conica_svg_defaults();
+        conica_svg_stats stats;
+        n += (size_t)sprintf(t, "<!DOCTYPE svg [<!ENTITY e \"");
+        for (i = 0; i < 1000; i++)
+            t[n++] = 'x';
+        n += (size_t)sprintf(t + n, "\"><!ENTITY m \"L1 1\">]>\n<svg xmlns=\"http://www.w3.org/2000/svg\">"
+                                    "<path id=\"p\" style=\"");
+        for (i = 0; i < nref; i++)
+            n += (size_t)sprintf(t + n, "&e;");
+        sprintf(t + n, "\" d=\"M0 0&m;L2 0&m;\"/></svg>");
+        doc = load(t);
+        REQUIRE(conica_svg_process(doc, &s, &stats, &st) == CONICA_OK);
+        CHECK_EQ_U(stats.in_vertices, 4); /* M0 0 L1 1 L2 0 L1 1: the references in d were read */
+        conica_svg_doc_free(doc);
+        /* the same references in d: refused by the cap, not expanded */
+        strcpy(strstr(t, "style="), "d=\"M0 0");
+        n = strlen(t);
+        for (i = 0; i < nref; i++)
+            n += (size_t)sprintf(t + n, "&e;");
+        sprintf(t + n, "\"/></svg>");
+        doc = load(t);
+        CHECK(conica_svg_process(doc, &s, &stats, &st) == CONICA_ERR_LIMIT);
+        CHECK(strstr(st.message, "--max-path-bytes") != NULL);
+        conica_svg_doc_free(doc);
+        free(t);
+    }
     SECTION("deep nesting")
     {
         size_t depth = 300, i, n = 0;
