@@ -37,5 +37,18 @@ for f in examples/*.svg; do
 EOF
     (cd "$out" && rsvg-convert -o "$name.compare.png" "$name.compare.svg")
     echo "  before/after: $out/$name.compare.png"
+    # A close-up when the example names a box (data-demo-zoom="x y w h").
+    zoom=$(sed -n 's/.*data-demo-zoom="\([^"]*\)".*/\1/p' "$f" | head -n 1)
+    [ -n "$zoom" ] || continue
+    for v in in smooth flat; do
+        sed -e "/<svg /s/ viewBox=\"[^\"]*\"/ viewBox=\"$zoom\"/" \
+            -e '/<svg /s/ width="[^"]*"//' -e '/<svg /s/ height="[^"]*"//' \
+            "$out/$name.$v.svg" >"$out/$name.$v.zoom.svg"
+        rsvg-convert -w 360 -h 360 -b white -o "$out/$name.$v.zoom.png" "$out/$name.$v.zoom.svg"
+    done
+    sed -e "s/$name\.\(in\|smooth\|flat\)\.png/$name.\1.zoom.png/g" -e "s/height=\"$h\"/height=\"360\"/g" \
+        -e "s/height=\"$((h + 30))\"/height=\"390\"/g" "$out/$name.compare.svg" >"$out/$name.zoom.svg"
+    (cd "$out" && rsvg-convert -o "$name.zoom.png" "$name.zoom.svg")
+    echo "  close-up ($zoom): $out/$name.zoom.png"
 done
 [ "$have_rsvg" -eq 1 ] || echo "  (rsvg-convert not installed: no PNGs; scripts/deps.sh demo installs it)"
