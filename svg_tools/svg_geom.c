@@ -41,6 +41,10 @@
 #define SVG_MAX_ARC_PART (0.5 * M_PI)
 /* Three points closer to a line than this sine of their angle give no circle. */
 #define SVG_CIRCLE_COLLINEAR_SIN 1e-9
+/* Cross product of two unit tangents below this: the curve does not turn. */
+#define SVG_TURN_EPS 1e-9
+/* Parts a curve is cut into where the turning direction changes. */
+#define SVG_INFLECTION_PARTS 4
 /* Level cap for --tolerance smoothing (each level doubles the points). */
 #define SVG_TOL_MAX_LEVELS 16
 
@@ -187,32 +191,36 @@ static int add_seg(sub *b, const conica_svg_seg *g, int split_arcs)
     return 1;
 }
 
-/* Cut every curved edge at its parametric middle (used when a closed
- * subpath has fewer than 3 vertices: the engine needs 3). */
-static int split_curves(sub *b)
+/* Cut edge i into parts[i] equal parametric parts (straight edges are never
+ * cut), each new vertex an exact point of the curve with its exact tangent. */
+static int split_edges(sub *b, const size_t *parts)
 {
     sub nb;
-    size_t i;
+    size_t i, k;
     memset(&nb, 0, sizeof nb);
     nb.closed = b->closed;
     if (!sub_vertex(&nb, b->xy[0], b->xy[1]))
         goto fail;
     for (i = 0; i < b->ne; i++) {
         edge e = b->e[i];
-        size_t to = (i + 1) % b->nv;
-        if (e.curve) {
-            double p[2], d[2], tm = 0.5 * (e.t0 + e.t1);
-            edge a = e, c = e;
-            conica_svg__seg_eval(e.seg, tm, p, d);
-            a.t1 = tm;
-            unit(d[0], d[1], a.tb);
-            c.t0 = tm;
-            c.ta[0] = a.tb[0];
-            c.ta[1] = a.tb[1];
-            if (!sub_edge(&nb, &a) || !sub_vertex(&nb, p[0], p[1]) || !sub_edge(&nb, &c))
+        size_t to = (i + 1) % b->nv, m = e.curve ? parts[i] : 1;
+        for (k = 0; k < m; k++) {
+            edge c = e;
+            double p[2], d[2];
+            c.t0 = e.t0 + (e.t1 - e.t0) * (double)k / (double)m;
+            c.t1 = k + 1 == m ? e.t1 : e.t0 + (e.t1 - e.t0) * (double)(k + 1) / (double)m;
+            if (k > 0) {
+                conica_svg__seg_eval(e.seg, c.t0, p, d);
+                unit(d[0], d[1], c.ta);
+            }
+            if (k + 1 < m) {
+                conica_svg__seg_eval(e.seg, c.t1, p, d);
+                unit(d[0], d[1], c.tb);
+            }
+            if (!sub_edge(&nb, &c))
                 goto fail;
-        } else if (!sub_edge(&nb, &e)) {
-            goto fail;
+            if (k + 1 < m && !sub_vertex(&nb, p[0], p[1]))
+                goto fail;
         }
         if (i + 1 < b->ne || !b->closed)
             if (!sub_vertex(&nb, b->xy[2 * to], b->xy[2 * to + 1]))
@@ -226,6 +234,71 @@ fail:
     free(nb.xy);
     free(nb.e);
     return 0;
+}
+
+static double turn_angle(const double a[2], const double b[2]);
+
+/* Which way a curved edge turns: +1 left, -1 right, 0 not measurably. */
+static int edge_turn(const edge *e)
+{
+    double c = e->ta[0] * e->tb[1] - e->ta[1] * e->tb[0];
+    return c > SVG_TURN_EPS ? 1 : c < -SVG_TURN_EPS ? -1 : 0;
+}
+
+/* A cubic whose inner control points lie on opposite sides of its chord has
+ * an inflection inside. */
+static int s_shaped(const edge *e)
+{
+    const conica_svg_seg *g = e->seg;
+    double dx = g->x1 - g->x0, dy = g->y1 - g->y0, a, c;
+    if (g->type != CONICA_SVG_SEG_CUBIC)
+        return 0;
+    a = dx * (g->c[1] - g->y0) - dy * (g->c[0] - g->x0);
+    c = dx * (g->c[3] - g->y0) - dy * (g->c[2] - g->x0);
+    return (a > 0.0 && c < 0.0) || (a < 0.0 && c > 0.0);
+}
+
+/* The vertices of a subpath say too little where its curves change their
+ * turning direction: an S-shaped cubic, or two curves turning opposite ways
+ * at a smooth join (a wave "C..S.." whose on-curve points are collinear).
+ * Such points with their normals are no sample of one conic, and collinear
+ * points can even make the fit a straight line. Cut those curves into
+ * SVG_INFLECTION_PARTS parts at exact points, so the curve carries its
+ * shape into the subdivision. Convex runs (every arc, a conic written as
+ * Béziers with exact tangents) are left alone and still reproduce exactly. */
+static int split_inflections(sub *b, double corner)
+{
+    size_t i, n = b->ne, flagged = 0;
+    size_t *parts;
+    if (n == 0)
+        return 1;
+    parts = malloc(n * sizeof *parts);
+    if (!parts)
+        return 0;
+    for (i = 0; i < n; i++) {
+        const edge *e = &b->e[i];
+        int t = edge_turn(e), flag = 0, side;
+        parts[i] = 1;
+        if (!e->curve)
+            continue;
+        flag = s_shaped(e);
+        for (side = 0; side < 2 && !flag && t != 0; side++) {
+            const edge *o;
+            if (!b->closed && ((side == 0 && i == 0) || (side == 1 && i + 1 == n)))
+                continue;
+            o = &b->e[side == 0 ? (i + n - 1) % n : (i + 1) % n];
+            if (o->curve && edge_turn(o) == -t &&
+                turn_angle(side == 0 ? o->tb : e->tb, side == 0 ? e->ta : o->ta) <= corner)
+                flag = 1;
+        }
+        if (flag) {
+            parts[i] = SVG_INFLECTION_PARTS;
+            flagged++;
+        }
+    }
+    i = flagged ? (size_t)split_edges(b, parts) : 1;
+    free(parts);
+    return (int)i;
 }
 
 /* ------------------------------------------------------------ output */
@@ -466,9 +539,20 @@ static conica_code smooth_sub(geom_ctx *g, sub *b, pts *o)
     double *nxy = NULL, *pxy = NULL;
     conica_code rc = CONICA_OK;
 
-    if (b->closed && nv < 3 && b->ne)
-        if (!split_curves(b))
+    if (s->levels > 0 || s->tolerance > 0.0)
+        if (!split_inflections(b, corner))
             return conica__fail(g->st, CONICA_ERR_NOMEM, 0, 0, "out of memory");
+    if (b->closed && b->nv < 3 && b->ne) {
+        /* the engine needs 3 points on a closed curve: halve the curves */
+        size_t *two = malloc(b->ne * sizeof *two), k;
+        int ok = two != NULL;
+        for (k = 0; ok && k < b->ne; k++)
+            two[k] = 2;
+        ok = ok && split_edges(b, two);
+        free(two);
+        if (!ok)
+            return conica__fail(g->st, CONICA_ERR_NOMEM, 0, 0, "out of memory");
+    }
     nv = b->nv;
     if (b->ne == 0 || (s->levels == 0 && s->tolerance <= 0.0) || (b->closed && nv < 3)) {
         for (i = 0; i < nv; i++)

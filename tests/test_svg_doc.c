@@ -386,6 +386,47 @@ TEST_CASE("corners stay: rectangle, star, letter, traced outline", "[svg][corner
         }
         conica_svg_shapes_free(&sh);
     }
+    SECTION("a wave with collinear on-curve points keeps its shape")
+    {
+        /* C..S.. and a single S-shaped cubic: the vertices are collinear,
+         * the curve is not; the output must follow the curve closely */
+        const char *d[2] = {"M0 0C10 10 20 10 30 0S50 -10 60 0", "M0 0C10 20 20 -20 30 0"};
+        int k;
+        for (k = 0; k < 2; k++) {
+            char t[256];
+            conica_svg_path p;
+            size_t j, i;
+            double worst = 0.0, ymax = 0.0;
+            snprintf(t, sizeof t, "<svg xmlns=\"http://www.w3.org/2000/svg\"><path d=\"%s\"/></svg>", d[k]);
+            extract(t, &s, &sh);
+            conica_svg_path_init(&p);
+            REQUIRE(conica_svg_path_parse(d[k], strlen(d[k]), 0, &p, NULL) == CONICA_OK);
+            for (j = 0; j < sh.subpaths[0].n; j++) {
+                double x = sh.subpaths[0].xy[2 * j], y = sh.subpaths[0].xy[2 * j + 1], best = INFINITY;
+                for (i = 1; i < p.n; i++) {
+                    const conica_svg_seg *g = &p.seg[i];
+                    int m;
+                    for (m = 0; m <= 400; m++) {
+                        double u = m / 400.0, v = 1 - u;
+                        double cx = v * v * v * g->x0 + 3 * v * v * u * g->c[0] + 3 * v * u * u * g->c[2] + u * u * u * g->x1;
+                        double cy = v * v * v * g->y0 + 3 * v * v * u * g->c[1] + 3 * v * u * u * g->c[3] + u * u * u * g->y1;
+                        if (hypot(x - cx, y - cy) < best)
+                            best = hypot(x - cx, y - cy);
+                    }
+                }
+                if (best > worst)
+                    worst = best;
+                if (fabs(y) > ymax)
+                    ymax = fabs(y);
+            }
+            INFO("%s", d[k]);
+            CAPTURE_D(worst);
+            CHECK_GT(ymax, 5.0);
+            CHECK_LT(worst, 0.01 * 30);
+            conica_svg_path_free(&p);
+            conica_svg_shapes_free(&sh);
+        }
+    }
     SECTION("corner angle 180 disables corners")
     {
         s.corner_angle_deg = 180.0;
