@@ -512,6 +512,12 @@ static int SFX(svd_fit)(SFX(worker) *w, const SFX(pair) *P, int cnt, REAL *q)
         a[r2 + 4 * rows] = wn * 2;
         a[r2 + (6 + k) * rows] = wn * -P[k].ny;
     }
+    /* LAPACK's bidiagonal QR can loop for ever on Inf/NaN (found by the
+     * fuzzer with a point at 1e300, whose square overflows): such a patch
+     * has no fit. */
+    for (k = 0; k < rows * n; k++)
+        if (!isfinite(a[k]))
+            return -1;
 #if REAL_IS_DOUBLE
     {
         double copy[CONICA__FIT_MAX_ROWS * CONICA__FIT_MAX_COLS];
