@@ -1,0 +1,113 @@
+#!/bin/sh
+# tests/cli/limits.sh BUILD_DIR - every input-controlled size of the tools
+# has a default, a flag and a clear error: each cap is hit on purpose and
+# the run must exit 1, name the cap in its message, and write nothing (the
+# -o file is never created, stdout stays empty). Levels past the hard
+# maximum are usage errors (exit 2). See docs/reliability.md for the table.
+set -u
+. "$(dirname "$0")/harness.sh"
+conica=$build/bin/conica
+svgsmooth=$build/bin/svgsmooth
+scad=$build/bin/scadprofile
+ex=examples
+
+# refused EXIT PATTERN OUTFILE CMD...: exit status, an stderr line matching
+# PATTERN, no OUTFILE and no stdout.
+refused() {
+    r_want=$1 r_pat=$2 r_outf=$3
+    shift 3
+    rm -f "$r_outf"
+    check_exit "$r_want" "exit $r_want: $*" "$@"
+    check_grep "$r_pat" "$err" "message /$r_pat/"
+    check_true "nothing written to $(basename "$r_outf")" test ! -e "$r_outf"
+    check_true "nothing on stdout" test ! -s "$out"
+}
+
+printf 'v 0 0\nv 4 0\nv 4 3\nv 0 3\n' >"$tmp/square.txt"
+printf 'degree 2\nknots 0 0 0 1 2 3 3 3\nc 0 0\nc 4 0\nc 6 3\nc 3 6\nc 0 3\n' >"$tmp/open.spl"
+
+begin_case "subdivision levels: 0..30, more is a usage error"
+refused 2 'levels must be an integer in 0\.\.30' "$tmp/o.txt" \
+    "$conica" subdivide -k 31 -o "$tmp/o.txt" "$ex/ellipse.txt"
+refused 2 '0\.\.30' "$tmp/o.svg" "$conica" combs -k 31 -o "$tmp/o.svg" "$ex/ellipse.txt"
+refused 2 '0\.\.20' "$tmp/o.txt" "$conica" errors -k 21 "$ex/ellipse.txt"
+refused 2 '--levels needs a whole number in 0\.\.30' "$tmp/o.svg" \
+    "$svgsmooth" --levels 31 -o "$tmp/o.svg" "$ex/letter-R.svg"
+refused 2 '--levels needs an integer in 0\.\.30' "$tmp/o.scad" \
+    "$scad" --levels 31 -o "$tmp/o.scad" "$ex/ellipse.txt"
+
+begin_case "output points: default budget refuses a huge level before allocating"
+refused 1 'would make more than the 67108864 points allowed \(max_points\)' "$tmp/o.txt" \
+    "$conica" subdivide -k 30 -o "$tmp/o.txt" "$ex/ellipse.txt"
+refused 1 'more than the 67108864 points allowed' "$tmp/o.svg" \
+    "$conica" combs -k 25 -o "$tmp/o.svg" "$ex/ellipse.txt"
+refused 1 'exceed the limit of 67108864 points \(--max-points\)' "$tmp/o.svg" \
+    "$svgsmooth" --levels 30 -o "$tmp/o.svg" "$ex/letter-R.svg"
+refused 1 'more than the 4194304 points allowed' "$tmp/o.scad" \
+    "$scad" --levels 30 -o "$tmp/o.scad" "$ex/ellipse.txt"
+
+begin_case "output points: --max-points lowers the budget"
+refused 1 'more than the 1000 points allowed \(max_points\)' "$tmp/o.txt" \
+    "$conica" subdivide -k 10 --max-points 1000 -o "$tmp/o.txt" "$ex/ellipse.txt"
+refused 1 'exceed the limit of 50 points \(--max-points\)' "$tmp/o.svg" \
+    "$svgsmooth" --max-points 50 -o "$tmp/o.svg" "$ex/letter-R.svg"
+refused 1 'more than the 100 points allowed' "$tmp/o.scad" \
+    "$scad" --max-points 100 --levels 10 -o "$tmp/o.scad" "$ex/ellipse.txt"
+refused 1 'needs more than 100 dense points.*raise the cap or the tolerance' "$tmp/o.scad" \
+    "$scad" --max-points 100 --tolerance 1e-9 -o "$tmp/o.scad" "$ex/ellipse.txt"
+refused 2 '--max-points needs an integer in 16\.\.' "$tmp/o.scad" \
+    "$scad" --max-points 10 -o "$tmp/o.scad" "$ex/ellipse.txt"
+
+begin_case "plotter: a tolerance too fine for the point budget is refused (flatten, spline)"
+refused 1 'exceed the limit of 100 points \(--max-points\)' "$tmp/o.svg" \
+    "$svgsmooth" --flatten --tolerance 0.00001 --max-points 100 -o "$tmp/o.svg" "$ex/icon-arcs.svg"
+refused 1 'scadprofile: error: .*open\.spl' "$tmp/o.scad" \
+    "$scad" --max-points 16 --tolerance 1e-12 -o "$tmp/o.scad" "$tmp/open.spl"
+
+begin_case "XML: document size (--max-input-bytes)"
+refused 1 'input larger than the limit of 100 bytes' "$tmp/o.svg" \
+    "$svgsmooth" --max-input-bytes 100 -o "$tmp/o.svg" "$ex/letter-R.svg"
+
+begin_case "XML: nesting depth (--max-depth, default 256)"
+{
+    printf '<svg xmlns="http://www.w3.org/2000/svg">'
+    i=0
+    while [ $i -lt 200 ]; do printf '<g>'; i=$((i + 1)); done
+    printf '<path d="M0 0L1 0L1 1Z"/>'
+    i=0
+    while [ $i -lt 200 ]; do printf '</g>'; i=$((i + 1)); done
+    printf '</svg>\n'
+} >"$tmp/deep200.svg"
+check "200 levels pass the default cap" "$svgsmooth" -o "$tmp/ok.svg" "$tmp/deep200.svg"
+refused 1 'elements nested deeper than 100 \(--max-depth\)' "$tmp/o.svg" \
+    "$svgsmooth" --max-depth 100 -o "$tmp/o.svg" "$tmp/deep200.svg"
+
+begin_case "XML: number of elements (--max-elements)"
+{
+    printf '<svg xmlns="http://www.w3.org/2000/svg">'
+    i=0
+    while [ $i -lt 300 ]; do printf '<path d="M%d 0L%d 1L%d 1Z"/>' $((3 * i)) $((3 * i + 1)) $((3 * i)); i=$((i + 1)); done
+    printf '</svg>\n'
+} >"$tmp/many.svg"
+check "300 elements pass the default cap" "$svgsmooth" --levels 1 -o "$tmp/ok.svg" "$tmp/many.svg"
+refused 1 'more than 100 elements \(--max-elements\)' "$tmp/o.svg" \
+    "$svgsmooth" --max-elements 100 -o "$tmp/o.svg" "$tmp/many.svg"
+
+begin_case "path data length (--max-path-bytes, default 8 MiB)"
+refused 1 "path 'R': path data exceeds the limit of 10 bytes \(--max-path-bytes\)" "$tmp/o.svg" \
+    "$svgsmooth" --max-path-bytes 10 -o "$tmp/o.svg" "$ex/letter-R.svg"
+{
+    printf '<svg xmlns="http://www.w3.org/2000/svg"><path d="M0 0'
+    # 9 000 000 bytes of path data: over the 8 MiB default, under libxml2's 10 MB
+    head -c 1800000 /dev/zero | tr '\0' 'L' | sed 's/L/ L1 1/g'
+    printf 'Z"/></svg>\n'
+} >"$tmp/path9m.svg"
+refused 1 'path data exceeds the limit of 8388608 bytes \(--max-path-bytes\)' "$tmp/o.svg" \
+    "$svgsmooth" -o "$tmp/o.svg" "$tmp/path9m.svg"
+
+begin_case "stdin: the size cap applies to a pipe too"
+check_exit 1 "svgsmooth refuses a large stdin" \
+    sh -c "cat '$ex/traced-leaf.svg' | '$svgsmooth' --max-input-bytes 200 -"
+check_grep 'input larger than the limit of 200 bytes' "$err"
+
+finish
