@@ -1,0 +1,126 @@
+#!/bin/sh
+# tests/cli/hostile_xml.sh BUILD_DIR - hostile XML through both SVG-reading
+# tools (svgsmooth and scadprofile): entity expansion (billion laughs),
+# external entities (XXE, general and parameter), an external DTD, XInclude,
+# huge attribute values and deep nesting. Each is refused (exit 1, clear
+# message, nothing written) or neutralised (the file is never read: no line
+# of /etc/passwd reaches the output). svgsmooth.sh already checks the
+# simple XXE / 3-level laughs cases for svgsmooth; here both tools see the
+# full-size attacks.
+set -u
+. "$(dirname "$0")/harness.sh"
+svgsmooth=$build/bin/svgsmooth
+scad=$build/bin/scadprofile
+svgns='xmlns="http://www.w3.org/2000/svg"'
+tri='<path id="t" d="M0 0L10 0L10 10Z"/>'
+
+# both_refuse FILE PATTERN: each tool exits 1 with PATTERN, writes nothing.
+both_refuse() {
+    for tool in "$svgsmooth" "$scad"; do
+        name=$(basename "$tool")
+        rm -f "$tmp/o.out"
+        check_exit 1 "$name refuses $(basename "$1")" "$tool" -o "$tmp/o.out" "$1"
+        check_grep "^$name: error: .*$2" "$err" "$name names the problem: /$2/"
+        check_true "$name wrote nothing" test ! -e "$tmp/o.out"
+    done
+}
+
+# both_neutralise FILE: each tool succeeds and nothing of /etc/passwd leaks.
+both_neutralise() {
+    for tool in "$svgsmooth" "$scad"; do
+        name=$(basename "$tool")
+        rm -f "$tmp/o.out"
+        check "$name accepts $(basename "$1") without reading the external file" \
+            "$tool" -o "$tmp/o.out" "$1"
+        check_true "$name wrote its output" test -s "$tmp/o.out"
+        check_no_grep 'root:|/bin/(ba)?sh|nologin' "$tmp/o.out" "no /etc/passwd content in the output"
+        check_no_grep 'root:|nologin' "$err" "no /etc/passwd content in the messages"
+    done
+}
+
+begin_case "billion laughs: 10 entities of 10 references each"
+{
+    printf '<?xml version="1.0"?>\n<!DOCTYPE svg [\n<!ENTITY lol "lol">\n'
+    prev=lol
+    for i in 1 2 3 4 5 6 7 8 9; do
+        printf '<!ENTITY lol%d "' "$i"
+        for j in 1 2 3 4 5 6 7 8 9 10; do printf '&%s;' "$prev"; done
+        printf '">\n'
+        prev=lol$i
+    done
+    printf ']>\n<svg %s>%s<text>&lol9;</text></svg>\n' "$svgns" "$tri"
+} >"$tmp/laughs.svg"
+both_refuse "$tmp/laughs.svg" "entity 'lol1' refused: .*entity expansion"
+
+begin_case "quadratic blowup: one big entity referenced many times"
+{
+    printf '<?xml version="1.0"?>\n<!DOCTYPE svg [<!ENTITY big "'
+    head -c 100000 /dev/zero | tr '\0' 'x'
+    printf '">]>\n<svg %s>%s<text>' "$svgns" "$tri"
+    i=0
+    while [ $i -lt 2000 ]; do printf '&big;'; i=$((i + 1)); done
+    printf '</text></svg>\n'
+} >"$tmp/quadratic.svg"
+both_refuse "$tmp/quadratic.svg" "entity 'big' refused"
+
+begin_case "XXE: external general entity"
+printf '<?xml version="1.0"?>\n<!DOCTYPE svg [<!ENTITY x SYSTEM "file:///etc/passwd">]>\n<svg %s><path id="&x;" d="M0 0L10 0L10 10Z"/><text>&x;</text></svg>\n' \
+    "$svgns" >"$tmp/xxe.svg"
+both_refuse "$tmp/xxe.svg" "entity 'x' refused: external or parameter entity \(XXE\)"
+
+begin_case "XXE: external parameter entity"
+printf '<?xml version="1.0"?>\n<!DOCTYPE svg [<!ENTITY %% p SYSTEM "file:///etc/passwd"> %%p;]>\n<svg %s>%s</svg>\n' \
+    "$svgns" "$tri" >"$tmp/xxe-param.svg"
+both_refuse "$tmp/xxe-param.svg" "entity 'p' refused: external or parameter entity \(XXE\)"
+
+begin_case "XXE: entity fetched over the network"
+printf '<?xml version="1.0"?>\n<!DOCTYPE svg [<!ENTITY x SYSTEM "http://127.0.0.1:9/x">]>\n<svg %s>%s<text>&x;</text></svg>\n' \
+    "$svgns" "$tri" >"$tmp/xxe-http.svg"
+both_refuse "$tmp/xxe-http.svg" "entity 'x' refused"
+
+begin_case "external DTD: not loaded (neutralised)"
+printf '<?xml version="1.0"?>\n<!DOCTYPE svg SYSTEM "file:///etc/passwd">\n<svg %s>%s</svg>\n' \
+    "$svgns" "$tri" >"$tmp/dtd.svg"
+both_neutralise "$tmp/dtd.svg"
+
+begin_case "XInclude: not processed (neutralised)"
+printf '<svg %s xmlns:xi="http://www.w3.org/2001/XInclude"><xi:include href="file:///etc/passwd" parse="text"/>%s</svg>\n' \
+    "$svgns" "$tri" >"$tmp/xinclude.svg"
+both_neutralise "$tmp/xinclude.svg"
+check "svgsmooth again" "$svgsmooth" -o "$tmp/x.svg" "$tmp/xinclude.svg"
+check_grep 'xi:include href="file:///etc/passwd"' "$tmp/x.svg" "svgsmooth keeps the xi:include element as it was"
+
+begin_case "huge attribute value (12 MB id): refused by the parser's own limit"
+{
+    printf '<svg %s><path id="' "$svgns"
+    head -c 12000000 /dev/zero | tr '\0' 'a'
+    printf '" d="M0 0L10 0L10 10Z"/></svg>\n'
+} >"$tmp/hugeattr.svg"
+both_refuse "$tmp/hugeattr.svg" "XML: "
+
+begin_case "huge path data (12 MB d): refused"
+{
+    printf '<svg %s><path d="M0 0' "$svgns"
+    head -c 2400000 /dev/zero | tr '\0' 'L' | sed 's/L/ L1 1/g'
+    printf 'Z"/></svg>\n'
+} >"$tmp/hugepath.svg"
+both_refuse "$tmp/hugepath.svg" "XML: |path data exceeds"
+
+begin_case "deep nesting: 300 and 100000 levels"
+for depth in 300 100000; do
+    awk -v d="$depth" -v ns="$svgns" -v tri="$tri" 'BEGIN {
+        printf "<svg %s>", ns
+        for (i = 0; i < d; i++) printf "<g>"
+        printf "%s", tri
+        for (i = 0; i < d; i++) printf "</g>"
+        printf "</svg>\n" }' >"$tmp/deep$depth.svg"
+    both_refuse "$tmp/deep$depth.svg" "depth|deeper than"
+done
+
+begin_case "unterminated document and binary garbage"
+printf '<svg %s><path d="M0 0L10 0' "$svgns" >"$tmp/truncated.svg"
+both_refuse "$tmp/truncated.svg" "XML: "
+head -c 4096 /dev/urandom | tr -d '<' >"$tmp/garbage.svg"
+both_refuse "$tmp/garbage.svg" "XML: |garbage\.svg"
+
+finish
