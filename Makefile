@@ -72,6 +72,8 @@ RUNNER_OBJS := $(RUNNER_SRCS:%.c=$(BUILD)/obj/%.o)
 RUNNER_A    := $(BUILD)/lib/libconica_test.a
 
 # Static libraries of the other modules, in link order (modules append).
+# ALL_LIBS is complete only after every fragment is read: a fragment's
+# prerequisite lists must name libraries by path (CORE_A, CLI_A, ...).
 MODULE_LIBS :=
 MODULE_LIBS_FIRST :=
 BINS := $(BUILD)/bin/conica

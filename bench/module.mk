@@ -4,9 +4,9 @@
 # ---- bench_ablation (issue 9): the numerics ablation of seed 000, Section 3.2
 BENCH_ABLATION := $(BUILD)/bench/bench_ablation
 $(BUILD)/obj/bench/bench_ablation.o: CPPFLAGS += -Ilibcore/tools
-$(BENCH_ABLATION): $(BUILD)/obj/bench/bench_ablation.o $(ALL_LIBS)
+$(BENCH_ABLATION): $(BUILD)/obj/bench/bench_ablation.o $(CLI_A) $(CORE_A)
 	@mkdir -p $(@D)
-	$(CC) $(LDFLAGS) -o $@ $< $(ALL_LIBS) $(ALL_LDLIBS)
+	$(CC) $(LDFLAGS) -o $@ $< $(CLI_A) $(CORE_A) $(CORE_LIBS)
 BENCH_BINS += $(BENCH_ABLATION)
 # scripts/demo-diagnostics.sh draws the ablation combs with it
 DEMO_DEPS += $(BENCH_ABLATION)
