@@ -134,6 +134,14 @@ static void bezier_tangents(const conica_svg_seg *g, edge *e)
             break;
 }
 
+/* Parts of at most 90 degrees for an arc sweeping dtheta (|dtheta| <= 2 pi,
+ * so 1..4; the tiny slack keeps an exact 90 degrees in one part). */
+static size_t arc_parts(double dtheta)
+{
+    double parts = ceil(fabs(dtheta) / SVG_MAX_ARC_PART - 1e-9);
+    return parts >= 1.0 && parts <= 4.0 ? (size_t)parts : parts > 4.0 ? 4 : 1;
+}
+
 static int add_line(sub *b, const conica_svg_seg *g, double x, double y)
 {
     edge e;
@@ -172,8 +180,7 @@ static int add_seg(sub *b, const conica_svg_seg *g, int split_arcs)
     if (g->type == CONICA_SVG_SEG_ARC) {
         size_t m = 1, k;
         if (split_arcs) {
-            double parts = ceil(fabs(g->dtheta) / SVG_MAX_ARC_PART - 1e-9);
-            m = parts < 1.0 ? 1 : (size_t)parts;
+            m = arc_parts(g->dtheta);
         }
         for (k = 0; k < m; k++) {
             double p[2], d[2];
@@ -765,8 +772,7 @@ static conica_code flatten_edge(geom_ctx *g, const edge *e, double ex, double ey
     } else {
         /* An elliptic arc exactly: rational quadratic pieces of at most 90
          * degrees, middle weight cos(half angle), joined with double knots. */
-        double parts = ceil(fabs(s->dtheta) / SVG_MAX_ARC_PART - 1e-9);
-        size_t m = parts < 1.0 ? 1 : (size_t)parts, k, nk = 2 * m + 4, nc = 2 * m + 1;
+        size_t m = arc_parts(s->dtheta), k, nk = 2 * m + 4, nc = 2 * m + 1;
         double *buf = malloc((nk + 3 * nc) * sizeof *buf), *kn, *cp, *w;
         double h = 0.5 * s->dtheta / (double)m, cphi = cos(s->phi), sphi = sin(s->phi);
         if (!buf)

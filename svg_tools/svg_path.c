@@ -312,6 +312,12 @@ int conica_svg__arc_to_centre(conica_svg_seg *seg, double rx, double ry, double 
         dtheta -= 2.0 * M_PI;
     else if (seg->sweep && dtheta < 0.0)
         dtheta += 2.0 * M_PI;
+    if (!isfinite(seg->cx) || !isfinite(seg->cy) || !isfinite(rx) || !isfinite(ry) ||
+        !isfinite(seg->theta1) || !isfinite(dtheta)) {
+        /* Overflow near DBL_MAX: no usable centre; draw the chord. */
+        seg->type = CONICA_SVG_SEG_LINE;
+        return 1;
+    }
     seg->dtheta = dtheta;
     seg->rx = rx;
     seg->ry = ry;

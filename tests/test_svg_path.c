@@ -227,6 +227,9 @@ TEST_CASE("arcs: endpoint to centre parametrisation", "[svg][path][arc]")
         CHECK_STR_EQ(desc("M0 0A0 5 0 0 1 10 0"), "M0,0 L10,0");
         CHECK_STR_EQ(desc("M0 0A5 0 0 0 1 10 0"), "M0,0 L10,0");
         CHECK_STR_EQ(desc("M3 4A5 5 0 0 1 3 4L1 1"), "M3,4 L1,1");
+        /* overflow near DBL_MAX (found by fuzz_svg_path): the chord, no NaN */
+        CHECK_STR_EQ(desc("M20 5e180A15 15 0 0 1 0 0"), "M20,5e+180 L0,0");
+        CHECK_STR_EQ(desc("M-1e308 0A1 1 0 0 1 1e308 0"), "M-1e+308,0 L1e+308,0");
         /* negative radii are taken by absolute value */
         CHECK_STR_EQ(desc("M0 0A-5 -5 0 0 1 10 0"), "M0,0 A10,0");
     }
