@@ -145,7 +145,9 @@ conica_code conica_bspline_parse(const char *buf, size_t len, conica_bspline *ou
                                       "degree given twice (first on line %zu)", degree_line);
                     break;
                 }
-                if (count != 1 || vals[0] != (double)(long)vals[0] || vals[0] < 1) {
+                /* range before the integer test: (long)1e30 is undefined */
+                if (count != 1 || !(vals[0] >= 1) ||
+                    (vals[0] <= CONICA_BSPLINE_MAX_DEGREE && vals[0] != (double)(long)vals[0])) {
                     rc = conica__fail(st, CONICA_ERR_PARSE, line, ks,
                                       "degree needs one positive integer");
                     break;
