@@ -29,10 +29,7 @@
 /* Bytes handed to libxml2's push parser at a time. */
 #define SVG_PARSE_CHUNK ((size_t)1 << 16)
 
-conica_code conica_svg__path_polylines(const conica_svg_path *p, const conica_svg_settings *s,
-                                       const char *what, size_t element, int force_closed,
-                                       size_t *budget, size_t *in_vertices, double *geo_seconds,
-                                       conica_svg_shapes *out, conica_status *st);
+
 
 struct conica_svg_doc {
     xmlDocPtr xml;
@@ -840,7 +837,7 @@ static conica_code collect(const conica_svg_doc *doc, const conica_svg_settings 
                     (*items)[idx].node = n;
                     (*items)[idx].kind = kind;
                     shapes->nelements++;
-                    rc = conica_svg__path_polylines(&p, s, what, idx, kind == 1, &budget,
+                    rc = conica_svg__path_polylines(&p, s, what, el->line, idx, kind == 1, &budget,
                                                     &stats->in_vertices, &geo, shapes, st);
                     if (rc != CONICA_OK && st)
                         st->line = el->line;

@@ -67,6 +67,7 @@ typedef struct geom_ctx {
     size_t budget;   /* output points left */
     double geo_seconds;
     const char *what; /* element name for messages */
+    size_t line;      /* its XML line (0 unknown) */
     conica_status *st;
 } geom_ctx;
 
@@ -469,7 +470,7 @@ static conica_code smooth_piece(geom_ctx *g, const double *xy, double *nxy, cons
             char msg[400];
             snprintf(msg, sizeof msg, "%s: a piece of %zu points was kept as is: %s", g->what, n,
                      est.message);
-            s->warn(s->warn_ctx, 0, msg);
+            s->warn(s->warn_ctx, g->line, msg);
         }
         conica_curve_free(&out);
         conica_curve_set(xy, NULL, n, closed, &out, NULL);
@@ -898,16 +899,9 @@ static conica_code finish_sub(geom_ctx *g, sub *b, size_t element, conica_svg_sh
     return rc;
 }
 
-/* Shared with svg_doc.c: polylines of one parsed path. *budget is the
- * output points left (decremented); *in_vertices counts input vertices;
- * *geo_seconds accumulates the time in the engine. */
 conica_code conica_svg__path_polylines(const conica_svg_path *p, const conica_svg_settings *s,
-                                       const char *what, size_t element, int force_closed,
-                                       size_t *budget, size_t *in_vertices, double *geo_seconds,
-                                       conica_svg_shapes *out, conica_status *st);
-
-conica_code conica_svg__path_polylines(const conica_svg_path *p, const conica_svg_settings *s,
-                                       const char *what, size_t element, int force_closed,
+                                       const char *what, size_t line, size_t element,
+                                       int force_closed,
                                        size_t *budget, size_t *in_vertices, double *geo_seconds,
                                        conica_svg_shapes *out, conica_status *st)
 {
@@ -923,6 +917,7 @@ conica_code conica_svg__path_polylines(const conica_svg_path *p, const conica_sv
     g.budget = *budget;
     g.geo_seconds = 0.0;
     g.what = what;
+    g.line = line;
     g.st = st;
     memset(&b, 0, sizeof b);
     for (i = 0; i < p->n && rc == CONICA_OK; i++) {
@@ -986,5 +981,5 @@ conica_code conica_svg_path_polylines(const conica_svg_path *p, const conica_svg
     if (s->mode == CONICA_SVG_FLATTEN && !(s->tolerance > 0.0))
         return conica__fail(st, CONICA_ERR_ARG, 0, 0, "flattening needs a tolerance > 0");
     budget = s->limits.max_points;
-    return conica_svg__path_polylines(p, s, "path", 0, 0, &budget, &inv, &secs, out, st);
+    return conica_svg__path_polylines(p, s, "path", 0, 0, 0, &budget, &inv, &secs, out, st);
 }

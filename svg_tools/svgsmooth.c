@@ -31,7 +31,7 @@ static const char usage_text[] =
     "  --precision N       significant digits written (1..17, default 7)\n"
     "  --select IDS        only the elements with these ids (comma separated)\n"
     "  --convert-shapes    also rect, circle, ellipse, line (rewritten as paths)\n"
-    "  --stats             counts and seconds on stderr\n"
+    "  --stats             counts and CPU seconds on stderr\n"
     "  --in-place          replace IN (through a temporary file)\n"
     "  -o OUT              output file (default stdout)\n"
     "  --max-input-bytes N   document size cap (default 64 MiB)\n"
