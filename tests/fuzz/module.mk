@@ -37,3 +37,6 @@ memcheck: all
 TEST_EXTRA += fuzz-build
 .PHONY: fuzz fuzz-build memcheck
 endif
+
+# tests/test_reliability.c (regressions of the fuzz findings) reads SVG too.
+$(BUILD)/obj/tests/test_reliability.o: CPPFLAGS += -Isvg_tools $(XML_CFLAGS)

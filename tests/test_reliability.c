@@ -1,0 +1,94 @@
+/* Regression tests for the findings of the fuzzers (tests/fuzz/) and the
+ * hostile-input audit (docs/reliability.md): each case is an input that once
+ * crashed, hung or hit undefined behaviour. Under the sanitizer build
+ * (make test-san) undefined behaviour aborts, so these cases fail there
+ * until the code is right. */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "conica/bspline.h"
+#include "conica/curve.h"
+#include "conica/plot.h"
+#include "conica_svg.h"
+#include "conica_test.h"
+
+static conica_code parse_spline(const char *text, conica_status *st)
+{
+    conica_bspline s;
+    conica_bspline_init(&s);
+    conica_code rc = conica_bspline_parse(text, strlen(text), &s, st);
+    conica_bspline_free(&s);
+    return rc;
+}
+
+TEST_CASE("spline parser: a huge or fractional degree is an error, not a cast overflow",
+          "[reliability][fuzz]")
+{
+    conica_status st;
+    /* fuzz_spline_parse: `degree 6666...6663` was converted to long (UB) */
+    CHECK_EQ(parse_spline("degree 1e30\nknots 0 0 1 1\nc 0 0\nc 1 1\n", &st), CONICA_ERR_LIMIT);
+    CHECK_EQ(st.line, 1);
+    CHECK_EQ(parse_spline("degree -1e300\nknots 0 0 1 1\nc 0 0\nc 1 1\n", &st), CONICA_ERR_PARSE);
+    CHECK_EQ(parse_spline("degree 2.5\nknots 0 0 1 1\nc 0 0\nc 1 1\n", &st), CONICA_ERR_PARSE);
+    CHECK_EQ(parse_spline("degree 51\nknots 0 0 1 1\nc 0 0\nc 1 1\n", &st), CONICA_ERR_LIMIT);
+    CHECK_EQ(parse_spline("degree 1\nknots 0 0 1 1\nc 0 0\nc 1 1\n", &st), CONICA_OK);
+}
+
+TEST_CASE("curve parser: a zero normal is refused with its line", "[reliability][fuzz]")
+{
+    const char *text = "v 0 0\nv 1 0\nvn 0 0\nvn 0 1\n";
+    conica_curve c;
+    conica_status st;
+    conica_curve_init(&c);
+    CHECK_EQ(conica_curve_parse(text, strlen(text), &c, &st), CONICA_ERR_DEGENERATE);
+    CHECK_EQ(st.line, 3);
+    CHECK_EQ(c.n, 0);
+    conica_curve_free(&c);
+}
+
+TEST_CASE("plot deviation: a polyline reaching infinity does not index the grid with NaN",
+          "[reliability][fuzz]")
+{
+    /* fuzz_plot: conica_plot_deviation cast NaN cell coordinates to size_t */
+    const double knots[] = {0, 0, 1, 1}, ctrl[] = {0, 0, 1, 1};
+    conica_bspline s;
+    conica_polyline pl;
+    conica_status st;
+    double xy[4] = {0, 0, INFINITY, 1};
+    size_t start = 0;
+    conica_bspline_init(&s);
+    REQUIRE_EQ(conica_bspline_set(1, 2, knots, 4, ctrl, 2, NULL, &s, &st), CONICA_OK);
+    conica_polyline_init(&pl);
+    pl.n = 2;
+    pl.dim = 2;
+    pl.xy = xy;
+    pl.npieces = 1;
+    pl.piece_start = &start;
+    double c2p = 0, p2c = 0;
+    conica_code rc = conica_plot_deviation(&s, &pl, 8, &c2p, &p2c, &st);
+    CHECK((rc == CONICA_OK || rc == CONICA_ERR_NONFINITE || rc == CONICA_ERR_ARG));
+    conica_bspline_free(&s);
+}
+
+TEST_CASE("svg: entity declarations are refused at load", "[reliability][xml]")
+{
+    static const char *const docs[] = {
+        "<?xml version=\"1.0\"?><!DOCTYPE svg [<!ENTITY x SYSTEM \"file:///etc/passwd\">]>"
+        "<svg xmlns=\"http://www.w3.org/2000/svg\"><text>&x;</text></svg>",
+        "<?xml version=\"1.0\"?><!DOCTYPE svg [<!ENTITY % p SYSTEM \"file:///etc/passwd\"> %p;]>"
+        "<svg xmlns=\"http://www.w3.org/2000/svg\"/>",
+        "<?xml version=\"1.0\"?><!DOCTYPE svg [<!ENTITY a \"aa\"><!ENTITY b \"&a;&a;\">]>"
+        "<svg xmlns=\"http://www.w3.org/2000/svg\"><text>&b;</text></svg>",
+    };
+    for (size_t i = 0; i < sizeof docs / sizeof docs[0]; i++) {
+        conica_svg_doc *doc = NULL;
+        conica_status st;
+        INFO("document %zu", i);
+        CHECK_EQ(conica_svg_doc_load(docs[i], strlen(docs[i]), NULL, &doc, &st),
+                 CONICA_ERR_UNSUPPORTED);
+        CHECK(doc == NULL);
+        conica_svg_doc_free(doc);
+    }
+}
