@@ -100,6 +100,7 @@ void conica_polyline_free(conica_polyline *p)
         return;
     free(p->xy);
     free(p->piece_start);
+    free(p->t);
     conica_polyline_init(p);
 }
 
@@ -129,7 +130,7 @@ conica_code conica__out_piece(conica__out *o, conica_status *st)
     return CONICA_OK;
 }
 
-conica_code conica__out_push(conica__out *o, const double *pt, conica_status *st)
+conica_code conica__out_push(conica__out *o, const double *pt, double t, conica_status *st)
 {
     if (o->pl.n >= o->max_points)
         return conica__fail(st, CONICA_ERR_LIMIT, 0, 0,
@@ -144,9 +145,14 @@ conica_code conica__out_push(conica__out *o, const double *pt, conica_status *st
         if (!xy)
             return conica__fail(st, CONICA_ERR_NOMEM, 0, 0, "out of memory");
         o->pl.xy = xy;
+        double *tt = realloc(o->pl.t, nc * sizeof *tt);
+        if (!tt)
+            return conica__fail(st, CONICA_ERR_NOMEM, 0, 0, "out of memory");
+        o->pl.t = tt;
         o->pl.cap = nc;
     }
     memcpy(o->pl.xy + o->pl.n * d, pt, d * sizeof *pt);
+    o->pl.t[o->pl.n] = t;
     o->pl.n++;
     return CONICA_OK;
 }
@@ -409,6 +415,13 @@ conica_code conica_plot(const conica_bspline *s, const conica_plot_settings *set
         conica_polyline_free(&o.pl);
         return rc;
     }
+    /* parameters only when every point has one */
+    for (size_t i = 0; i < o.pl.n; i++)
+        if (isnan(o.pl.t[i])) {
+            free(o.pl.t);
+            o.pl.t = NULL;
+            break;
+        }
     sx.points = o.pl.n;
     sx.seconds = conica__now() - t0;
     conica_polyline_free(out);
@@ -419,204 +432,3 @@ conica_code conica_plot(const conica_bspline *s, const conica_plot_settings *set
     return CONICA_OK;
 }
 
-/* ------------------------------------------------------------ deviation */
-
-static double seg_dist2(const double *p, const double *a, const double *b, int d)
-{
-    double ab2 = 0, ap_ab = 0;
-    for (int c = 0; c < d; c++) {
-        ab2 += (b[c] - a[c]) * (b[c] - a[c]);
-        ap_ab += (p[c] - a[c]) * (b[c] - a[c]);
-    }
-    double u = ab2 > 0 ? ap_ab / ab2 : 0.0;
-    u = u < 0 ? 0 : (u > 1 ? 1 : u);
-    double r = 0;
-    for (int c = 0; c < d; c++) {
-        double e = p[c] - (a[c] + u * (b[c] - a[c]));
-        r += e * e;
-    }
-    return r;
-}
-
-/* Distance from q to the polyline, searching the segments within
- * DEV_WINDOW of *hint (the previous nearest one: samples come in curve
- * order) and moving the hint. The result is the distance to a set of
- * polyline segments, hence never below the true distance: a conservative
- * (upper) estimate that keeps dense checks linear. */
-#define DEV_WINDOW 16
-static double poly_dist(const conica_polyline *pl, const double *q, size_t *hint)
-{
-    double best = INFINITY;
-    size_t d = (size_t)pl->dim, bi = *hint;
-    size_t lo = *hint > DEV_WINDOW ? *hint - DEV_WINDOW : 0;
-    size_t hi = *hint + DEV_WINDOW < pl->n ? *hint + DEV_WINDOW : pl->n;
-    size_t k = 0;
-    for (size_t i = lo; i < hi; i++) {
-        while (k + 1 < pl->npieces && pl->piece_start[k + 1] <= i)
-            k++;
-        size_t b = k + 1 < pl->npieces ? pl->piece_start[k + 1] : pl->n;
-        size_t j = i + 1 < b ? i + 1 : i; /* last vertex of a piece: point */
-        double r = seg_dist2(q, pl->xy + i * d, pl->xy + j * d, pl->dim);
-        if (r < best) {
-            best = r;
-            bi = i;
-        }
-    }
-    *hint = bi;
-    return sqrt(best);
-}
-
-conica_code conica_plot_deviation(const conica_bspline *s, const conica_polyline *pl,
-                                  size_t samples, double *curve_to_poly, double *poly_to_curve,
-                                  conica_status *st)
-{
-    if (!s || !pl || samples < 1 || pl->n == 0 || pl->npieces == 0)
-        return conica__fail(st, CONICA_ERR_ARG, 0, 0, "invalid spline, polyline or samples");
-    int pd = conica_bspline_point_dim(s);
-    if (pd != pl->dim)
-        return conica__fail(st, CONICA_ERR_ARG, 0, 0, "polyline dimension %d, spline %d",
-                            pl->dim, pd);
-    size_t p = (size_t)s->degree, spans = conica_bspline_bezier_count(s);
-    size_t total = spans * samples + 1;
-    if (total > ((size_t)1 << 26))
-        return conica__fail(st, CONICA_ERR_LIMIT, 0, 0, "too many samples");
-    double *pts = malloc(total * 3 * sizeof *pts);
-    if (!pts)
-        return conica__fail(st, CONICA_ERR_NOMEM, 0, 0, "out of memory");
-    size_t m = 0;
-    for (size_t mu = p; mu < s->n; mu++) {
-        double a = s->knots[mu], b = s->knots[mu + 1];
-        if (!(a < b))
-            continue;
-        for (size_t i = 0; i < samples; i++) {
-            double t = a + (b - a) * (double)i / (double)samples;
-            conica__plot_point(s, t, pts + 3 * m);
-            m++;
-        }
-    }
-    conica__plot_point(s, s->knots[s->n], pts + 3 * m);
-    m++;
-    double c2p = 0.0;
-    if (curve_to_poly) {
-        size_t hint = 0;
-        for (size_t i = 0; i < m; i++) {
-            double dd = poly_dist(pl, pts + 3 * i, &hint);
-            c2p = dd > c2p ? dd : c2p;
-        }
-        *curve_to_poly = c2p;
-    }
-    if (poly_to_curve) {
-        /* vertices and segment quarter points to the nearest sample (exact
-         * nearest neighbour through a uniform grid on the first two
-         * coordinates): the true distance to the curve plus at most half a
-         * sampling step */
-        size_t d = (size_t)pl->dim;
-        double lo[2] = {INFINITY, INFINITY}, hi[2] = {-INFINITY, -INFINITY};
-        for (size_t j = 0; j < m; j++)
-            for (int c = 0; c < 2; c++) {
-                lo[c] = pts[3 * j + (size_t)c] < lo[c] ? pts[3 * j + (size_t)c] : lo[c];
-                hi[c] = pts[3 * j + (size_t)c] > hi[c] ? pts[3 * j + (size_t)c] : hi[c];
-            }
-        for (size_t i = 0; i < pl->n; i++)
-            for (int c = 0; c < 2; c++) {
-                lo[c] = pl->xy[i * d + (size_t)c] < lo[c] ? pl->xy[i * d + (size_t)c] : lo[c];
-                hi[c] = pl->xy[i * d + (size_t)c] > hi[c] ? pl->xy[i * d + (size_t)c] : hi[c];
-            }
-        size_t G = (size_t)sqrt((double)m / 2.0) + 1;
-        G = G > 2048 ? 2048 : G;
-        double cw = (hi[0] - lo[0]) / (double)G, ch = (hi[1] - lo[1]) / (double)G;
-        if (!(cw > 0))
-            cw = 1.0;
-        if (!(ch > 0))
-            ch = 1.0;
-        double cs = cw < ch ? cw : ch;
-        size_t *start = calloc(G * G + 1, sizeof *start), *idx = malloc(m * sizeof *idx);
-        if (!start || !idx) {
-            free(start);
-            free(idx);
-            free(pts);
-            return conica__fail(st, CONICA_ERR_NOMEM, 0, 0, "out of memory");
-        }
-#define CELL_OF(x, y, cx, cy)                                                                 \
-    do {                                                                                      \
-        double fx_ = ((x) - lo[0]) / cw, fy_ = ((y) - lo[1]) / ch;                             \
-        cx = fx_ <= 0 ? 0 : (fx_ >= (double)G ? G - 1 : (size_t)fx_);                          \
-        cy = fy_ <= 0 ? 0 : (fy_ >= (double)G ? G - 1 : (size_t)fy_);                          \
-    } while (0)
-        for (size_t j = 0; j < m; j++) {
-            size_t cx, cy;
-            CELL_OF(pts[3 * j], pts[3 * j + 1], cx, cy);
-            start[cy * G + cx + 1]++;
-        }
-        for (size_t c = 0; c < G * G; c++)
-            start[c + 1] += start[c];
-        {
-            size_t *fill = malloc(G * G * sizeof *fill);
-            if (!fill) {
-                free(start);
-                free(idx);
-                free(pts);
-                return conica__fail(st, CONICA_ERR_NOMEM, 0, 0, "out of memory");
-            }
-            memcpy(fill, start, G * G * sizeof *fill);
-            for (size_t j = 0; j < m; j++) {
-                size_t cx, cy;
-                CELL_OF(pts[3 * j], pts[3 * j + 1], cx, cy);
-                idx[fill[cy * G + cx]++] = j;
-            }
-            free(fill);
-        }
-        double p2c = 0.0;
-        for (size_t i = 0; i < pl->n; i++) {
-            for (int q = 0; q < 4; q++) {
-                double x[3] = {0, 0, 0};
-                if (q > 0 && i + 1 >= pl->n)
-                    break;
-                if (q > 0) { /* skip segments across piece boundaries */
-                    int across = 0;
-                    for (size_t k = 1; k < pl->npieces; k++)
-                        across |= pl->piece_start[k] == i + 1;
-                    if (across)
-                        break;
-                }
-                for (size_t c = 0; c < d; c++) {
-                    double a0 = pl->xy[i * d + c];
-                    x[c] = q == 0 ? a0 : a0 + 0.25 * q * (pl->xy[(i + 1) * d + c] - a0);
-                }
-                size_t cx, cy;
-                CELL_OF(x[0], x[1], cx, cy);
-                double best = INFINITY;
-                for (size_t r = 0; r <= G; r++) {
-                    size_t x0 = cx >= r ? cx - r : 0, x1 = cx + r < G ? cx + r : G - 1;
-                    size_t y0 = cy >= r ? cy - r : 0, y1 = cy + r < G ? cy + r : G - 1;
-                    for (size_t yy = y0; yy <= y1; yy++)
-                        for (size_t xx = x0; xx <= x1; xx++) {
-                            size_t ring = xx + r == cx || xx == cx + r || yy + r == cy ||
-                                          yy == cy + r;
-                            if (!ring)
-                                continue;
-                            for (size_t e = start[yy * G + xx]; e < start[yy * G + xx + 1]; e++) {
-                                const double *sp = pts + 3 * idx[e];
-                                double dd = 0;
-                                for (size_t c = 0; c < d; c++)
-                                    dd += (x[c] - sp[c]) * (x[c] - sp[c]);
-                                best = dd < best ? dd : best;
-                            }
-                        }
-                    double reach = (double)r * cs;
-                    if (best <= reach * reach)
-                        break;
-                }
-                best = sqrt(best);
-                p2c = best > p2c ? best : p2c;
-            }
-        }
-#undef CELL_OF
-        free(start);
-        free(idx);
-        *poly_to_curve = p2c;
-    }
-    free(pts);
-    conica__ok(st);
-    return CONICA_OK;
-}

@@ -470,14 +470,16 @@ static conica_code adaptive_piece(const conica_bspline *g, const conica_plot_set
         double buf[3];
         for (size_t i = first_is_join ? 1 : 0; i < w.n && rc == CONICA_OK; i++) {
             if (set->output == CONICA_OUTPUT_CONTROL_POLYGON || i == 0 || i + 1 == w.n) {
-                rc = conica__out_push(o, w.P + i * d, st);
+                double ti = set->output == CONICA_OUTPUT_CONTROL_POLYGON ? NAN
+                            : (i == 0 ? w.k[p] : w.k[w.n]);
+                rc = conica__out_push(o, w.P + i * d, ti, st);
             } else {
                 double s = 0;
                 for (size_t q = 1; q <= p; q++)
                     s += w.k[i + q];
                 conica_bspline_eval(g, s / (double)p, buf, NULL);
                 stats->flops += (double)(p * (p + 1) / 2) * (3.0 + 3.0 * (double)w.h);
-                rc = conica__out_push(o, buf, st);
+                rc = conica__out_push(o, buf, s / (double)p, st);
             }
         }
     }

@@ -48,7 +48,7 @@ static conica_code emit_param(const conica_bspline *s, double t, int skip, conic
     double buf[3];
     conica__plot_point(s, t, buf);
     stats->flops += eval_flops(s);
-    return conica__out_push(o, buf, st);
+    return conica__out_push(o, buf, t, st);
 }
 
 static conica_code uniform_piece(const conica_bspline *s, size_t n, int join, conica__out *o,
@@ -253,7 +253,7 @@ static conica_code cut_corners(const conica_bspline *s, int lr, size_t want, int
         n = nn;
     }
     for (size_t i = join ? 1 : 0; i < n && rc == CONICA_OK; i++)
-        rc = conica__out_push(o, P + i * ud, st);
+        rc = conica__out_push(o, P + i * ud, NAN, st);
     free(P);
     return rc;
 }
@@ -342,7 +342,7 @@ static conica_code mathematica_piece(const conica_bspline *s, const conica_plot_
         stats->iterations++;
     }
     for (size_t i = join ? 1 : 0; i < n && rc == CONICA_OK; i++)
-        rc = conica__out_push(o, v[i].xy, st);
+        rc = conica__out_push(o, v[i].xy, v[i].t, st);
     free(v);
     return rc;
 }

@@ -307,7 +307,7 @@ conica_code conica__guaranteed_piece(const conica_bspline *g, double tol,
     }
     if (!first_is_join) {
         proj(m, m->head, pt);
-        rc = conica__out_push(o, pt, st);
+        rc = conica__out_push(o, pt, a, st);
         if (rc == CONICA_OK)
             rc = push_param(params, np, &cap, a, st);
         if (rc != CONICA_OK)
@@ -400,7 +400,7 @@ conica_code conica__guaranteed_piece(const conica_bspline *g, double tol,
         proj(m, m->le + p * h, pt);
         if (best_x >= b) /* the end point of the piece exactly */
             proj(m, m->H + (g->n - 1) * h, pt);
-        rc = conica__out_push(o, pt, st);
+        rc = conica__out_push(o, pt, best_x, st);
         if (rc == CONICA_OK)
             rc = push_param(params, np, &cap, best_x, st);
         if (rc != CONICA_OK)

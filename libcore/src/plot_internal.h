@@ -33,7 +33,8 @@ void conica__out_init(conica__out *o, int dim, size_t max_points);
 /* Start a new output piece unless `joined` (then the next point, equal to
  * the last one, is skipped by the caller via conica__out_push_join). */
 conica_code conica__out_piece(conica__out *o, conica_status *st);
-conica_code conica__out_push(conica__out *o, const double *pt, conica_status *st);
+/* Append a point; t is its parameter on the curve, NAN when it has none. */
+conica_code conica__out_push(conica__out *o, const double *pt, double t, conica_status *st);
 
 /* Point of s at t in plot coordinates: (t, f(t)) for a function. */
 void conica__plot_point(const conica_bspline *s, double t, double *out);

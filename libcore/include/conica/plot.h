@@ -140,6 +140,10 @@ typedef struct conica_polyline {
     double *xy;          /**< n * dim coordinates */
     size_t npieces;      /**< pieces split at discontinuities */
     size_t *piece_start; /**< npieces start indices into the points */
+    double *t;           /**< parameter of each point when every point was
+                              evaluated on the curve (guaranteed, uniform,
+                              local-uniform, mathematica, adaptive with curve
+                              points); NULL for control-polygon output */
 } conica_polyline;
 
 /** @brief Empty polyline, safe to free. */
@@ -174,9 +178,17 @@ CONICA_API double conica_plot_tolerance(const conica_bspline *s, const conica_pl
 
 /**
  * @brief Measure (not bound) the deviation between s and a polyline by dense
- *        evaluation: `samples` points per knot interval, distance of each to
- *        the polyline, and of each polyline vertex and segment midpoint to
- *        the nearest sample. *curve_to_poly and *poly_to_curve may be NULL.
+ *        evaluation at `samples` points per knot interval.
+ *
+ * *curve_to_poly: largest distance of a sample to the polyline (searched
+ * near the previous sample's nearest segment, so never below the true
+ * value). *poly_to_curve: largest distance of a polyline vertex or segment
+ * quarter point to the chain of samples (exact nearest sample, then its two
+ * chords); it exceeds the true distance to the curve by at most the
+ * samples' sagitta. When pl->t is set (points evaluated on the curve),
+ * `samples` is per chord instead and each chord is compared with the curve
+ * between its end parameters only (both values can only be over-estimated).
+ * Either output may be NULL.
  */
 CONICA_API conica_code conica_plot_deviation(const conica_bspline *s, const conica_polyline *pl,
         size_t samples, double *curve_to_poly, double *poly_to_curve, conica_status *st);
