@@ -1,0 +1,179 @@
+#!/bin/sh
+# tests/cli/no_data_lost.sh BUILD_DIR - no CLI loses data when it fails.
+# For every tool (conica subdivide / combs / plot when present, svgsmooth
+# incl. --in-place, scadprofile):
+#   - a failed run leaves an existing output file byte-identical;
+#   - no temporary file is left in the target directory, also when the
+#     final rename fails (the target is a directory);
+#   - an unwritable output location (read-only /proc, a path under a
+#     regular file, a missing directory, chmod 555 when not root) is exit 1;
+#   - a write error (-o /dev/full) is exit 1, not a silent success.
+set -u
+. "$(dirname "$0")/harness.sh"
+conica=$build/bin/conica
+svgsmooth=$build/bin/svgsmooth
+scad=$build/bin/scadprofile
+ex=examples
+
+printf 'v 0 0\nv 1 nan\nv 2 0\n' >"$tmp/nan.txt"
+printf 'degree 2\nknots 0 0 0 1 1 1\nc 0 0\nc 1 nan\nc 2 0\n' >"$tmp/nan.spl"
+printf '<svg xmlns="http://www.w3.org/2000/svg"><path d="M0 0L10 0' >"$tmp/truncated.svg"
+# a bowtie: valid SVG, but its profile crosses itself (scadprofile refuses it)
+printf '<svg xmlns="http://www.w3.org/2000/svg"><path d="M0 0L10 10L10 0L0 10Z"/></svg>\n' \
+    >"$tmp/bowtie.svg"
+printf 'degree 2\nknots 0 0 0 1 2 3 3 3\nc 0 0\nc 4 0\nc 6 3\nc 3 6\nc 0 3\n' >"$tmp/open.spl"
+
+has_plot=0
+"$conica" plot --help >/dev/null 2>&1 && has_plot=1
+
+# keeps NAME EXT CMD-WITH-@OUT@...: run CMD (which must fail) with @OUT@ as
+# an existing file in a fresh directory; the file keeps its bytes and the
+# directory gains nothing.
+keeps() {
+    k_name=$1 k_ext=$2
+    shift 2
+    k_dir=$tmp/keep-$k_name
+    mkdir -p "$k_dir"
+    k_file=$k_dir/result.$k_ext
+    printf 'precious data\nline 2\n' >"$k_file"
+    cp "$k_file" "$tmp/expected"
+    ls -A "$k_dir" >"$tmp/before"
+    k_i=0
+    for k_a in "$@"; do
+        [ "$k_a" = @OUT@ ] && k_a=$k_file
+        if [ $k_i -eq 0 ]; then set --; fi
+        set -- "$@" "$k_a"
+        k_i=1
+    done
+    check_exit 1 "$k_name: the failing run exits 1" "$@"
+    check_true "$k_name: the existing output is byte-identical" cmp -s "$k_file" "$tmp/expected"
+    ls -A "$k_dir" >"$tmp/after"
+    check_true "$k_name: no temporary file left beside it" cmp -s "$tmp/before" "$tmp/after"
+}
+
+# unwritable NAME EXT CMD-WITH-@OUT@...: every unwritable location is exit 1
+# with an error naming it.
+unwritable() {
+    u_name=$1 u_ext=$2
+    shift 2
+    : >"$tmp/plainfile"
+    mkdir -p "$tmp/ro"
+    chmod 555 "$tmp/ro"
+    for u_out in "/proc/conica-test.$u_ext" "$tmp/plainfile/out.$u_ext" \
+        "$tmp/missing/dir/out.$u_ext" "$tmp/ro/out.$u_ext"; do
+        if [ "$u_out" = "$tmp/ro/out.$u_ext" ] && [ "$(id -u)" -eq 0 ]; then
+            continue # root writes into a 555 directory
+        fi
+        u_i=0
+        for u_a in "$@"; do
+            [ "$u_a" = @OUT@ ] && u_a=$u_out
+            if [ $u_i -eq 0 ]; then set --; fi
+            set -- "$@" "$u_a"
+            u_i=1
+        done
+        check_exit 1 "$u_name: unwritable $u_out is exit 1" "$@"
+        check_grep "error: .*$(basename "$u_out")|error: .*$(dirname "$u_out")" "$err" \
+            "$u_name: the message names $u_out"
+        check_true "$u_name: nothing created" test ! -e "$u_out"
+        set -- # restore the template for the next location
+        for u_a in $u_template; do set -- "$@" "$u_a"; done
+    done
+    chmod 755 "$tmp/ro"
+}
+
+# rename_fails NAME EXT CMD-WITH-@OUT@...: the target is a directory, so the
+# final rename fails after the whole output was written: exit 1 and the
+# temporary is removed.
+rename_fails() {
+    r_name=$1
+    shift 2
+    r_dir=$tmp/rn-$r_name
+    mkdir -p "$r_dir/target"
+    ls -A "$r_dir" >"$tmp/before"
+    r_i=0
+    for r_a in "$@"; do
+        [ "$r_a" = @OUT@ ] && r_a=$r_dir/target
+        if [ $r_i -eq 0 ]; then set --; fi
+        set -- "$@" "$r_a"
+        r_i=1
+    done
+    check_exit 1 "$r_name: output onto a directory is exit 1" "$@"
+    ls -A "$r_dir" >"$tmp/after"
+    check_true "$r_name: no temporary file left after the failed rename" cmp -s "$tmp/before" "$tmp/after"
+    check_true "$r_name: the directory is still a directory" test -d "$r_dir/target"
+}
+
+full() {
+    f_name=$1
+    shift
+    check_exit 1 "$f_name: a write error (/dev/full) is exit 1" "$@"
+    check_grep 'error' "$err" "$f_name: the write error is reported"
+}
+
+begin_case "conica subdivide"
+keeps subdivide txt "$conica" subdivide -k 2 -o @OUT@ "$tmp/nan.txt"
+u_template="$conica subdivide -k 1 -o @OUT@ $ex/ellipse.txt"
+unwritable subdivide txt $u_template
+rename_fails subdivide txt "$conica" subdivide -k 1 -o @OUT@ "$ex/ellipse.txt"
+full subdivide "$conica" subdivide -k 6 -o /dev/full "$ex/ellipse.txt"
+
+begin_case "conica combs"
+keeps combs svg "$conica" combs -k 2 -o @OUT@ "$tmp/nan.txt"
+u_template="$conica combs -k 1 -o @OUT@ $ex/ellipse.txt"
+unwritable combs svg $u_template
+rename_fails combs svg "$conica" combs -k 1 -o @OUT@ "$ex/ellipse.txt"
+full combs "$conica" combs -k 3 -o /dev/full "$ex/ellipse.txt"
+
+begin_case "conica errors --plot"
+keeps errors svg "$conica" errors -k 2 --plot @OUT@ "$tmp/nan.txt"
+
+begin_case "conica plot"
+if [ "$has_plot" -eq 0 ]; then
+    skip_case "this conica has no plot command"
+else
+    keeps plot txt "$conica" plot -o @OUT@ "$tmp/nan.spl"
+    u_template="$conica plot -o @OUT@ $tmp/open.spl"
+    unwritable plot txt $u_template
+    rename_fails plot txt "$conica" plot -o @OUT@ "$tmp/open.spl"
+fi
+
+begin_case "svgsmooth -o"
+keeps svgsmooth svg "$svgsmooth" -o @OUT@ "$tmp/truncated.svg"
+keeps svgsmooth-limit svg "$svgsmooth" --max-points 10 -o @OUT@ "$ex/letter-R.svg"
+u_template="$svgsmooth -o @OUT@ $ex/letter-R.svg"
+unwritable svgsmooth svg $u_template
+rename_fails svgsmooth svg "$svgsmooth" -o @OUT@ "$ex/letter-R.svg"
+full svgsmooth "$svgsmooth" --levels 6 -o /dev/full "$ex/traced-leaf.svg"
+
+begin_case "svgsmooth --in-place never damages the input"
+for bad in truncated bowtie-limit; do
+    mkdir -p "$tmp/ip-$bad"
+    if [ "$bad" = truncated ]; then
+        cp "$tmp/truncated.svg" "$tmp/ip-$bad/in.svg"
+        set -- "$svgsmooth" --in-place "$tmp/ip-$bad/in.svg"
+    else
+        cp "$ex/letter-R.svg" "$tmp/ip-$bad/in.svg"
+        set -- "$svgsmooth" --in-place --max-points 10 "$tmp/ip-$bad/in.svg"
+    fi
+    cp "$tmp/ip-$bad/in.svg" "$tmp/orig.svg"
+    check_exit 1 "--in-place on a failing input ($bad) exits 1" "$@"
+    check_true "--in-place ($bad): the input is byte-identical" cmp -s "$tmp/ip-$bad/in.svg" "$tmp/orig.svg"
+    check_true "--in-place ($bad): no temporary left" test "$(ls -A "$tmp/ip-$bad")" = in.svg
+done
+mkdir -p "$tmp/ip-ok"
+cp "$ex/letter-R.svg" "$tmp/ip-ok/in.svg"
+check "--in-place on a good input succeeds" "$svgsmooth" --in-place --levels 2 "$tmp/ip-ok/in.svg"
+check_true "--in-place replaced the file" test "$(ls -A "$tmp/ip-ok")" = in.svg
+check_true "--in-place changed the content" sh -c "! cmp -s '$tmp/ip-ok/in.svg' '$ex/letter-R.svg'"
+
+begin_case "scadprofile"
+keeps scadprofile-nan scad "$scad" -o @OUT@ "$tmp/nan.txt"
+keeps scadprofile-spline scad "$scad" -o @OUT@ "$tmp/nan.spl"
+keeps scadprofile-xml scad "$scad" -o @OUT@ "$tmp/truncated.svg"
+keeps scadprofile-invalid scad "$scad" -o @OUT@ "$tmp/bowtie.svg"
+u_template="$scad -o @OUT@ $ex/ellipse.txt"
+unwritable scadprofile scad $u_template
+rename_fails scadprofile scad "$scad" -o @OUT@ "$ex/ellipse.txt"
+full scadprofile "$scad" --levels 6 -o /dev/full "$ex/ellipse.txt"
+
+finish
