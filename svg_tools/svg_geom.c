@@ -246,6 +246,17 @@ fail:
 
 static double turn_angle(const double a[2], const double b[2]);
 
+/* Does the curve split at vertex i (an interior vertex, or any vertex of a
+ * closed subpath)? At a corner (the tangent turns by more than `corner`),
+ * and where a straight segment meets a curve tangentially, so the straight
+ * part stays straight. */
+static int is_break(const sub *b, size_t i, double corner)
+{
+    const edge *ein = &b->e[(i + b->ne - 1) % b->ne], *eout = &b->e[i % b->ne];
+    double a = turn_angle(ein->tb, eout->ta);
+    return a > corner || (ein->curve != eout->curve && a <= SVG_G1_ANGLE);
+}
+
 /* Which way a curved edge turns: +1 left, -1 right, 0 not measurably. */
 static int edge_turn(const edge *e)
 {
@@ -302,6 +313,17 @@ static int split_inflections(sub *b, double corner)
         if (flag) {
             parts[i] = SVG_INFLECTION_PARTS;
             flagged++;
+        } else if ((!b->closed && i == 0) || is_break(b, i, corner)) {
+            /* A curve alone between two breaks (or ends) would be a piece of
+             * two point-normal pairs: four conditions cannot fix a conic
+             * (five degrees of freedom), so a quarter arc between two
+             * straight sides would not come out circular. Its exact middle
+             * makes three pairs, which do. */
+            size_t j = (i + 1) % b->nv;
+            if ((!b->closed && i + 1 == n) || is_break(b, j, corner)) {
+                parts[i] = 2;
+                flagged++;
+            }
         }
     }
     i = flagged ? (size_t)split_edges(b, parts) : 1;
@@ -578,14 +600,9 @@ static conica_code smooth_sub(geom_ctx *g, sub *b, pts *o)
     }
     /* Corners (and straight/curve tangent joins) split the curve. */
     for (i = 0; i < nv; i++) {
-        const edge *ein, *eout;
-        double a;
         if (!b->closed && (i == 0 || i == nv - 1))
             continue;
-        ein = &b->e[(i + b->ne - 1) % b->ne];
-        eout = &b->e[i % b->ne];
-        a = turn_angle(ein->tb, eout->ta);
-        if (a > corner || (ein->curve != eout->curve && a <= SVG_G1_ANGLE)) {
+        if (is_break(b, i, corner)) {
             brk[i] = 1;
             if (!nbreak)
                 first_break = i;

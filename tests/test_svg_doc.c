@@ -386,6 +386,40 @@ TEST_CASE("corners stay: rectangle, star, letter, traced outline", "[svg][corner
         }
         conica_svg_shapes_free(&sh);
     }
+    SECTION("a rounded rectangle: straight sides, corners on their circles")
+    {
+        const double c[4][2] = {{25, 25}, {95, 25}, {95, 55}, {25, 55}};
+        size_t j, on_sides = 0;
+        double worst = 0.0;
+        const conica_svg_subpath *sp;
+        s.convert_shapes = 1;
+        s.levels = 3;
+        extract("<svg xmlns=\"http://www.w3.org/2000/svg\"><rect x=\"10\" y=\"10\" width=\"100\" "
+                "height=\"60\" rx=\"15\"/></svg>",
+                &s, &sh);
+        REQUIRE_EQ_U(sh.nsubpaths, 1);
+        sp = &sh.subpaths[0];
+        /* each quarter arc: its middle added (3 pairs fix the circle), 2 * 8 edges */
+        CHECK_EQ_U(sp->n, 4 * 16 + 4);
+        for (j = 0; j < sp->n; j++) {
+            double x = sp->xy[2 * j], y = sp->xy[2 * j + 1];
+            int k, in_corner = 0;
+            for (k = 0; k < 4; k++)
+                if ((x < 25 || x > 95) && (y < 25 || y > 55) && fabs(x - c[k][0]) <= 15 &&
+                    fabs(y - c[k][1]) <= 15) {
+                    double e = fabs(hypot(x - c[k][0], y - c[k][1]) - 15);
+                    in_corner = 1;
+                    if (e > worst)
+                        worst = e;
+                }
+            if (!in_corner)
+                on_sides++;
+        }
+        CAPTURE_D(worst);
+        CHECK_LE(worst, 1e-9 * 15);
+        CHECK_EQ_U(on_sides, 8); /* only the 8 tangent points lie on the sides */
+        conica_svg_shapes_free(&sh);
+    }
     SECTION("a wave with collinear on-curve points keeps its shape")
     {
         /* C..S.. and a single S-shaped cubic: the vertices are collinear,
