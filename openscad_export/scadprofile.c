@@ -284,8 +284,9 @@ static int load_points(const options *o, const char *name, const char *buf, size
     sx->kind = "point-normal";
     sx->input_points = in.n;
     if (in.n < 3) {
+        size_t got = in.n; /* conica_curve_free() zeroes in.n */
         conica_curve_free(&in);
-        return cli_error(PROG, name, "a profile needs at least 3 points, the file has %zu", in.n);
+        return cli_error(PROG, name, "a profile needs at least 3 points, the file has %zu", got);
     }
     if (o->flatten_only) {
         rc = CONICA_OK;
