@@ -1,0 +1,283 @@
+/* `conica plot`: plot a B-spline (.spl, ../shared/data/README.md) as a
+ * polyline with any method of seed 004 or the guaranteed plotter
+ * (docs/plot.md). Output: one `x y` (or `x y z`) line per vertex, a blank
+ * line between pieces split at discontinuities. */
+#include <limits.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "cli.h"
+#include "conica/plot.h"
+
+#define PROG "conica"
+#define USAGE_PROG "conica plot"
+
+static void usage(FILE *f)
+{
+    fprintf(f,
+            "usage: conica plot [--method METHOD] [--criterion NAME] [--rule NAME]\n"
+            "                   [--stop movement|threshold|budget] [--knot-budget K]\n"
+            "                   [--abs-tolerance E | --tolerance PX [--viewport WxH]]\n"
+            "                   [--points N] [--curve-points] [--max-points N] [--stats]\n"
+            "                   [-o OUT] IN.spl\n"
+            "\n"
+            "Plot a B-spline function or curve (optionally rational) as a polyline\n"
+            "(seed 004: adaptive plotting of splines).\n"
+            "\n"
+            "Input: `degree P`, `knots ...`, one `c x [y [z]]` line per control point,\n"
+            "optional `w ...` weights; `#` starts a comment. IN of `-`: stdin.\n"
+            "Output: one `x y` line per vertex (`t f(t)` for a spline function, `x y z`\n"
+            "for a 3-D curve); a blank line separates pieces split at discontinuities.\n"
+            "\n"
+            "options:\n"
+            "      --method METHOD     guaranteed (default: every point of the spline within\n"
+            "                          the tolerance of the polyline and back), adaptive (the\n"
+            "                          thesis's knot-insertion loop), uniform, local-uniform,\n"
+            "                          chaikin, lane-riesenfeld, mathematica\n"
+            "      --criterion NAME    adaptive: simplified-length, length, length-ratio\n"
+            "                          (default), simplified-angle, angle, base-line,\n"
+            "                          extended-base-line\n"
+            "      --rule NAME         adaptive: midpoint (default, R = 0.5), knot-average,\n"
+            "                          chaikin\n"
+            "      --stop NAME         adaptive: movement (default), threshold, budget\n"
+            "      --knot-budget K     adaptive: knots inserted at most (default %zu)\n"
+            "      --curve-points      adaptive: emit curve points at the knot averages\n"
+            "                          instead of the refined control polygon\n"
+            "      --abs-tolerance E   tolerance in curve units\n"
+            "      --tolerance PX      tolerance in pixels (default %g) for the viewport,\n"
+            "                          eps = PX / diagonal * (control point box diagonal)\n"
+            "      --viewport WxH      viewport in pixels (default 1000x1000)\n"
+            "      --points N          uniform / local-uniform / chaikin / lane-riesenfeld:\n"
+            "                          number of points (default %zu); mathematica: initial\n"
+            "                          points (default 50)\n"
+            "      --max-points N      refuse outputs of more than N points (default %zu)\n"
+            "      --stats             print `plot: <points> points, <K> knots inserted,\n"
+            "                          <ops> flops, <S> s` on stderr\n"
+            "  -o, --output OUT        write to OUT (`-` = stdout) via a temporary file\n"
+            "  -h, --help              show this help\n"
+            "\n"
+            "exit status: 0 success, 1 error (bad input, I/O; nothing is written),\n"
+            "2 usage error.\n",
+            (size_t)CONICA_PLOT_DEFAULT_KNOT_BUDGET, CONICA_PLOT_DEFAULT_PIXEL_TOLERANCE,
+            (size_t)CONICA_PLOT_DEFAULT_UNIFORM_POINTS, (size_t)CONICA_PLOT_MAX_POINTS_DEFAULT);
+}
+
+typedef struct options {
+    conica_plot_settings set;
+    int stats, have_abs, have_px, have_points;
+    const char *in, *out;
+} options;
+
+/* "--name VALUE" or "--name=VALUE"; NULL when missing. */
+static const char *opt_value(int argc, char **argv, int *i, const char *arg, size_t name_len)
+{
+    if (arg[name_len] == '=')
+        return arg + name_len + 1;
+    if (arg[name_len] != '\0' && arg[1] != '-') /* -oFILE */
+        return arg + name_len;
+    if (*i + 1 >= argc)
+        return NULL;
+    return argv[++*i];
+}
+
+static int is_opt(const char *a, const char *name)
+{
+    size_t n = strlen(name);
+    return strncmp(a, name, n) == 0 && (a[n] == '\0' || a[n] == '=');
+}
+
+static int parse_viewport(const char *v, double *w, double *h)
+{
+    const char *x = strchr(v, 'x');
+    if (!x)
+        x = strchr(v, 'X');
+    if (!x || x == v || strlen(x) > 40 || (size_t)(x - v) > 40)
+        return 1;
+    char a[48], b[48];
+    memcpy(a, v, (size_t)(x - v));
+    a[x - v] = '\0';
+    strcpy(b, x + 1);
+    if (cli_parse_double(a, w) || cli_parse_double(b, h) || !(*w > 0) || !(*h > 0))
+        return 1;
+    return 0;
+}
+
+#define NEED(cond, ...)                                                                       \
+    do {                                                                                      \
+        if (!(cond))                                                                          \
+            return cli_usage_error(USAGE_PROG, __VA_ARGS__);                                  \
+    } while (0)
+
+/* Returns -1 to go on, or an exit status. */
+static int parse_args(int argc, char **argv, options *o)
+{
+    int positional_only = 0;
+    o->set = conica_plot_defaults();
+    o->stats = o->have_abs = o->have_px = o->have_points = 0;
+    o->in = o->out = NULL;
+    for (int i = 1; i < argc; i++) {
+        const char *a = argv[i], *v;
+        long num;
+        double x;
+        if (positional_only || a[0] != '-' || strcmp(a, "-") == 0) {
+            NEED(!o->in, "more than one input file ('%s' and '%s')", o->in, a);
+            o->in = a;
+            continue;
+        }
+        if (strcmp(a, "--") == 0) {
+            positional_only = 1;
+        } else if (strcmp(a, "-h") == 0 || strcmp(a, "--help") == 0) {
+            usage(stdout);
+            return fflush(stdout) == 0 ? CLI_EXIT_OK : CLI_EXIT_ERROR;
+        } else if (strcmp(a, "--stats") == 0) {
+            o->stats = 1;
+        } else if (strcmp(a, "--curve-points") == 0) {
+            o->set.output = CONICA_OUTPUT_CURVE_POINTS;
+        } else if (is_opt(a, "--method")) {
+            v = opt_value(argc, argv, &i, a, 8);
+            int m = conica_plot_method_from_name(v);
+            NEED(m >= 0, "unknown method '%s' (see --help)", v ? v : "");
+            o->set.method = (conica_plot_method)m;
+        } else if (is_opt(a, "--criterion")) {
+            v = opt_value(argc, argv, &i, a, 11);
+            int c = conica_plot_criterion_from_name(v);
+            NEED(c >= 0, "unknown criterion '%s' (see --help)", v ? v : "");
+            o->set.criterion = (conica_plot_criterion)c;
+        } else if (is_opt(a, "--rule")) {
+            v = opt_value(argc, argv, &i, a, 6);
+            int r = conica_plot_rule_from_name(v);
+            NEED(r >= 0, "unknown rule '%s' (see --help)", v ? v : "");
+            o->set.rule = (conica_plot_rule)r;
+        } else if (is_opt(a, "--stop")) {
+            v = opt_value(argc, argv, &i, a, 6);
+            if (v && strcmp(v, "movement") == 0)
+                o->set.stop = CONICA_STOP_MOVEMENT;
+            else if (v && strcmp(v, "threshold") == 0)
+                o->set.stop = CONICA_STOP_THRESHOLD;
+            else if (v && strcmp(v, "budget") == 0)
+                o->set.stop = CONICA_STOP_BUDGET;
+            else
+                NEED(0, "--stop takes movement, threshold or budget");
+        } else if (is_opt(a, "--knot-budget")) {
+            v = opt_value(argc, argv, &i, a, 13);
+            NEED(v && !cli_parse_int(v, 0, (long)CONICA_PLOT_MAX_KNOTS_DEFAULT, &num),
+                 "--knot-budget needs an integer in 0..%zu", (size_t)CONICA_PLOT_MAX_KNOTS_DEFAULT);
+            o->set.knot_budget = (size_t)num;
+        } else if (is_opt(a, "--abs-tolerance")) {
+            v = opt_value(argc, argv, &i, a, 15);
+            NEED(v && !cli_parse_double(v, &x) && x > 0,
+                 "--abs-tolerance needs a positive number");
+            o->set.abs_tolerance = x;
+            o->have_abs = 1;
+        } else if (is_opt(a, "--tolerance")) {
+            v = opt_value(argc, argv, &i, a, 11);
+            NEED(v && !cli_parse_double(v, &x) && x > 0, "--tolerance needs a positive number");
+            o->set.pixel_tolerance = x;
+            o->have_px = 1;
+        } else if (is_opt(a, "--viewport")) {
+            v = opt_value(argc, argv, &i, a, 10);
+            NEED(v && !parse_viewport(v, &o->set.viewport_w, &o->set.viewport_h),
+                 "--viewport needs WxH with positive numbers, e.g. 1000x800");
+        } else if (is_opt(a, "--points")) {
+            v = opt_value(argc, argv, &i, a, 8);
+            NEED(v && !cli_parse_int(v, 2, LONG_MAX, &num), "--points needs an integer >= 2");
+            o->set.points = (size_t)num;
+            o->have_points = 1;
+        } else if (is_opt(a, "--max-points")) {
+            v = opt_value(argc, argv, &i, a, 12);
+            NEED(v && !cli_parse_int(v, 2, LONG_MAX, &num), "--max-points needs an integer >= 2");
+            o->set.max_points = (size_t)num;
+        } else if (strncmp(a, "-o", 2) == 0 || is_opt(a, "--output")) {
+            size_t nl = a[1] == '-' ? 8 : 2;
+            v = opt_value(argc, argv, &i, a, nl);
+            NEED(v && *v, "%s needs a file name", a);
+            o->out = v;
+        } else {
+            return cli_usage_error(USAGE_PROG, "unknown option '%s'", a);
+        }
+    }
+    NEED(!(o->have_abs && o->have_px), "give --abs-tolerance or --tolerance, not both");
+    NEED(o->in, "no input file (use `-` for stdin)");
+    if (o->have_points && o->set.method == CONICA_PLOT_MATHEMATICA)
+        o->set.math_initial_points = o->set.points;
+    if (o->set.points > o->set.max_points)
+        o->set.max_points = o->set.points;
+    return -1;
+}
+
+static int write_polyline(FILE *f, const conica_polyline *pl)
+{
+    size_t d = (size_t)pl->dim;
+    size_t k = 0;
+    for (size_t i = 0; i < pl->n; i++) {
+        while (k < pl->npieces && pl->piece_start[k] == i) {
+            if (k > 0 && fputc('\n', f) == EOF)
+                return 1;
+            k++;
+        }
+        for (size_t c = 0; c < d; c++)
+            if (fprintf(f, c + 1 < d ? "%.17g " : "%.17g\n", pl->xy[i * d + c]) < 0)
+                return 1;
+    }
+    return ferror(f) != 0;
+}
+
+/* Called by the dispatcher (conica.c), which declares it from commands.def. */
+int conica_cmd_plot(int argc, char **argv);
+
+int conica_cmd_plot(int argc, char **argv)
+{
+    options o;
+    int rc = parse_args(argc, argv, &o);
+    if (rc >= 0)
+        return rc;
+    const char *name = strcmp(o.in, "-") == 0 ? "<stdin>" : o.in;
+    char *buf = NULL;
+    size_t len = 0;
+    if (cli_read_file(PROG, o.in, CLI_DEFAULT_MAX_INPUT, &buf, &len))
+        return CLI_EXIT_ERROR;
+    conica_bspline s;
+    conica_bspline_init(&s);
+    conica_status st;
+    memset(&st, 0, sizeof st);
+    char where[4096];
+    conica_code code = conica_bspline_parse(buf, len, &s, &st);
+    free(buf);
+    if (code != CONICA_OK) {
+        if (st.line > 0)
+            snprintf(where, sizeof where, "%s:%zu", name, st.line);
+        else
+            snprintf(where, sizeof where, "%s", name);
+        cli_error(PROG, where, "%s", st.message[0] ? st.message : conica_strerror(code));
+        return CLI_EXIT_ERROR;
+    }
+    cli_output co;
+    if (cli_output_open(PROG, o.out, &co)) {
+        conica_bspline_free(&s);
+        return CLI_EXIT_ERROR;
+    }
+    conica_polyline pl;
+    conica_polyline_init(&pl);
+    conica_plot_stats stats;
+    code = conica_plot(&s, &o.set, &pl, &stats, &st);
+    conica_bspline_free(&s);
+    if (code != CONICA_OK) {
+        cli_error(PROG, name, "%s", st.message[0] ? st.message : conica_strerror(code));
+        cli_output_abort(&co);
+        return CLI_EXIT_ERROR;
+    }
+    rc = write_polyline(co.f, &pl);
+    conica_polyline_free(&pl);
+    if (rc) {
+        cli_error(PROG, o.out && strcmp(o.out, "-") != 0 ? o.out : "<stdout>", "write error");
+        cli_output_abort(&co);
+        return CLI_EXIT_ERROR;
+    }
+    if (cli_output_commit(PROG, &co))
+        return CLI_EXIT_ERROR;
+    if (o.stats)
+        fprintf(stderr, "plot: %zu points, %zu knots inserted, %.0f flops, %.6g s\n",
+                stats.points, stats.knots_inserted, stats.flops, stats.seconds);
+    return CLI_EXIT_OK;
+}
