@@ -244,7 +244,10 @@ conica_code conica_svg_doc_save(const conica_svg_doc *doc, char **buf, size_t *l
     xb = xmlBufferCreate();
     if (!xb)
         return conica__fail(st, CONICA_ERR_NOMEM, 0, 0, "out of memory");
-    sc = xmlSaveToBuffer(xb, (const char *)doc->xml->encoding, opts);
+    /* no declared encoding means UTF-8: keep non-ASCII text as it was
+     * instead of turning it into character references */
+    sc = xmlSaveToBuffer(xb, doc->xml->encoding ? (const char *)doc->xml->encoding : "UTF-8",
+                         opts);
     if (!sc) {
         xmlBufferFree(xb);
         return conica__fail(st, CONICA_ERR_IO, 0, 0, "cannot serialise the document");

@@ -144,9 +144,10 @@ TEST_CASE("document round trip with 0 levels keeps everything but number formatt
     conica_svg_doc_free(doc);
 }
 
-TEST_CASE("no XML declaration in, none out", "[svg][doc]")
+TEST_CASE("no XML declaration in, none out; UTF-8 text stays as it was", "[svg][doc]")
 {
-    const char *t = "<svg xmlns=\"http://www.w3.org/2000/svg\"><path d=\"M0 0L1 1\"/></svg>\n";
+    const char *t = "<svg xmlns=\"http://www.w3.org/2000/svg\"><title>caf\xc3\xa9</title>"
+                    "<path d=\"M0 0L1 1\"/></svg>\n";
     conica_svg_doc *doc = load(t);
     char *out = save(doc);
     CHECK_STR_EQ(out, t);
