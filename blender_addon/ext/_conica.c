@@ -44,6 +44,11 @@
 #define CX_DEFAULT_MAX_POINTS ((size_t)1 << 22)
 #define CX_HARD_MAX_POINTS ((size_t)1 << 24)
 #define CX_MAX_ATTRS 8
+/* Largest coordinate magnitude accepted: squared distances of points must
+ * stay finite (1e150^2 = 1e300 < DBL_MAX), and libconica's subdivision
+ * hangs on coordinates near 1e308 (reported to its owner). Blender's float32
+ * coordinates end at 3.4e38, so no Blender curve comes near this. */
+#define CX_MAX_ABS_COORD 1e150
 
 typedef struct cx_state {
     PyObject *error;       /* ConicaError */
@@ -238,6 +243,15 @@ static size_t cx_first_nonfinite(const double *v, size_t n)
 {
     for (size_t i = 0; i < n; i++)
         if (!isfinite(v[i]))
+            return i;
+    return n;
+}
+
+/* Index of the first value beyond +-CX_MAX_ABS_COORD, or n. */
+static size_t cx_first_huge(const double *v, size_t n)
+{
+    for (size_t i = 0; i < n; i++)
+        if (fabs(v[i]) > CX_MAX_ABS_COORD)
             return i;
     return n;
 }
@@ -961,6 +975,11 @@ static PyObject *cx_subdivide(PyObject *self, PyObject *args, PyObject *kw)
     size_t bad = cx_first_nonfinite(pts, npts_v);
     if (bad < npts_v) {
         cx_raisef(S->nonfinite, "point %zu has a non-finite coordinate", bad / (size_t)dim);
+        goto done;
+    }
+    if ((bad = cx_first_huge(pts, npts_v)) < npts_v) {
+        cx_raisef(S->limit_error, "point %zu has a coordinate beyond +-%g", bad / (size_t)dim,
+                  CX_MAX_ABS_COORD);
         goto done;
     }
     if (onormals != Py_None) {

@@ -277,6 +277,10 @@ def extension_rejects_bad_input():
         ("nonplanar", dict(points=[0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1], dim=3, closed=True),
          ext.NonPlanarError),
         ("normals_length", dict(points=[0, 0, 1, 1], normals=[1, 0]), ext.ArgumentError),
+        ("huge_coordinate", dict(points=[0, 0, 1, 1e308, 2, 0], closed=True), ext.LimitError),
+        ("bad_typecode", dict(points=[0, 0, 1, 1], typecode="q"), ValueError),
+        ("bad_normal_method", dict(points=[0, 0, 1, 1], normal_method="x"),
+         ext.ArgumentError),
     ]
     for name, kw, exc in bad:
         try:
