@@ -26,6 +26,8 @@
 /* Cap on other attributes we read (id, style, fill-rule, lengths): longer
  * values are treated as absent. */
 #define SVG_MAX_PLAIN_ATTR ((size_t)1 << 16)
+/* Longest XML declaration kept verbatim (longer ones are rewritten by libxml2). */
+#define SVG_MAX_DECL 255
 /* Bytes handed to libxml2's push parser at a time. */
 #define SVG_PARSE_CHUNK ((size_t)1 << 16)
 
@@ -33,7 +35,7 @@
 
 struct conica_svg_doc {
     xmlDocPtr xml;
-    int has_decl; /* the input began with an XML declaration */
+    char decl[SVG_MAX_DECL + 1]; /* the input's XML declaration, verbatim ("" if none) */
 };
 
 conica_svg_limits conica_svg_limits_defaults(void)
@@ -218,7 +220,18 @@ conica_code conica_svg_doc_load(const char *buf, size_t len, const conica_svg_li
     if (len >= 3 && (unsigned char)buf[0] == 0xEF && (unsigned char)buf[1] == 0xBB &&
         (unsigned char)buf[2] == 0xBF)
         i = 3;
-    doc->has_decl = len >= i + 5 && memcmp(buf + i, "<?xml", 5) == 0;
+    doc->decl[0] = '\0';
+    if (len >= i + 6 && memcmp(buf + i, "<?xml", 5) == 0) {
+        /* libxml2 would write its own declaration (adding encoding="UTF-8"
+         * where the input had none): keep the input's text instead */
+        size_t k;
+        for (k = i; k + 1 < len && k - i < SVG_MAX_DECL - 1; k++)
+            if (buf[k] == '?' && buf[k + 1] == '>') {
+                memcpy(doc->decl, buf + i, k + 2 - i);
+                doc->decl[k + 2 - i] = '\0';
+                break;
+            }
+    }
     *out = doc;
     return CONICA_OK;
 }
@@ -238,7 +251,8 @@ conica_code conica_svg_doc_save(const conica_svg_doc *doc, char **buf, size_t *l
     xmlSaveCtxtPtr sc;
     char *s;
     size_t n;
-    int opts = doc && doc->has_decl ? 0 : XML_SAVE_NO_DECL;
+    size_t dl;
+    int opts = doc && doc->decl[0] ? 0 : XML_SAVE_NO_DECL;
     if (!doc || !buf || !len)
         return conica__fail(st, CONICA_ERR_ARG, 0, 0, "conica_svg_doc_save: NULL argument");
     xb = xmlBufferCreate();
@@ -258,13 +272,26 @@ conica_code conica_svg_doc_save(const conica_svg_doc *doc, char **buf, size_t *l
         return conica__fail(st, CONICA_ERR_IO, 0, 0, "cannot serialise the document");
     }
     xmlSaveClose(sc);
-    n = (size_t)xmlBufferLength(xb);
-    s = malloc(n + 2);
-    if (!s) {
-        xmlBufferFree(xb);
-        return conica__fail(st, CONICA_ERR_NOMEM, 0, 0, "out of memory");
+    {
+        /* replace libxml2's declaration line by the input's */
+        const char *body = (const char *)xmlBufferContent(xb);
+        size_t blen = (size_t)xmlBufferLength(xb), skip = 0;
+        dl = strlen(doc->decl);
+        if (dl && blen >= 5 && memcmp(body, "<?xml", 5) == 0) {
+            const char *e = strstr(body, "?>");
+            skip = e ? (size_t)(e + 2 - body) : 0;
+        } else {
+            dl = 0;
+        }
+        n = dl + blen - skip;
+        s = malloc(n + 2);
+        if (!s) {
+            xmlBufferFree(xb);
+            return conica__fail(st, CONICA_ERR_NOMEM, 0, 0, "out of memory");
+        }
+        memcpy(s, doc->decl, dl);
+        memcpy(s + dl, body + skip, blen - skip);
     }
-    memcpy(s, xmlBufferContent(xb), n);
     if (n && s[n - 1] != '\n') /* end the file with a newline, as nearly every input does */
         s[n++] = '\n';
     s[n] = '\0';
