@@ -293,7 +293,7 @@ static PyObject *cx_make_array(cx_state *s, char typecode, const double *v, size
     return arr;
 }
 
-static int cx_typecode(PyObject *obj, char *out)
+static int cx_typecode(cx_state *s, PyObject *obj, char *out)
 {
     if (obj == NULL) {
         *out = 'd';
@@ -302,7 +302,7 @@ static int cx_typecode(PyObject *obj, char *out)
     const char *t = PyUnicode_Check(obj) ? PyUnicode_AsUTF8(obj) : NULL;
     if (t == NULL || (strcmp(t, "d") != 0 && strcmp(t, "f") != 0)) {
         PyErr_Clear();
-        PyErr_SetString(PyExc_ValueError, "typecode must be 'd' or 'f'");
+        PyErr_SetString(s->arg_error, "typecode must be 'd' or 'f'");
         return 0;
     }
     *out = t[0];
@@ -920,7 +920,7 @@ static PyObject *cx_subdivide(PyObject *self, PyObject *args, PyObject *kw)
                                      &abs_tol, &stride, &otype, &max_points, &want_normals))
         return NULL;
     char typecode;
-    if (!cx_typecode(otype, &typecode))
+    if (!cx_typecode(S, otype, &typecode))
         return NULL;
     if (dim != 2 && dim != 3)
         return cx_raisef(S->arg_error, "dim must be 2 or 3, got %d", dim);
@@ -1390,7 +1390,7 @@ static PyObject *cx_plot(PyObject *self, PyObject *args, PyObject *kw)
                                      &max_points, &want_tan))
         return NULL;
     char typecode;
-    if (!cx_typecode(otype, &typecode))
+    if (!cx_typecode(S, otype, &typecode))
         return NULL;
     if (dim < 1 || dim > 3)
         return cx_raisef(S->arg_error, "dim must be 1, 2 or 3, got %d", dim);
