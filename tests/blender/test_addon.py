@@ -215,7 +215,19 @@ def install_from_zip():
            and tuple(ext.PY_VERSION) == tuple(sys.version_info[:2]),
            "%s vs %s" % (ext.SOABI, sysconfig.get_config_var("EXT_SUFFIX")))
     here = os.path.dirname(pkg.__file__)
-    report("manifest_in_package", os.path.isfile(os.path.join(here, "blender_manifest.toml")))
+    mpath = os.path.join(here, "blender_manifest.toml")
+    report("manifest_in_package", os.path.isfile(mpath))
+    import tomllib
+    with open(mpath, "rb") as f:
+        man = tomllib.load(f)
+    need = ("schema_version", "id", "version", "name", "tagline", "maintainer", "type",
+            "blender_version_min", "license")
+    report("manifest_fields", all(k in man for k in need) and man["type"] == "add-on" and
+           man["platforms"] == ["linux-x64"] and len(man["tagline"]) <= 64 and
+           man["tagline"][-1].isalnum() and
+           tuple(int(x) for x in man["blender_version_min"].split(".")) >= (4, 2, 0) and
+           tuple(int(x) for x in man["version"].split(".")) == tuple(pkg.bl_info["version"]),
+           repr(man))
 
 
 @case
@@ -673,6 +685,27 @@ def undo_restores():
            "undo %r" % r)
     bpy.ops.ed.redo()
     report("redo_reapplies", curve_snapshot(bpy.data.objects["undo"].data) == after)
+
+
+@case
+def undo_in_edit_mode():
+    """Edit mode: the operator switches to object mode and back to write the
+    splines; the edit-mode undo steps around it still restore them."""
+    fresh_scene()
+    ob = new_curve("undo_edit")
+    add_poly(ob.data, [(math.cos(i * math.pi / 3), math.sin(i * math.pi / 3), 0)
+                       for i in range(6)], True)
+    for p in ob.data.splines[0].points:
+        p.select = True
+    select_only(ob)
+    bpy.ops.object.mode_set(mode="EDIT")
+    bpy.ops.ed.undo_push(message="before")
+    r = bpy.ops.curve.conic_subdivide(levels=2)
+    bpy.ops.ed.undo_push(message="Conic Subdivide")
+    bpy.ops.ed.undo()
+    bpy.ops.object.mode_set(mode="OBJECT")
+    n = len(bpy.data.objects["undo_edit"].data.splines[0].points)
+    report("undo_edit_mode", r == {"FINISHED"} and n == 6, "%r, %d points after undo" % (r, n))
 
 
 @case
