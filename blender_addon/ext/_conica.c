@@ -457,10 +457,12 @@ static void cx_from_plane(const cx_plane *pl, const double *p2, size_t n, double
 
 /* ------------------------------------------------------------ subdivision */
 
-/* Growable 2D point-normal buffer for joining pieces split at corners. */
+/* Growable 2D point-normal buffer for joining pieces split at corners.
+ * nxy holds the normal of the edge arriving at each point, nout that of
+ * the edge leaving it: they differ only at corners. */
 typedef struct cx_buf {
     size_t n, cap;
-    double *xy, *nxy;
+    double *xy, *nxy, *nout;
 } cx_buf;
 
 static int cx_buf_push(cx_buf *b, const double *xy, const double *nxy, size_t count)
@@ -477,10 +479,15 @@ static int cx_buf_push(cx_buf *b, const double *xy, const double *nxy, size_t co
         if (nn == NULL)
             return 0;
         b->nxy = nn;
+        double *no = realloc(b->nout, 2 * cap * sizeof *no);
+        if (no == NULL)
+            return 0;
+        b->nout = no;
         b->cap = cap;
     }
     memcpy(b->xy + 2 * b->n, xy, 2 * count * sizeof *xy);
     memcpy(b->nxy + 2 * b->n, nxy, 2 * count * sizeof *nxy);
+    memcpy(b->nout + 2 * b->n, nxy, 2 * count * sizeof *nxy);
     b->n += count;
     return 1;
 }
@@ -596,6 +603,10 @@ static conica_code cx_run_piece(cx_job *j, const size_t *idx, size_t m, int clos
         conica_subdiv_info_free(&info);
         return cx_nomem(j);
     }
+    if (skip && base > 0 && out.n > 0) { /* the corner leaves along this piece */
+        j->out.nout[2 * (base - 1)] = out.nxy[0];
+        j->out.nout[2 * (base - 1) + 1] = out.nxy[1];
+    }
     if (info.inflections > 0 && info.inflection_index) {
         size_t *ni = realloc(j->inflections, (j->ninflections + info.inflections) * sizeof *ni);
         if (ni == NULL) {
@@ -657,8 +668,11 @@ static conica_code cx_run(cx_job *j)
             }
         }
         if (rc == CONICA_OK && j->closed && j->out.n > 1) {
-            /* Drop the repeated start vertex, then rotate to vertex 0. */
+            /* Drop the repeated start vertex (keeping the normal it
+             * arrives with), then rotate to vertex 0. */
             j->out.n--;
+            j->out.nxy[0] = j->out.nxy[2 * j->out.n];
+            j->out.nxy[1] = j->out.nxy[2 * j->out.n + 1];
             size_t z = 0;
             const double x0 = j->xy[0], y0 = j->xy[1];
             while (z < j->out.n && !(j->out.xy[2 * z] == x0 && j->out.xy[2 * z + 1] == y0))
@@ -666,9 +680,11 @@ static conica_code cx_run(cx_job *j)
             if (z > 0 && z < j->out.n) {
                 size_t N = j->out.n;
                 double *rx = malloc(2 * N * sizeof *rx), *rn = malloc(2 * N * sizeof *rn);
-                if (rx == NULL || rn == NULL) {
+                double *ro = malloc(2 * N * sizeof *ro);
+                if (rx == NULL || rn == NULL || ro == NULL) {
                     free(rx);
                     free(rn);
+                    free(ro);
                     rc = CONICA_ERR_NOMEM;
                     j->st.code = rc;
                     snprintf(j->st.message, sizeof j->st.message, "out of memory");
@@ -679,11 +695,15 @@ static conica_code cx_run(cx_job *j)
                         rx[2 * k + 1] = j->out.xy[2 * from + 1];
                         rn[2 * k] = j->out.nxy[2 * from];
                         rn[2 * k + 1] = j->out.nxy[2 * from + 1];
+                        ro[2 * k] = j->out.nout[2 * from];
+                        ro[2 * k + 1] = j->out.nout[2 * from + 1];
                     }
                     free(j->out.xy);
                     free(j->out.nxy);
+                    free(j->out.nout);
                     j->out.xy = rx;
                     j->out.nxy = rn;
+                    j->out.nout = ro;
                     for (size_t k = 0; k < j->ninflections; k++)
                         j->inflections[k] = (j->inflections[k] % N + N - z) % N;
                 }
@@ -798,8 +818,8 @@ static void cx_restore_exact(const double *in3, size_t n, const size_t *anchor, 
  * (inflection, straight piece) the handles are a third of the chord along
  * the tangents.
  */
-static void cx_handles(const double *fxy, const double *fn, size_t N, int closed, double *left,
-                       double *right)
+static void cx_handles(const double *fxy, const double *fn, const double *fout, size_t N,
+                       int closed, double *left, double *right)
 {
     size_t segs = closed ? N : N - 1;
     size_t F = closed ? 2 * N : 2 * N - 1;
@@ -811,7 +831,9 @@ static void cx_handles(const double *fxy, const double *fn, size_t N, int closed
         size_t a = 2 * s, mi = 2 * s + 1, b = (2 * s + 2) % F;
         double p0x = fxy[2 * a], p0y = fxy[2 * a + 1], p1x = fxy[2 * b], p1y = fxy[2 * b + 1];
         double mx = fxy[2 * mi], my = fxy[2 * mi + 1];
-        double t0x = -fn[2 * a + 1], t0y = fn[2 * a], t1x = -fn[2 * b + 1], t1y = fn[2 * b];
+        /* leaving tangent at the start, arriving one at the end (they
+         * differ at kept corners) */
+        double t0x = -fout[2 * a + 1], t0y = fout[2 * a], t1x = -fn[2 * b + 1], t1y = fn[2 * b];
         double cx = p1x - p0x, cy = p1y - p0y, chord = hypot(cx, cy);
         /* orient the tangents along the chord */
         if (t0x * cx + t0y * cy < 0) { t0x = -t0x; t0y = -t0y; }
@@ -1122,7 +1144,7 @@ static PyObject *cx_subdivide(PyObject *self, PyObject *args, PyObject *kw)
             memcpy(fin_xy + 2 * i, job.out.xy + 4 * i, 2 * sizeof(double));
             memcpy(fin_n + 2 * i, job.out.nxy + 4 * i, 2 * sizeof(double));
         }
-        cx_handles(job.out.xy, job.out.nxy, N, closed, hl, hr);
+        cx_handles(job.out.xy, job.out.nxy, job.out.nout, N, closed, hl, hr);
     }
     const double *rxy = handles ? fin_xy : job.out.xy;
     const double *rn = handles ? fin_n : job.out.nxy;
@@ -1220,6 +1242,7 @@ done:
     free(nout2);
     free(job.out.xy);
     free(job.out.nxy);
+    free(job.out.nout);
     free(job.inflections);
     free(fin_xy);
     free(fin_n);

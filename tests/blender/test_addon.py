@@ -776,6 +776,17 @@ def keep_corners_and_modes():
     st = poly_co(ob.data.splines[0])
     off = max(min(abs(p[0]), abs(p[0] - 2), abs(p[1]), abs(p[1] - 2)) for p in st)
     report("no_corners_rounds_the_square", off > 0.05, "%.3g" % off)
+    # Bezier output keeps the corners too: the drawn curve stays on the edges
+    fresh_scene()
+    ob = new_curve("square_bez")
+    add_poly(ob.data, sq, True)
+    select_only(ob)
+    r = bpy.ops.curve.conic_subdivide(levels=1, keep_corners=True,
+                                      corner_angle=math.radians(60), output="BEZIER")
+    ev = eval_points(ob)
+    off = max(min(abs(p[0]), abs(p[0] - 2), abs(p[1]), abs(p[1] - 2)) for p in ev)
+    report("keep_corners_bezier_output", r == {"FINISHED"} and len(ev) > 8 and off < 1e-5,
+           "%r %d %.3g" % (r, len(ev), off))
     # precise and estimated normals on the circle
     for name, kw, tol in (("precise", dict(precise=True), 4 * F32),
                           ("estimate_normals", dict(normals="ESTIMATE"), 2e-3)):
