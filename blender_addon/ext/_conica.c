@@ -273,6 +273,17 @@ static PyObject *cx_make_array(cx_state *s, char typecode, const double *v, size
         float *f = (float *)(void *)raw; /* PyBytes data is suitably aligned */
         for (size_t i = 0; i < count; i++)
             f[i] = (float)v[i];
+    } else if (typecode == 'f') {
+        float *f = (float *)(void *)raw;
+        float fpad = (float)pad;
+        for (size_t i = 0; i < items; i++) {
+            const double *src = v + i * (size_t)dim;
+            float *dst = f + i * (size_t)stride;
+            for (int k = 0; k < dim; k++)
+                dst[k] = (float)src[k];
+            for (int k = dim; k < stride; k++)
+                dst[k] = fpad;
+        }
     } else {
         for (size_t i = 0; i < items; i++) {
             for (int k = 0; k < stride; k++) {
@@ -747,33 +758,40 @@ static double cx_dist2(const double *a, const double *b)
 /*
  * Interpolate m attributes per input vertex onto the output: the anchors
  * keep their values, the points in between get values linear in the chord
- * length between their two anchors.
+ * length between their two anchors. cum (N + 1 values) receives the
+ * cumulative chord length; an attribute equal on every input vertex (the
+ * usual radius 1, tilt 0) is copied without arithmetic.
  */
 static void cx_interp_attrs(const size_t *anchor, size_t n, int closed, const double *attr, int m,
-                            const double *oxy, size_t N, double *oattr)
+                            const double *oxy, size_t N, double *cum, double *oattr)
 {
-    for (size_t i = 0; i < n; i++) {
-        size_t a = anchor[i], b = anchor[i + 1];
-        size_t inext = (i + 1) % n;
-        if (!closed && i + 1 == n) {
-            for (int q = 0; q < m; q++)
-                oattr[a * (size_t)m + (size_t)q] = attr[i * (size_t)m + (size_t)q];
+    cum[0] = 0.0;
+    for (size_t t = 0; t < N; t++) {
+        size_t u = t + 1 < N ? t + 1 : 0;
+        cum[t + 1] = cum[t] + (t + 1 < N || closed ? cx_dist2(oxy + 2 * t, oxy + 2 * u) : 0.0);
+    }
+    for (int q = 0; q < m; q++) {
+        size_t i = 1;
+        while (i < n && attr[i * (size_t)m + (size_t)q] == attr[(size_t)q])
+            i++;
+        if (i == n) { /* constant */
+            for (size_t t = 0; t < N; t++)
+                oattr[t * (size_t)m + (size_t)q] = attr[(size_t)q];
             continue;
         }
-        double total = 0.0;
-        for (size_t t = a; t < b; t++) {
-            size_t u = (t + 1) % N;
-            total += cx_dist2(oxy + 2 * t, oxy + 2 * u);
-        }
-        double run = 0.0;
-        for (size_t t = a; t < b; t++) {
-            double f = total > 0 ? run / total : (double)(t - a) / (double)(b - a);
-            for (int q = 0; q < m; q++) {
-                double v0 = attr[i * (size_t)m + (size_t)q], v1 = attr[inext * (size_t)m + (size_t)q];
+        for (i = 0; i < n; i++) {
+            size_t a = anchor[i], b = anchor[i + 1];
+            double v0 = attr[i * (size_t)m + (size_t)q];
+            if (!closed && i + 1 == n) {
+                oattr[a * (size_t)m + (size_t)q] = v0;
+                continue;
+            }
+            double v1 = attr[((i + 1) % n) * (size_t)m + (size_t)q];
+            double total = cum[b] - cum[a];
+            for (size_t t = a; t < b; t++) {
+                double f = total > 0 ? (cum[t] - cum[a]) / total : (double)(t - a) / (double)(b - a);
                 oattr[t * (size_t)m + (size_t)q] = v0 + f * (v1 - v0);
             }
-            size_t u = (t + 1) % N;
-            run += cx_dist2(oxy + 2 * t, oxy + 2 * u);
         }
     }
 }
@@ -1159,11 +1177,14 @@ static PyObject *cx_subdivide(PyObject *self, PyObject *args, PyObject *kw)
     }
     if (nattrs > 0) {
         fin_attr = malloc((N ? N : 1) * (size_t)nattrs * sizeof *fin_attr);
-        if (fin_attr == NULL) {
+        double *cum = malloc((N + 1) * sizeof *cum);
+        if (fin_attr == NULL || cum == NULL) {
+            free(cum);
             PyErr_NoMemory();
             goto done;
         }
-        cx_interp_attrs(anchor, n, closed, attrs, nattrs, rxy, N, fin_attr);
+        cx_interp_attrs(anchor, n, closed, attrs, nattrs, rxy, N, cum, fin_attr);
+        free(cum);
     }
     if (dim == 3) {
         o3 = malloc(3 * N * sizeof *o3);
