@@ -87,7 +87,10 @@ static size_t format_fast(double v, int precision, char out[48])
 
     if (precision > 15 || !(a >= 1e-280 && a <= 1e280))
         return 0;
-    e = (int)floor(log10(a));
+    /* decimal exponent from the binary one (log10(2) = 0.30103); the loop
+     * below corrects an estimate that is one off */
+    (void)frexp(a, &e);
+    e = (int)floor((double)(e - 1) * 0.30102999566398120);
     for (tries = 0; tries < 3; tries++) {
         k = precision - 1 - e;
         if (k > 22 || k < -22)
@@ -208,8 +211,12 @@ size_t conica_svg__format_number(double v, int precision, char out[48])
 void conica_svg__put_number(conica_svg__buf *b, double v, int precision, int *prev_kind)
 {
     char s[48];
-    size_t n = conica_svg__format_number(v, precision, s);
-    int has_dot = strchr(s, '.') != NULL, has_e = strchr(s, 'e') != NULL;
+    size_t n = conica_svg__format_number(v, precision, s), i;
+    int has_dot = 0, has_e = 0;
+    for (i = 0; i < n; i++) {
+        has_dot |= s[i] == '.';
+        has_e |= s[i] == 'e';
+    }
     if (*prev_kind != 0) {
         int glue = s[0] == '-' || (s[0] == '.' && *prev_kind == 1);
         if (!glue)
