@@ -569,10 +569,11 @@ static conica_code smooth_sub(geom_ctx *g, sub *b, pts *o)
     double *nxy = NULL, *pxy = NULL;
     conica_code rc = CONICA_OK;
 
-    if (s->levels > 0 || s->tolerance > 0.0)
-        if (!split_inflections(b, corner))
-            return conica__fail(g->st, CONICA_ERR_NOMEM, 0, 0, "out of memory");
-    if (b->closed && b->nv < 3 && b->ne) {
+    int refine = s->levels > 0 || s->tolerance > 0.0;
+
+    if (refine && !split_inflections(b, corner))
+        return conica__fail(g->st, CONICA_ERR_NOMEM, 0, 0, "out of memory");
+    if (refine && b->closed && b->nv < 3 && b->ne) {
         /* the engine needs 3 points on a closed curve: halve the curves */
         size_t *two = malloc(b->ne * sizeof *two), k;
         int ok = two != NULL;
@@ -584,7 +585,7 @@ static conica_code smooth_sub(geom_ctx *g, sub *b, pts *o)
             return conica__fail(g->st, CONICA_ERR_NOMEM, 0, 0, "out of memory");
     }
     nv = b->nv;
-    if (b->ne == 0 || (s->levels == 0 && s->tolerance <= 0.0) || (b->closed && nv < 3)) {
+    if (b->ne == 0 || !refine || (b->closed && nv < 3)) {
         for (i = 0; i < nv; i++)
             if (!pts_add(o, b->xy[2 * i], b->xy[2 * i + 1]))
                 return conica__fail(g->st, CONICA_ERR_NOMEM, 0, 0, "out of memory");
