@@ -11,7 +11,11 @@
  * collinear straight segments is written unchanged, so straight edges stay
  * straight. Arcs longer than 90 degrees are cut into equal parametric parts
  * of at most 90 degrees, each end an on-curve vertex with its exact normal
- * (a full circle written as two arcs gets four vertices). */
+ * (a full circle written as two arcs gets four vertices). More exact
+ * samples where the vertices alone say too little: curves that change their
+ * turning direction (split_inflections) and a curve alone between two
+ * breaks (two point-normal pairs do not fix a conic). docs/svgsmooth.md
+ * describes the whole procedure. */
 #include "svg_internal.h"
 
 #include <math.h>
