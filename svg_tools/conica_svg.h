@@ -150,11 +150,14 @@ typedef struct conica_svg_doc conica_svg_doc;
 /**
  * @brief Parse an SVG document from memory, safely: no network
  *        (XML_PARSE_NONET), no external DTD, no entity substitution, no
- *        XInclude, libxml2's own size limits kept (no XML_PARSE_HUGE); any
- *        entity declaration (internal: billion laughs; external: XXE) makes
- *        the load fail with CONICA_ERR_UNSUPPORTED; size, depth and element
- *        caps from *lim. Blank text, comments, namespaces and unknown nodes
- *        are kept so a save reproduces them.
+ *        XInclude, libxml2's own size limits kept (no XML_PARSE_HUGE; the
+ *        push parser lets large documents through); an entity declaration
+ *        that could expand (external or parameter entity: XXE; text with
+ *        references or markup: billion laughs; text over 1 KB) makes the
+ *        load fail with CONICA_ERR_UNSUPPORTED, short plain-text entities
+ *        (Illustrator's &ns_svg;) are kept; size, depth and element caps
+ *        from *lim. Blank text, comments, namespaces and unknown nodes are
+ *        kept so a save reproduces them.
  * @param[in]  buf  document bytes
  * @param[in]  len  length
  * @param[in]  lim  caps, or NULL for defaults
@@ -171,8 +174,9 @@ CONICA_API conica_code conica_svg_doc_load(const char *buf, size_t len,
 CONICA_API void conica_svg_doc_free(conica_svg_doc *doc);
 
 /**
- * @brief Serialise the document without reformatting (the XML declaration
- *        is written only when the input had one).
+ * @brief Serialise the document without reformatting (the input's XML
+ *        declaration verbatim, none if it had none; a document without a
+ *        declared encoding is written as UTF-8).
  * @param[out] buf new buffer (free with conica_svg_buffer_free()), NUL-terminated
  * @param[out] len its length without the NUL
  * @return CONICA_OK, CONICA_ERR_NOMEM, CONICA_ERR_IO
@@ -287,8 +291,8 @@ CONICA_API conica_code conica_svg_extract(const conica_svg_doc *doc, const conic
 typedef struct conica_svg_stats {
     size_t elements, subpaths;
     size_t in_vertices, out_points;
-    double io_seconds;        /**< parsing path data and writing attributes */
-    double geometry_seconds;  /**< subdivision / plotting */
+    double io_seconds;        /**< CPU seconds parsing path data and writing attributes */
+    double geometry_seconds;  /**< CPU seconds in subdivision / plotting */
 } conica_svg_stats;
 
 /**
