@@ -234,7 +234,7 @@ typedef struct conica_svg_settings {
                                  FLATTEN: maximum distance to the true curve (required > 0) */
     double corner_angle_deg;/**< tangent turn above which a vertex is a corner (default 40; >= 180 disables) */
     int convert_shapes;     /**< non-zero: also rect/circle/ellipse/line (rewritten as paths) */
-    const char *const *select; /**< ids of the elements to process, or NULL for all */
+    const char *const *select; /**< ids of the elements (or of groups: all inside) to process, or NULL for all */
     size_t nselect;
     int precision;          /**< significant digits when writing (default 7, 1..17) */
     conica_svg_limits limits;

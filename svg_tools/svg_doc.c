@@ -666,20 +666,23 @@ typedef struct item {
     int kind;   /* 0 path, 1 polygon, 2 polyline, 3 shape converted to a path */
 } item;
 
+/* Selected: the element's id or the id of an ancestor (a group or layer)
+ * is in the list. */
 static int selected(const conica_svg_settings *s, xmlNodePtr n)
 {
-    size_t i;
-    char *id;
-    int hit = 0;
     if (!s->select)
         return 1;
-    id = get_attr(n, "id");
-    if (!id)
-        return 0;
-    for (i = 0; i < s->nselect && !hit; i++)
-        hit = s->select[i] && !strcmp(s->select[i], id);
-    xmlFree(id);
-    return hit;
+    for (; n && n->type == XML_ELEMENT_NODE; n = n->parent) {
+        size_t i;
+        int hit = 0;
+        char *id = get_attr(n, "id");
+        for (i = 0; id && i < s->nselect && !hit; i++)
+            hit = s->select[i] && !strcmp(s->select[i], id);
+        xmlFree(id);
+        if (hit)
+            return 1;
+    }
+    return 0;
 }
 
 static void warn(const conica_svg_settings *s, size_t line, const char *fmt, ...)

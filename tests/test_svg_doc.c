@@ -764,6 +764,20 @@ TEST_CASE("fill rule, transforms, viewport, selection and shapes", "[svg][doc]")
         CHECK_STR_EQ(sh.elements[1].id, "c");
         conica_svg_shapes_free(&sh);
     }
+    SECTION("selecting a group selects what is inside")
+    {
+        const char *ids[1] = {"grp"};
+        const char *u = "<svg xmlns=\"http://www.w3.org/2000/svg\"><g id=\"grp\"><g>"
+                        "<path id=\"in1\" d=\"M0 0L1 1\"/></g><path d=\"M0 0L2 2\"/></g>"
+                        "<path id=\"out\" d=\"M0 0L3 3\"/></svg>";
+        s.select = ids;
+        s.nselect = 1;
+        extract(u, &s, &sh);
+        REQUIRE_EQ_U(sh.nelements, 2);
+        CHECK_STR_EQ(sh.elements[0].id, "in1");
+        CHECK(sh.elements[1].id == NULL);
+        conica_svg_shapes_free(&sh);
+    }
     SECTION("shapes converted: the circle is reproduced, the rest keeps its attributes")
     {
         conica_svg_doc *doc = load(t);
