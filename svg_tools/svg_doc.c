@@ -508,30 +508,32 @@ typedef struct pbuild {
     int ok;
 } pbuild;
 
-static void pb_move(pbuild *b, double x, double y)
+/* A MOVE or LINE from the current point to (x, y). */
+static void pb_to(pbuild *b, conica_svg_seg_type type, double x, double y)
 {
     conica_svg_seg g;
     memset(&g, 0, sizeof g);
-    g.type = CONICA_SVG_SEG_MOVE;
-    g.cmd = 'M';
-    g.x0 = b->x;
-    g.y0 = b->y;
-    g.x1 = b->sx = b->x = x;
-    g.y1 = b->sy = b->y = y;
-    b->ok = b->ok && conica_svg__path_push(b->p, &g);
-}
-
-static void pb_line(pbuild *b, double x, double y)
-{
-    conica_svg_seg g;
-    memset(&g, 0, sizeof g);
-    g.type = CONICA_SVG_SEG_LINE;
-    g.cmd = 'L';
+    g.type = type;
+    g.cmd = type == CONICA_SVG_SEG_MOVE ? 'M' : 'L';
     g.x0 = b->x;
     g.y0 = b->y;
     g.x1 = b->x = x;
     g.y1 = b->y = y;
+    if (type == CONICA_SVG_SEG_MOVE) {
+        b->sx = x;
+        b->sy = y;
+    }
     b->ok = b->ok && conica_svg__path_push(b->p, &g);
+}
+
+static void pb_move(pbuild *b, double x, double y)
+{
+    pb_to(b, CONICA_SVG_SEG_MOVE, x, y);
+}
+
+static void pb_line(pbuild *b, double x, double y)
+{
+    pb_to(b, CONICA_SVG_SEG_LINE, x, y);
 }
 
 static void pb_arc(pbuild *b, double rx, double ry, double x, double y)
