@@ -2,6 +2,7 @@
  * numbers and flags, implicit commands, error recovery), arcs in centre
  * parametrisation, and the compact writer. */
 #include <float.h>
+#include <locale.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -362,4 +363,72 @@ TEST_CASE("numbers are written within half a unit of the last digit", "[svg][pat
             if (p == 17)
                 CHECK(back == v);
         }
+}
+
+/* A decimal-comma LC_NUMERIC, compiled with localedef into a temporary
+ * LOCPATH when none is installed (glibc reads LOCPATH at setlocale). */
+static int comma_locale(char *dir, size_t cap)
+{
+    static const char *names[] = {"de_DE.UTF-8", "fr_FR.UTF-8", "ru_RU.UTF-8"};
+    char cmd[1200];
+    FILE *f;
+    size_t i;
+    for (i = 0; i < sizeof names / sizeof names[0]; i++)
+        if (setlocale(LC_NUMERIC, names[i]) && !strcmp(localeconv()->decimal_point, ","))
+            return 1;
+    snprintf(dir, cap, "/tmp/conica-svg-locale.XXXXXX");
+    if (!mkdtemp(dir))
+        return 0;
+    snprintf(cmd, sizeof cmd, "%s/src", dir);
+    if (!(f = fopen(cmd, "w")))
+        return 0;
+    fputs("LC_NUMERIC\ndecimal_point \"<U002C>\"\nthousands_sep \"\"\ngrouping -1\n"
+          "END LC_NUMERIC\n", f);
+    fclose(f);
+    snprintf(cmd, sizeof cmd, "localedef -c -i %s/src -f UTF-8 %s/xx_XX.UTF-8 >/dev/null 2>&1",
+             dir, dir);
+    if (system(cmd) == -1)
+        return 0;
+    setenv("LOCPATH", dir, 1);
+    return setlocale(LC_NUMERIC, "xx_XX.UTF-8") && !strcmp(localeconv()->decimal_point, ",");
+}
+
+TEST_CASE("path data is read and written the same under a decimal-comma locale",
+          "[svg][path][locale]")
+{
+    char dir[256] = "", cmd[300];
+    const double xy[4] = {0.5, -1.25e-7, 1234.5678901234567, 3.0};
+    conica_svg_subpath sp;
+    int k, ok = comma_locale(dir, sizeof dir);
+    if (!ok) {
+        setlocale(LC_NUMERIC, "C");
+        SKIP("no decimal-comma locale (none installed and localedef failed)");
+    }
+    CHECK_STR_EQ(desc("M1.5,2.5L.5-1e-1"), "M1,5,2,5 L0,5,-0,1"); /* %g of the test obeys the locale */
+    sp.element = 0;
+    sp.closed = 0;
+    sp.n = 2;
+    sp.xy = (double *)xy;
+    for (k = 0; k < 2; k++) {
+        char *s = NULL;
+        size_t len = 0;
+        conica_svg_path p;
+        REQUIRE(conica_svg_format_path(&sp, 1, k ? 17 : 7, &s, &len, NULL) == CONICA_OK);
+        INFO("%s", s);
+        CHECK(strchr(s, ',') == NULL);
+        conica_svg_path_init(&p);
+        REQUIRE(conica_svg_path_parse(s, len, 0, &p, NULL) == CONICA_OK);
+        REQUIRE_EQ_U(p.n, 2);
+        if (k)
+            CHECK(p.seg[1].x1 == xy[2]);
+        CHECK_NEAR(p.seg[0].x1, 0.5, 0.0);
+        conica_svg_path_free(&p);
+        free(s);
+    }
+    setlocale(LC_NUMERIC, "C");
+    if (dir[0]) {
+        unsetenv("LOCPATH");
+        snprintf(cmd, sizeof cmd, "rm -rf '%s'", dir);
+        CHECK(system(cmd) == 0);
+    }
 }
