@@ -64,6 +64,29 @@ refused 1 'exceed the limit of 100 points \(--max-points\)' "$tmp/o.svg" \
 refused 1 'scadprofile: error: .*open\.spl' "$tmp/o.scad" \
     "$scad" --max-points 16 --tolerance 1e-12 -o "$tmp/o.scad" "$tmp/open.spl"
 
+begin_case "conica plot: output points, knot budget, --points within --max-points"
+if ! "$conica" plot --help >/dev/null 2>&1; then
+    skip_case "this conica has no plot command"
+else
+    refused 1 'plot needs more than 101 points \(max_points / --max-points\)' "$tmp/o.txt" \
+        "$conica" plot --abs-tolerance 1e-12 --max-points 100 -o "$tmp/o.txt" "$tmp/open.spl"
+    refused 2 '--knot-budget needs an integer in 0\.\.1000000' "$tmp/o.txt" \
+        "$conica" plot --method adaptive --stop budget --knot-budget 2000000 -o "$tmp/o.txt" "$tmp/open.spl"
+    refused 1 'corner cutting exceeds' "$tmp/o.txt" \
+        "$conica" plot --method chaikin --points 5000000 -o "$tmp/o.txt" "$tmp/open.spl"
+    # --points is an input-controlled size too: it must not lift the output
+    # cap (cmd_plot.c raised max_points to --points, so `--points 100000000`
+    # allocated gigabytes). Either a usage error or a limit error is right.
+    for m in uniform mathematica; do
+        rm -f "$tmp/o.txt"
+        h_run "$conica" plot --method "$m" --points 100000 --max-points 1000 -o "$tmp/o.txt" "$tmp/open.spl"
+        st=$?
+        check_true "--method $m --points 100000 --max-points 1000 is refused (exit $st)" \
+            test "$st" -eq 1 -o "$st" -eq 2
+        check_true "--method $m: nothing written" test ! -e "$tmp/o.txt"
+    done
+fi
+
 begin_case "XML: document size (--max-input-bytes)"
 refused 1 'input larger than the limit of 100 bytes' "$tmp/o.svg" \
     "$svgsmooth" --max-input-bytes 100 -o "$tmp/o.svg" "$ex/letter-R.svg"
