@@ -38,12 +38,16 @@ $(BLENDER_STAGE)/%: blender_addon/conica/%
 	@mkdir -p $(@D)
 	cp $< $@
 
-$(BLENDER_ZIP): $(BLENDER_EXT) $(BLENDER_PKG_SRCS:blender_addon/conica/%=$(BLENDER_STAGE)/%)
+BLENDER_STAGED := $(BLENDER_EXT) $(BLENDER_PKG_SRCS:blender_addon/conica/%=$(BLENDER_STAGE)/%)
+
+# Exactly the staged files go into the zip (a stale file left in the stage
+# by a renamed source does not), under conica/ as Blender expects.
+$(BLENDER_ZIP): $(BLENDER_STAGED)
 	rm -f $@.tmp
-	cd $(BUILD)/blender && $(BLENDER_PYCONFIG:-config=) -c 'import sys, zipfile, os; \
+	$(BLENDER_PYCONFIG:-config=) -c 'import sys, zipfile, os; \
 	  z = zipfile.ZipFile(sys.argv[1], "w", zipfile.ZIP_DEFLATED); \
-	  [z.write(os.path.join(d, f)) for d, _, fs in sorted(os.walk("conica")) for f in sorted(fs) \
-	   if not f.endswith(".pyc")]; z.close()' $(abspath $@.tmp)
+	  [z.write(f, os.path.join("conica", os.path.basename(f))) for f in sorted(sys.argv[2:])]; \
+	  z.close()' $@.tmp $(BLENDER_STAGED)
 	mv $@.tmp $@
 
 blender-addon: $(BLENDER_ZIP)
