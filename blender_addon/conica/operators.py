@@ -179,6 +179,20 @@ def plot_bezier(data, tolerance):
 
 # ---------------------------------------------------------------- helpers
 
+def _drop_closing_point(pts, att, tans=None):
+    """The plot of a cyclic spline ends where it starts (up to rounding in
+    the last bits): drop that repeated point in place."""
+    if len(pts) < 9:
+        return
+    size = _size(pts)
+    gap = math.sqrt(sum((pts[-3 + k] - pts[k]) ** 2 for k in range(3)))
+    if gap <= 1e-12 * size:
+        del pts[-3:]
+        del att[-2:]
+        if tans is not None:
+            del tans[-3:]
+
+
 def _bezier_tangents(data):
     """Arriving and leaving tangents at each anchor from its handles (a
     zero-length handle borrows the other side, then the chord)."""
@@ -441,12 +455,8 @@ class CURVE_OT_conic_subdivide(_CurveOperator, bpy.types.Operator):
             t0 = time.perf_counter()
             pts, att, tans = plot_nurbs(sp, data, self.tolerance * size, tangents=True)
             t_plot = time.perf_counter() - t0
-            if data.cyclic and len(pts) >= 6:
-                # the plot of a cyclic spline ends where it starts
-                if pts[-3:] == pts[:3]:
-                    del pts[-3:]
-                    del att[-2:]
-                    del tans[-3:]
+            if data.cyclic:
+                _drop_closing_point(pts, att, tans)
             co, attrs = pts, att
             if self.normals == "AUTO":
                 # the NURBS's own tangents: exact normals for the scheme
@@ -528,9 +538,8 @@ class CURVE_OT_adaptive_to_poly(_CurveOperator, bpy.types.Operator):
             pts, att = plot_bezier(data, self.tolerance)
         else:
             pts, att = plot_nurbs(sp, data, self.tolerance)
-            if data.cyclic and len(pts) >= 6 and pts[-3:] == pts[:3]:
-                del pts[-3:]
-                del att[-2:]
+            if data.cyclic:
+                _drop_closing_point(pts, att)
         t_lib = time.perf_counter() - t0
         n = len(pts) // 3
         co4 = _zeros(4 * n)

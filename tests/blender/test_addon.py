@@ -553,6 +553,49 @@ def bezier_to_poly_adaptive():
     report("bezier_to_poly_radius", all(abs(p.radius - 2.0) < 1e-6 for p in s.points))
 
 
+@case
+def adaptive_outputs_and_edit_mode():
+    fresh_scene()
+    ob = new_curve("ad_orig")
+    circle_bezier(ob.data)
+    base = [(0, 0, 0), (1, 2, 0), (3, 2.5, 0), (4, 0, 0), (5, -1, 0)]
+    add_nurbs(ob.data, base, [1, 0.5, 2, 1, 1], 3, cyclic=True)
+    add_poly(ob.data, [(0, 0, 0), (1, 0, 0)], False)
+    before = curve_snapshot(ob.data)
+    select_only(ob)
+    r = bpy.ops.curve.adaptive_to_poly(tolerance=1e-3, output="NEW_OBJECT")
+    new = bpy.data.objects.get("ad_orig.conic")
+    types = sorted(s.type for s in new.data.splines) if new else []
+    cyc = sorted(s.use_cyclic_u for s in new.data.splines) if new else []
+    report("adaptive_new_object", r == {"FINISHED"} and types == ["POLY"] * 3 and
+           cyc == [False, True, True] and curve_snapshot(ob.data) == before,
+           "%r %r %r" % (r, types, cyc))
+    # the cyclic NURBS's polyline does not repeat its first point at the end
+    if new:
+        nz = [s for s in new.data.splines if s.use_cyclic_u and len(s.points) > 4]
+        ok = all(poly_co(s)[0] != poly_co(s)[-1] for s in nz) and len(nz) == 2
+        report("adaptive_cyclic_no_duplicate_end", ok)
+    # edit mode: only the spline with selected points is converted
+    fresh_scene()
+    ob = new_curve("ad_edit")
+    circle_bezier(ob.data)
+    sp2 = circle_bezier(ob.data, 2.0)
+    for i, s in enumerate(ob.data.splines):
+        for bp in s.bezier_points:
+            bp.select_control_point = i == 1
+            bp.select_left_handle = bp.select_right_handle = False
+    del sp2
+    select_only(ob)
+    bpy.ops.object.mode_set(mode="EDIT")
+    r = bpy.ops.curve.adaptive_to_poly(tolerance=1e-3)
+    bpy.ops.object.mode_set(mode="OBJECT")
+    types = [(s.type, round(max(abs(c) for p in poly_co(s) for c in p), 3)
+              if s.type == "POLY" else None) for s in ob.data.splines]
+    report("adaptive_edit_mode_selected_only", r == {"FINISHED"} and
+           sorted(t[0] for t in types) == ["BEZIER", "POLY"] and
+           [t for t in types if t[0] == "POLY"][0][1] == 2.0, "%r %r" % (r, types))
+
+
 # ---------------------------------------------------------------- attributes
 
 @case
