@@ -11,7 +11,7 @@
 # (--as-needed): Debian's blender package itself depends on liblapack3 and
 # libblas3, so every Blender that can load this module already has them.
 BLENDER_PYCONFIG ?= /usr/bin/python3-config
-BLENDER_PY_INC   := $(shell $(BLENDER_PYCONFIG) --includes 2>/dev/null)
+BLENDER_PY_INC   := $(sort $(shell $(BLENDER_PYCONFIG) --includes 2>/dev/null))
 BLENDER_PY_EXT   := $(shell $(BLENDER_PYCONFIG) --extension-suffix 2>/dev/null)
 BLENDER_PY_EXT   := $(if $(BLENDER_PY_EXT),$(BLENDER_PY_EXT),.cpython-311-x86_64-linux-gnu.so)
 BLENDER_SOABI    := $(patsubst .%.so,%,$(BLENDER_PY_EXT))
