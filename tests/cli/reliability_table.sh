@@ -94,4 +94,24 @@ else
     check_true "nothing written" test ! -e far.out
 fi
 
+begin_case "conica plot: hostile numbers give finite points or an error"
+if ! "$conica" plot --help >/dev/null 2>&1; then
+    skip_case "this conica has no plot command"
+else
+    # found by fuzz_plot: denormal weights made uniform/mathematica print
+    # `-nan -nan` with exit 0; knots near 1e308 overflowed the per-piece
+    # point share (plot_baselines.c share(): NaN/Inf cast to size_t, UB)
+    printf 'degree 2\nknots 0 0 0 1 1 1\nc 0 0\nc 1 1\nc 2 0\nw 1e-320 1 1e-320\n' >tinyw.spl
+    printf 'degree 2\nknots 0 0 0 1e308 1.7e308 1.7e308 1.7e308\nc 0 0\nc 1 1\nc 2 0\nc 3 1\n' >bigknots.spl
+    for f in tinyw bigknots; do
+        for m in guaranteed adaptive uniform local-uniform chaikin lane-riesenfeld mathematica; do
+            h_run "$conica" plot --method "$m" $f.spl
+            st=$?
+            check_true "$f.spl --method $m: exit 0 or 1 (got $st)" test "$st" -le 1
+            check_no_grep '[nN]a[nN]|inf' "$out" "$f.spl --method $m: no NaN/Inf in the points"
+            check_no_grep 'runtime error' "$err" "$f.spl --method $m: no undefined behaviour"
+        done
+    done
+fi
+
 finish
