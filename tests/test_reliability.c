@@ -11,6 +11,7 @@
 #include "conica/bspline.h"
 #include "conica/curve.h"
 #include "conica/plot.h"
+#include "conica/subdiv.h"
 #include "conica_svg.h"
 #include "conica_test.h"
 
@@ -67,6 +68,37 @@ TEST_CASE("svg: entity declarations are refused at load", "[reliability][xml]")
         CHECK(doc == NULL);
         conica_svg_doc_free(doc);
     }
+}
+
+TEST_CASE("subdivision: points near DBL_MAX give an error or finite points", "[reliability][fuzz]")
+{
+    /* fuzz_subdivide (regressions/subdivide/nonfinite-output-near-dblmax):
+     * CONICA_OK with non-finite output points/normals. precise +
+     * reference_compatible is enough: an edge point computed in long double
+     * lies beyond DBL_MAX and becomes inf when rounded to the double output
+     * (point 9, x). */
+    const double xy[6] = {1.7976931348623157e308, 2.225073858507201e-308,
+                          1.7976931348623157e308, 1.7976931348623157e308,
+                          5e-324, 1.7976931348623157e308};
+    conica_curve in, out;
+    conica_status st;
+    conica_curve_init(&in);
+    conica_curve_init(&out);
+    REQUIRE_EQ(conica_curve_set(xy, NULL, 3, 0, &in, &st), CONICA_OK);
+    conica_subdiv_settings s = conica_subdiv_defaults();
+    s.levels = 3;
+    s.precise = 1;
+    s.reference_compatible = 1;
+    s.max_points = 1u << 14;
+    conica_code rc = conica_subdivide(&in, &s, &out, NULL, &st);
+    size_t bad = 0;
+    if (rc == CONICA_OK)
+        for (size_t i = 0; i < 2 * out.n; i++)
+            bad += !isfinite(out.xy[i]) || !isfinite(out.nxy[i]);
+    INFO("rc %d, %zu points", (int)rc, out.n);
+    CHECK_EQ(bad, 0);
+    conica_curve_free(&in);
+    conica_curve_free(&out);
 }
 
 /* Last: a crash here (SIGSEGV before the fix) must not hide the cases above. */
