@@ -552,11 +552,12 @@ static int SFX(svd_fit)(SFX(worker) *w, const SFX(pair) *P, int cnt, REAL *q)
  * Code 5. Writes the new point and its (unnormalised) normal in global
  * coordinates. With `bounded` (an irregular patch, see SFX(edge)) an
  * intersection farther than CONICA__IRREGULAR_MAX_T edge lengths from the
- * midpoint counts as none. Returns 1 on success, 0 when the fit or the
- * intersection fails.
+ * midpoint counts as none. *py receives the new point's height over the
+ * edge in the units of the rotated frame of SFX(frame) (half edge = 1),
+ * i.e. 2t. Returns 1 on success, 0 when the fit or the intersection fails.
  */
 static int SFX(svd_tframe)(SFX(worker) *w, const SFX(frame) *f, const size_t *idx, int cnt,
-                           int bounded, REAL *ox, REAL *oy, REAL *nx, REAL *ny)
+                           int bounded, REAL *py, REAL *ox, REAL *oy, REAL *nx, REAL *ny)
 {
     const SFX(job) *j = w->job;
     SFX(pair) P[CONICA__FIT_MAX_PAIRS];
@@ -610,6 +611,7 @@ static int SFX(svd_tframe)(SFX(worker) *w, const SFX(frame) *f, const size_t *id
         *ny = FMA(q[2], x, FMA(q[1], y, q[4]));
     }
     /* m + t * len * e = m + t * perp(p1 - p0) */
+    *py = 2 * t;
     *ox = FMA(-t, dy, f->mx);
     *oy = FMA(t, dx, f->my);
     return isfinite(*nx) && isfinite(*ny) && !(*nx == 0 && *ny == 0) && isfinite(*ox) &&
@@ -701,6 +703,88 @@ static void SFX(edge_ref)(SFX(worker) *w, size_t i, REAL *oxy, REAL *on)
     SFX(store)(j, ox, oy, dx, dy, oxy, on);
 }
 
+/*
+ * Convexity region of an edge (docs/subdiv.md, "Convexity region"). In the
+ * rotated frame the edge runs from (-1,0) to (1,0) and its end tangents are
+ * the lines L0 = a0 (x+1) + b0 y = 0 and L1 = a1 (x-1) + b1 y = 0. A
+ * convex arc that joins the end points, touching L0 and L1 there, lies in
+ * the triangle bounded by the chord and the two tangent lines; seed 000's
+ * promise that every piece between inflection points turns one way needs
+ * exactly this of every edge point (the refined polygon then stays convex,
+ * and the conic's normal there lies between the end normals).
+ *
+ * The side of the chord the arc bulges to is the side away from the
+ * patch's outer neighbours (a convex polygon lies on one side of each edge
+ * line, its curve on the other); `side` is +1 or -1 for y > 0 or y < 0, or
+ * 0 when the neighbours do not decide it (none, on the line, or on both
+ * sides). The tangent rays into side s meet iff s * cr > 0 with
+ * cr = sign(a0 a1) (a0 b1 - a1 b0); none of this depends on the normals'
+ * orientation (the engine accepts either, see SFX(edge)).
+ */
+static REAL SFX(region_cross)(const SFX(pair) *P)
+{
+    REAL c = DIFFPROD_WP(P[0].nx, P[1].ny, P[1].nx, P[0].ny);
+    return (P[0].nx > 0) == (P[1].nx > 0) ? c : -c;
+}
+
+/* Edges with no convex region. 1: a tangent along the chord (to within
+ * CONICA__FAST_MIN_SINE): the region is the chord itself. 2: the tangent
+ * rays meet on the side of the chord the polygon says the arc cannot bulge
+ * to (an end normal that does not lie between its vertex's edge normals,
+ * as p_11's given normal in example8): no convex arc joins the end pairs,
+ * the curve must cross the chord (an S-shaped edge). 0: a proper
+ * triangle. */
+static int SFX(no_region)(const SFX(pair) *P, int side)
+{
+    REAL cr;
+    if (M(fabs)(P[0].nx) <= RC(CONICA__FAST_MIN_SINE) ||
+        M(fabs)(P[1].nx) <= RC(CONICA__FAST_MIN_SINE))
+        return 1;
+    cr = SFX(region_cross)(P);
+    return side != 0 && cr != 0 && (side > 0) != (cr > 0) ? 2 : 0;
+}
+
+/* Does (0, y) lie in the region (boundary included; the chord's midpoint
+ * always does)? Only called when SFX(no_region) returned 0. */
+static int SFX(in_region)(const SFX(pair) *P, int side, REAL y)
+{
+    REAL a0 = P[0].nx, b0 = P[0].ny, a1 = P[1].nx, b1 = P[1].ny, cr;
+    if (y == 0)
+        return 1;
+    if (side == 0) {
+        cr = SFX(region_cross)(P);
+        side = cr > 0 ? 1 : (cr < 0 ? -1 : 0); /* 0: parallel tangents, either side */
+    }
+    if (side != 0 && (y > 0) != (side > 0))
+        return 0;
+    /* Not beyond either tangent line: on the side of L0 that holds (1,0),
+     * on the side of L1 that holds (-1,0). */
+    return a0 * FMA(b0, y, a0) >= 0 && a1 * FMA(-b1, y, a1) >= 0;
+}
+
+/* The side of the chord away from the patch's outer neighbours (see
+ * SFX(in_region)): +1, -1, 0 when they do not decide it (none, or all on
+ * the edge line), or 2 when they lie on both sides (the polygon itself
+ * turns both ways here). Neighbours within a few rounding units of the
+ * edge line count as on it: points collinear by construction (an
+ * inflection point (9) and the midpoints next to it) are off it by the
+ * rounding of their coordinates, eps * |p| against the half edge |h|. */
+static int SFX(bulge_side)(const SFX(frame) *f, const SFX(pair) *P, int cnt)
+{
+    int k, s = 0;
+    REAL tol = 64 * R_EPSILON * (1 + (M(fabs)(f->mx) + M(fabs)(f->my)) * f->sc);
+    for (k = 2; k < cnt; k++) {
+        REAL lim = tol * (1 + M(fabs)(P[k].x));
+        int t = P[k].y > lim ? -1 : (P[k].y < -lim ? 1 : 0);
+        if (t == 0)
+            continue;
+        if (s != 0 && t != s)
+            return 2;
+        s = t;
+    }
+    return s;
+}
+
 /* Edge point of edge (i, i+1) in default mode (local frame). */
 static void SFX(edge)(SFX(worker) *w, size_t i, REAL *oxy, REAL *on)
 {
@@ -709,7 +793,7 @@ static void SFX(edge)(SFX(worker) *w, size_t i, REAL *oxy, REAL *on)
     SFX(pair) P[CONICA__FIT_MAX_PAIRS];
     SFX(frame) f;
     REAL y = 0, gx = 0, gy = 0, ox = 0, oy = 0, nx = 0, ny = 0;
-    int cnt, ok = 0, g, maxl = 1, maxr = 1, regular = 1;
+    int cnt, ok = 0, g, maxl = 1, maxr = 1, regular = 1, local = 0, side, conflict;
 
     if (j->ref) {
         SFX(edge_ref)(w, i, oxy, on);
@@ -737,15 +821,30 @@ static void SFX(edge)(SFX(worker) *w, size_t i, REAL *oxy, REAL *on)
      * when the patch looks like one: the end normals do not tilt the same
      * way (a0*b0 and a1*b1 not of one strict sign, whatever the normals'
      * orientation) and the first outer neighbours lie on one side of the
-     * edge. Elsewhere (S-shaped or inconsistent patches, which only data on
-     * no conic produce) the general fit decides, as in the reference; no
-     * conic is consistent with such a patch, so its fit is ill-conditioned
-     * and an intersection far off the edge is an artefact: it must lie
-     * within CONICA__IRREGULAR_MAX_T edge lengths of the midpoint, else the
-     * patch grows and finally falls back to the midpoint. (Measured on the
-     * reference's examples: without the bound lG2's shape leaves the
-     * reference's by 0.37 of its diagonal through one such edge; with it
-     * every example stays within 2.7e-2.) */
+     * edge. Elsewhere (inconsistent patches, which only data on no conic
+     * produce) the general fit decides, as in the reference; no conic is
+     * consistent with such a patch, so its fit is ill-conditioned and an
+     * intersection far off the edge is an artefact: it must lie within
+     * CONICA__IRREGULAR_MAX_T edge lengths of the midpoint.
+     * Every result must moreover lie in the edge's convexity region
+     * (SFX(in_region), docs/subdiv.md): else the patch grows, then the
+     * parabola of the pencil (a conic through both end pairs that stays in
+     * the region) is taken. An edge whose region is the chord alone gets
+     * the midpoint at once. Where the polygon and the end tangents
+     * disagree about the side (SFX(no_region) == 2) no convex arc fits, so
+     * there is no region to hold the fit to: it is taken as the reference
+     * takes it (a folded polygon such as the reference's lG2 has such
+     * edges, and there the fit follows the reference); without a fit the
+     * edge gets an inflection at its midpoint (below). Where the outer
+     * neighbours lie on both sides of the edge (conflict 3: the polygon
+     * itself turns both ways, which no piece between inflection points
+     * does) the fit is taken as the reference takes it, too. */
+    side = SFX(bulge_side)(&f, P, cnt);
+    conflict = side == 2 ? 3 : SFX(no_region)(P, side);
+    if (conflict == 1) {
+        ok = 0;
+        goto midpoint;
+    }
     if (j->fast) {
         int k;
         regular = (P[0].nx * P[0].ny) * (P[1].nx * P[1].ny) <= 0;
@@ -756,29 +855,66 @@ static void SFX(edge)(SFX(worker) *w, size_t i, REAL *oxy, REAL *on)
             ok = SFX(fast_fit)(j, P, cnt, &y, &gx, &gy);
         else
             ok = -1;
-        if (ok > 0) {
-            /* Back to global coordinates: (gx, gy) in the frame is
-             * gx*hs + gy*perp(hs) (a rotation times |hs| in [1, 2*sqrt2),
-             * so magnitudes stay O(|g|)). */
-            ox = FMA(-y, f.hy, f.mx);
-            oy = FMA(y, f.hx, f.my);
-            nx = FMA(gx, f.hsx, -gy * f.hsy);
-            ny = FMA(gx, f.hsy, gy * f.hsx);
-        }
+        if (ok > 0)
+            local = 1;
     }
     if (!j->fast || ok < 0)
-        ok = SFX(svd_tframe)(w, &f, idx, cnt, !regular, &ox, &oy, &nx, &ny);
-    /* No real intersection: grow the patch one neighbour a side at a time
-     * (REFERENCE.md section 1) and refit with the general fit. */
+        ok = SFX(svd_tframe)(w, &f, idx, cnt, !regular, &y, &ox, &oy, &nx, &ny);
+    if (ok > 0 && conflict == 0 && !SFX(in_region)(P, side, y))
+        ok = 0;
+    /* No real intersection, or none in the region: grow the patch one
+     * neighbour a side at a time (REFERENCE.md section 1) and refit with
+     * the general fit. */
     for (g = 2; !ok && g <= j->maxgrow; g++) {
         int c2 = SFX(collect)(j, i, g, g, idx);
         if (c2 <= cnt)
             continue;
         cnt = c2;
-        ok = SFX(svd_tframe)(w, &f, idx, cnt, !regular, &ox, &oy, &nx, &ny);
+        local = 0;
+        ok = SFX(svd_tframe)(w, &f, idx, cnt, !regular, &y, &ox, &oy, &nx, &ny) &&
+             (conflict != 0 || SFX(in_region)(P, side, y));
         if (ok)
             w->grown++;
     }
+    if (!ok && conflict >= 2) {
+        /* An S-shaped edge holds an inflection of the curve: put it at the
+         * midpoint, as eq. (9) does for the polygon's inflection edges,
+         * with the tangent there of the cubic through both end pairs
+         * (slope -(s0 + s1)/4 for the end slopes s0 = -a0/b0, s1 = -a1/b1
+         * over the half edge), which turns against both end tangents, so
+         * that each half of the edge gets a proper convex region. (The
+         * edge normal of the plain midpoint fallback would put the chord
+         * in as both halves' tangent: straight pieces, whose rounded
+         * midpoints then wiggle at the rounding level.) */
+        w->fallbacks++;
+        ox = f.mx;
+        oy = f.my;
+        gx = -FMA(P[0].nx, P[1].ny, P[1].nx * P[0].ny);
+        gy = 4 * P[0].ny * P[1].ny;
+        nx = FMA(gx, f.hsx, -gy * f.hsy);
+        ny = FMA(gx, f.hsy, gy * f.hsx);
+        if (isfinite(nx) && isfinite(ny) && !(nx == 0 && ny == 0))
+            goto oriented;
+    }
+    if (!ok && conflict == 0) {
+        /* The parabola of the pencil (the quadratic Bezier through the
+         * tangent lines' intersection) lies in the region whenever the
+         * region is a proper triangle. */
+        ok = SFX(fast_fit)(j, P, 2, &y, &gx, &gy) > 0 && SFX(in_region)(P, side, y);
+        local = ok;
+        if (ok)
+            w->fallbacks++;
+    }
+    if (local) {
+        /* Back to global coordinates: (gx, gy) in the frame is
+         * gx*hs + gy*perp(hs) (a rotation times |hs| in [1, 2*sqrt2),
+         * so magnitudes stay O(|g|)). */
+        ox = FMA(-y, f.hy, f.mx);
+        oy = FMA(y, f.hx, f.my);
+        nx = FMA(gx, f.hsx, -gy * f.hsy);
+        ny = FMA(gx, f.hsy, gy * f.hsx);
+    }
+midpoint:
     if (!ok || !isfinite(ox) || !isfinite(oy) || !isfinite(nx) || !isfinite(ny) ||
         (nx == 0 && ny == 0)) {
         /* Last resort: the midpoint with the edge normal (as the reference). */
@@ -788,7 +924,7 @@ static void SFX(edge)(SFX(worker) *w, size_t i, REAL *oxy, REAL *on)
         nx = -f.hsy;
         ny = f.hsx;
     }
-    {
+oriented : {
         /* Orient the normal like the edge's end normals (their sum; n_edge
          * if they cancel), so the output keeps the input's orientation. */
         REAL sx = FMA(P[0].nx, f.hsx, -P[0].ny * f.hsy) + FMA(P[1].nx, f.hsx, -P[1].ny * f.hsy);
@@ -804,7 +940,6 @@ static void SFX(edge)(SFX(worker) *w, size_t i, REAL *oxy, REAL *on)
     }
     SFX(store)(j, ox, oy, nx, ny, oxy, on);
 }
-
 /* One subdivision level: src (j->n points) -> dst. Old vertices copied
  * bit-for-bit (step 1), one edge point per edge (steps 2-4). */
 static void SFX(level)(SFX(worker) *w, REAL *dxy, REAL *dn, size_t e_begin, size_t e_end)
