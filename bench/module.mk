@@ -26,3 +26,10 @@ $(BENCH_SVG): $(BUILD)/obj/bench/bench_svg.o $(BUILD)/lib/libconica_svg.a $(CORE
 	@mkdir -p $(@D)
 	$(CC) $(LDFLAGS) -o $@ $< $(BUILD)/lib/libconica_svg.a $(CORE_A) $(ALL_LDLIBS)
 BENCH_BINS += $(BENCH_SVG)
+
+# ---- bench_plot (issue 5): spline plotters vs minimum, uniform, Wang; criteria table
+BENCH_PLOT := $(BUILD)/bench/bench_plot
+$(BENCH_PLOT): $(BUILD)/obj/bench/bench_plot.o $(CORE_A)
+	@mkdir -p $(@D)
+	$(CC) $(LDFLAGS) -o $@ $< $(CORE_A) $(CORE_LIBS)
+BENCH_BINS += $(BENCH_PLOT)

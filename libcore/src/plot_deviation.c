@@ -237,7 +237,7 @@ static conica_code deviation_local(const conica_bspline *s, const conica_polylin
                 double e = seg_d2(pts + 3 * j, A, B, pl->dim);
                 c2p = e > c2p ? e : c2p;
             }
-            for (int qn = 0; qn <= 4; qn++) {
+            for (int qn = 0; qn <= 4 && p2c_out; qn++) {
                 double q[3] = {0, 0, 0};
                 for (size_t c = 0; c < d; c++)
                     q[c] = A[c] + 0.25 * qn * (B[c] - A[c]);
