@@ -262,6 +262,20 @@ static conica_code subdivide_any(const double *xyd, const double *nd, const long
                 for (i = 0; i < 2 * res->n; i++) {
                     res->xyd[i] = (double)rx[i];
                     res->nd[i] = (double)rn[i];
+                    if (code == CONICA_OK && (!isfinite(res->xyd[i]) || !isfinite(res->nd[i])))
+                        code = conica__fail(st, CONICA_ERR_NUMERIC, 0, i / 2,
+                                            "point %zu of the output is beyond the range of "
+                                            "double",
+                                            i / 2);
+                }
+                if (code != CONICA_OK) {
+                    /* A long double edge point past DBL_MAX (found by
+                     * fuzz_subdivide): no inf in a double result. */
+                    free(res->xyd);
+                    free(res->nd);
+                    free(res->infl);
+                    res->xyd = res->nd = NULL;
+                    res->infl = NULL;
                 }
             }
             free(rx);
