@@ -35,8 +35,10 @@ static size_t share(const conica__pieces *pc, size_t k, size_t n)
         if (i == k)
             mine = len;
     }
-    double v = total > 0 ? (double)n * mine / total : (double)n;
-    size_t r = (size_t)(v + 0.5);
+    /* mine / total first: n * mine overflows for knots near 1e308, and an
+     * infinite or NaN share must not reach the size_t cast (fuzz_plot) */
+    double v = total > 0 ? (double)n * (mine / total) : (double)n;
+    size_t r = v >= 0 && v <= (double)n ? (size_t)(v + 0.5) : n;
     return r < 2 ? 2 : r;
 }
 

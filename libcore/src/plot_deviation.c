@@ -28,8 +28,10 @@ typedef struct grid {
 static void cell_of(const grid *g, double x, double y, size_t *cx, size_t *cy)
 {
     double fx = (x - g->lo[0]) / g->cw, fy = (y - g->lo[1]) / g->ch;
-    *cx = fx <= 0 ? 0 : (fx >= (double)g->G ? g->G - 1 : (size_t)fx);
-    *cy = fy <= 0 ? 0 : (fy >= (double)g->G ? g->G - 1 : (size_t)fy);
+    /* !(f > 0): a NaN (point at infinity) lands in cell 0 instead of
+     * being cast to size_t (undefined; found by fuzz_plot) */
+    *cx = !(fx > 0) ? 0 : (fx >= (double)g->G ? g->G - 1 : (size_t)fx);
+    *cy = !(fy > 0) ? 0 : (fy >= (double)g->G ? g->G - 1 : (size_t)fy);
 }
 
 /* Items are boxes [bx0,bx1]x[by0,by1] (points or segment bounding boxes). */
