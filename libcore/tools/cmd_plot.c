@@ -201,8 +201,10 @@ static int parse_args(int argc, char **argv, options *o)
     NEED(o->in, "no input file (use `-` for stdin)");
     if (o->have_points && o->set.method == CONICA_PLOT_MATHEMATICA)
         o->set.math_initial_points = o->set.points;
-    if (o->set.points > o->set.max_points)
-        o->set.max_points = o->set.points;
+    /* --points is input-controlled too: it must not lift the output cap */
+    NEED(!o->have_points || o->set.points <= o->set.max_points,
+         "--points %zu exceeds --max-points %zu",
+         o->set.points, o->set.max_points);
     return -1;
 }
 

@@ -68,12 +68,14 @@ begin_case "conica plot: output points, knot budget, --points within --max-point
 if ! "$conica" plot --help >/dev/null 2>&1; then
     skip_case "this conica has no plot command"
 else
-    refused 1 'plot needs more than 101 points \(max_points / --max-points\)' "$tmp/o.txt" \
+    refused 1 'open\.spl: .*max_points' "$tmp/o.txt" \
         "$conica" plot --abs-tolerance 1e-12 --max-points 100 -o "$tmp/o.txt" "$tmp/open.spl"
     refused 2 '--knot-budget needs an integer in 0\.\.1000000' "$tmp/o.txt" \
         "$conica" plot --method adaptive --stop budget --knot-budget 2000000 -o "$tmp/o.txt" "$tmp/open.spl"
-    refused 1 'corner cutting exceeds' "$tmp/o.txt" \
+    refused 2 '--points 5000000 exceeds --max-points 4000000' "$tmp/o.txt" \
         "$conica" plot --method chaikin --points 5000000 -o "$tmp/o.txt" "$tmp/open.spl"
+    refused 1 'corner cutting exceeds 1000 points \(max_points\)' "$tmp/o.txt" \
+        "$conica" plot --method chaikin --points 1000 --max-points 1000 -o "$tmp/o.txt" "$tmp/open.spl"
     # --points is an input-controlled size too: it must not lift the output
     # cap (cmd_plot.c raised max_points to --points, so `--points 100000000`
     # allocated gigabytes). Either a usage error or a limit error is right.
