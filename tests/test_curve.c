@@ -533,14 +533,32 @@ TEST_CASE("circle normals are exact on unevenly spaced circle points; area ones 
     conica_curve_free(&b);
 }
 
-TEST_CASE("open curves: ends use their single edge, orientation from the turn",
+/* Unit normal at p of the circle through p, q, r (exact construction in
+ * long double), oriented like (ox, oy). */
+static void circle_normal3(const double *p, const double *q, const double *r, double ox,
+                           double oy, double *nx, double *ny)
+{
+    long double ax = (long double)q[0] - p[0], ay = (long double)q[1] - p[1];
+    long double bx = (long double)r[0] - p[0], by = (long double)r[1] - p[1];
+    long double aa = ax * ax + ay * ay, bb = bx * bx + by * by, d = 2 * (ax * by - ay * bx);
+    long double cx = (by * aa - ay * bb) / d, cy = (ax * bb - bx * aa) / d;
+    long double l = sqrtl(cx * cx + cy * cy);
+    *nx = (double)(-cx / l);
+    *ny = (double)(-cy / l);
+    if (*nx * ox + *ny * oy < 0) {
+        *nx = -*nx;
+        *ny = -*ny;
+    }
+}
+
+TEST_CASE("open curves: ends use the circle through their three points, orientation from the turn",
           "[curve][normals]")
 {
     /* an arc turning left (counter-clockwise) then the same arc reversed */
     double xy[2 * 5] = {2, 0, 1, 1, 0, 1.5, -1, 1, -2, 0};
     int rev;
     for (rev = 0; rev <= 1; rev++) {
-        double p[2 * 5];
+        double p[2 * 5], nx, ny;
         conica_curve c;
         size_t i, n = 5;
         for (i = 0; i < n; i++) {
@@ -554,19 +572,63 @@ TEST_CASE("open curves: ends use their single edge, orientation from the turn",
         /* the arc bulges upward: every normal points up and away */
         for (i = 0; i < n; i++)
             CHECK(c.nxy[2 * i + 1] > 0);
-        {
-            /* end 0: perpendicular of its one edge */
-            double ex = p[2] - p[0], ey = p[3] - p[1], l = hypot(ex, ey);
-            double s = rev ? 1.0 : -1.0; /* left turn: (e.y,-e.x); right turn: flipped */
-            CHECK_NEAR(c.nxy[0], -s * ey / l, 1e-15);
-            CHECK_NEAR(c.nxy[1], s * ex / l, 1e-15);
+        circle_normal3(p, p + 2, p + 4, 0, 1, &nx, &ny);
+        CHECK_NEAR(c.nxy[0], nx, 1e-15);
+        CHECK_NEAR(c.nxy[1], ny, 1e-15);
+        circle_normal3(p + 8, p + 6, p + 4, 0, 1, &nx, &ny);
+        CHECK_NEAR(c.nxy[8], nx, 1e-15);
+        CHECK_NEAR(c.nxy[9], ny, 1e-15);
+        /* not the end edge's normal (the old, reference rule): the tangent
+         * at an end of a convex arc is not its chord */
+        CHECK(fabs(c.nxy[0] * (p[2] - p[0]) + c.nxy[1] * (p[3] - p[1])) > 0.1);
+        conica_curve_free(&c);
+    }
+}
+
+TEST_CASE("open arc of a circle without normals: end normals are the circle's", "[curve][normals]")
+{
+    /* Unevenly spaced points on an arc of a circle away from the origin,
+     * both directions, both methods: the end normals are radial to within
+     * a few rounding units. Collinear ends keep the edge normal. */
+    const double t[6] = {-0.9, -0.55, -0.1, 0.3, 0.95, 1.6};
+    const double cx = 3.25, cy = -7.5, r = 2.5;
+    int rev, m;
+    for (m = 0; m < 2; m++) {
+        for (rev = 0; rev <= 1; rev++) {
+            double p[12];
+            conica_curve c;
+            size_t i, n = 6;
+            for (i = 0; i < n; i++) {
+                size_t j = rev ? n - 1 - i : i;
+                p[2 * i] = cx + r * cos(t[j]);
+                p[2 * i + 1] = cy + r * sin(t[j]);
+            }
+            conica_curve_init(&c);
+            REQUIRE_EQ(conica_curve_set(p, NULL, n, 0, &c, NULL), CONICA_OK);
+            REQUIRE_EQ(conica_curve_estimate_normals(
+                           &c, m ? CONICA_NORMALS_CIRCLE : CONICA_NORMALS_AREA, NULL),
+                       CONICA_OK);
+            for (i = 0; i < n; i += n - 1) {
+                double ex = (p[2 * i] - cx) / r, ey = (p[2 * i + 1] - cy) / r;
+                double s = c.nxy[2 * i] * ex + c.nxy[2 * i + 1] * ey > 0 ? 1.0 : -1.0;
+                INFO("method %d reversed %d end %zu", m, rev, i);
+                CHECK_NEAR(c.nxy[2 * i], s * ex, 1e-14);
+                CHECK_NEAR(c.nxy[2 * i + 1], s * ey, 1e-14);
+                /* outward on the arc, like the interior normals (convex arc:
+                 * one orientation for all) */
+                CHECK(s * (c.nxy[2] * (p[2] - cx) + c.nxy[3] * (p[3] - cy)) > 0);
+            }
+            conica_curve_free(&c);
         }
-        {
-            double ex = p[8] - p[6], ey = p[9] - p[7], l = hypot(ex, ey);
-            double s = rev ? 1.0 : -1.0;
-            CHECK_NEAR(c.nxy[8], -s * ey / l, 1e-15);
-            CHECK_NEAR(c.nxy[9], s * ex / l, 1e-15);
-        }
+    }
+    {
+        double line[8] = {0, 0, 1, 0, 2, 0, 3, 1};
+        conica_curve c;
+        conica_curve_init(&c);
+        REQUIRE_EQ(conica_curve_set(line, NULL, 4, 0, &c, NULL), CONICA_OK);
+        REQUIRE_EQ(conica_curve_estimate_normals(&c, CONICA_NORMALS_AREA, NULL), CONICA_OK);
+        CHECK_NEAR(c.nxy[0], 0, 1e-15); /* collinear start: the edge normal */
+        CHECK_NEAR(fabs(c.nxy[1]), 1, 1e-15);
         conica_curve_free(&c);
     }
 }

@@ -128,6 +128,33 @@ static double signed_area2(const conica_curve *c, double sc)
     return a;
 }
 
+/* Normal at the origin of the circle through the origin, (ax, ay) and
+ * (bx, by) (points relative to the vertex): its centre is (cx, cy)/d; the
+ * normal points from it to the vertex, oriented like (*mx, *my). Leaves
+ * the outputs alone when the three points are collinear (to
+ * CONICA__CIRCLE_COLLINEAR_SIN). */
+static void circle_normal(double ax, double ay, double bx, double by, double *mx, double *my,
+                          double *len)
+{
+    double aa = ax * ax + ay * ay, bb = bx * bx + by * by;
+    double d = 2.0 * (ax * by - ay * bx);
+    if (fabs(d) > 2.0 * CONICA__CIRCLE_COLLINEAR_SIN * sqrt(aa) * sqrt(bb)) {
+        double cx = (by * aa - ay * bb) / d, cy = (ax * bb - bx * aa) / d;
+        double cl = hypot(cx, cy);
+        if (cl > 0.0 && isfinite(cl)) {
+            double ux = -cx / cl, uy = -cy / cl;
+            /* Keep the orientation chosen by the caller. */
+            if (ux * *mx + uy * *my < 0.0) {
+                ux = -ux;
+                uy = -uy;
+            }
+            *mx = ux;
+            *my = uy;
+            *len = 1.0;
+        }
+    }
+}
+
 /* A power of two that brings the largest coordinate into [1, 2): normals
  * only depend on directions, and working on scaled coordinates keeps the
  * differences and products below from overflowing (curves near 1e308) or
@@ -206,26 +233,22 @@ conica_code conica_curve_estimate_normals(conica_curve *c, conica_normal_method 
             my = -ay;
             len = hypot(mx, my);
         }
-        if (method == CONICA_NORMALS_CIRCLE && p < n && q < n) {
-            /* Circle through prev, i, next, in a frame centred on i: its
-             * centre is (cx, cy)/d; the normal points from it to i. */
-            double aa = ax * ax + ay * ay, bb = bx * bx + by * by;
-            double d = 2.0 * (ax * by - ay * bx);
-            if (fabs(d) > 2.0 * CONICA__CIRCLE_COLLINEAR_SIN * sqrt(aa) * sqrt(bb)) {
-                double cx = (by * aa - ay * bb) / d, cy = (ax * bb - bx * aa) / d;
-                double cl = hypot(cx, cy);
-                if (cl > 0.0 && isfinite(cl)) {
-                    double ux = -cx / cl, uy = -cy / cl;
-                    /* Keep the orientation chosen above. */
-                    if (ux * mx + uy * my < 0.0) {
-                        ux = -ux;
-                        uy = -uy;
-                    }
-                    mx = ux;
-                    my = uy;
-                    len = 1.0;
-                }
+        if ((p < n) != (q < n)) {
+            /* Open end: the normal of its one edge would make the chord the
+             * curve's tangent there, which no convex curve has (the first
+             * and last edges of every refined arc then wiggle,
+             * docs/cgal.md). Take the circle through the end point and its
+             * next two distinct points instead (the circle method's rule
+             * one point further in); collinear points keep the edge
+             * normal. */
+            size_t r = p < n ? distinct_neighbour(c, p, -1) : distinct_neighbour(c, q, +1);
+            if (r < n && r != i) {
+                double rx = c->xy[2 * r] * sc - px, ry = c->xy[2 * r + 1] * sc - py;
+                double ex = p < n ? ax : bx, ey = p < n ? ay : by;
+                circle_normal(rx, ry, ex, ey, &mx, &my, &len);
             }
+        } else if (method == CONICA_NORMALS_CIRCLE && p < n && q < n) {
+            circle_normal(ax, ay, bx, by, &mx, &my, &len);
         }
         nn[2 * i] = mx / len;
         nn[2 * i + 1] = my / len;

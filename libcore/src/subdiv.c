@@ -200,6 +200,33 @@ typedef struct subdiv_result {
     size_t ninfl;
 } subdiv_result;
 
+/* Reference-compatible mode: an open curve's estimated end normals are
+ * its end edges' normals, as the reference estimates them (curve.c takes
+ * the circle through the end's three points instead). Orientation kept.
+ * Consecutive points are distinct (check_input). */
+static void reference_end_normals(conica_curve *c)
+{
+    size_t e[2], k;
+    e[0] = 0;
+    e[1] = c->n - 1;
+    for (k = 0; k < 2; k++) {
+        size_t a = e[k], b = k == 0 ? 1 : c->n - 2;
+        double dx = c->xy[2 * b] - c->xy[2 * a], dy = c->xy[2 * b + 1] - c->xy[2 * a + 1];
+        double mag = fabs(dx) > fabs(dy) ? fabs(dx) : fabs(dy), len, nx, ny;
+        dx /= mag;
+        dy /= mag;
+        len = sqrt(dx * dx + dy * dy);
+        nx = -dy / len;
+        ny = dx / len;
+        if (nx * c->nxy[2 * a] + ny * c->nxy[2 * a + 1] < 0) {
+            nx = -nx;
+            ny = -ny;
+        }
+        c->nxy[2 * a] = nx;
+        c->nxy[2 * a + 1] = ny;
+    }
+}
+
 static conica_code subdivide_any(const double *xyd, const double *nd, const long double *xyl,
                                  const long double *nl, size_t n, int closed,
                                  const conica_subdiv_settings *s_in, int want_long,
@@ -238,6 +265,8 @@ static conica_code subdivide_any(const double *xyd, const double *nd, const long
             conica_curve_free(&est);
             return code;
         }
+        if (s.reference_compatible && !closed)
+            reference_end_normals(&est);
     }
     if (want_long || s.precise) {
         input_l in;
