@@ -7,6 +7,9 @@
 .DEFAULT_GOAL := all
 .SUFFIXES:
 .DELETE_ON_ERROR:
+# Fragments may list $$(ALL_LIBS) as prerequisites: expanded once every
+# fragment has added its library.
+.SECONDEXPANSION:
 
 BUILD   ?= build
 PREFIX  ?= /usr/local
@@ -72,8 +75,8 @@ RUNNER_OBJS := $(RUNNER_SRCS:%.c=$(BUILD)/obj/%.o)
 RUNNER_A    := $(BUILD)/lib/libconica_test.a
 
 # Static libraries of the other modules, in link order (modules append).
-# ALL_LIBS is complete only after every fragment is read: a fragment's
-# prerequisite lists must name libraries by path (CORE_A, CLI_A, ...).
+# ALL_LIBS is complete only after every fragment is read: in a fragment's
+# prerequisite list write $$(ALL_LIBS) (second expansion) or name the paths.
 MODULE_LIBS :=
 MODULE_LIBS_FIRST :=
 BINS := $(BUILD)/bin/conica

@@ -16,7 +16,7 @@ $(CGAL_TEST_OBJ): CXXFLAGS += -frounding-math
 # headers): a known false positive; every other warning stays an error.
 $(CGAL_TEST_OBJ): CXXFLAGS += -Wno-maybe-uninitialized
 
-$(CGAL_TEST): $(CGAL_TEST_OBJ) $(RUNNER_A) $(ALL_LIBS)
+$(CGAL_TEST): $(CGAL_TEST_OBJ) $(RUNNER_A) $$(ALL_LIBS)
 	@mkdir -p $(@D)
 	$(CXX) $(LDFLAGS) -o $@ $(CGAL_TEST_OBJ) $(RUNNER_A) $(ALL_LIBS) $(ALL_LDLIBS) $(CGAL_LIBS)
 
