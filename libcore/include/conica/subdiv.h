@@ -53,7 +53,7 @@ typedef struct conica_subdiv_info {
     size_t edge_points;      /**< edge points computed over all levels */
     size_t inflections;      /**< inflection points inserted before level 1 */
     size_t patch_grown;      /**< edge points that needed a grown patch */
-    size_t midpoint_fallbacks; /**< edge points that fell back to the midpoint */
+    size_t midpoint_fallbacks; /**< edge points that used a last resort (parabola of the pencil, midpoint, or the midpoint inflection point of an S-shaped edge) */
     size_t *inflection_index;  /**< indices (into the output curve) of inserted inflection points; free with conica_subdiv_info_free */
 } conica_subdiv_info;
 
