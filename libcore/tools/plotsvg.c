@@ -15,7 +15,12 @@ int plotsvg_load_curve(const char *prog, const char *path, int closed, conica_cu
         return 1;
     if (conica_curve_parse(buf, len, c, &st) != CONICA_OK) {
         char where[1100];
-        snprintf(where, sizeof where, "%s:%zu", strcmp(path, "-") ? path : "<stdin>", st.line);
+        const char *name = strcmp(path, "-") ? path : "<stdin>";
+        /* errors about the whole file (empty, too many points) have no line */
+        if (st.line > 0)
+            snprintf(where, sizeof where, "%s:%zu", name, st.line);
+        else
+            snprintf(where, sizeof where, "%s", name);
         free(buf);
         return cli_error(prog, where, "%s", st.message);
     }

@@ -77,7 +77,7 @@ CONICA_API conica_code conica_curve_estimate_normals(conica_curve *c, conica_nor
  * @param[in] len  its length in bytes
  * @param[out] out receives the curve (closed flag set to 1; callers choose)
  * @param[out] st  line of the error in st->line
- * @return CONICA_OK, CONICA_ERR_PARSE, CONICA_ERR_NONFINITE, CONICA_ERR_LIMIT, CONICA_ERR_NOMEM
+ * @return CONICA_OK, CONICA_ERR_PARSE, CONICA_ERR_NONFINITE, CONICA_ERR_DEGENERATE (a zero normal), CONICA_ERR_LIMIT, CONICA_ERR_NOMEM
  */
 CONICA_API conica_code conica_curve_parse(const char *buf, size_t len, conica_curve *out,
                                           conica_status *st);
