@@ -108,21 +108,61 @@ static void proj(const march *m, const double *hp, double *out)
     }
 }
 
-static double seg_dist(const double *q, const double *a, const double *b, int d)
+/* Squared distances to one chord [a, b], set up once per certificate. */
+typedef struct chord {
+    double a[3], ab[3], ab2;
+    int d;
+} chord;
+
+static void chord_init(chord *c, const double *a, const double *b, int d)
 {
-    double ab2 = 0, t = 0;
-    for (int c = 0; c < d; c++) {
-        ab2 += (b[c] - a[c]) * (b[c] - a[c]);
-        t += (q[c] - a[c]) * (b[c] - a[c]);
+    c->d = d;
+    c->ab2 = 0;
+    for (int k = 0; k < d; k++) {
+        c->a[k] = a[k];
+        c->ab[k] = b[k] - a[k];
+        c->ab2 += c->ab[k] * c->ab[k];
     }
-    double u = ab2 > 0 ? t / ab2 : 0.0;
-    u = u < 0 ? 0 : (u > 1 ? 1 : u);
-    double r = 0;
-    for (int c = 0; c < d; c++) {
-        double e = q[c] - (a[c] + u * (b[c] - a[c]));
-        r += e * e;
+}
+
+static double chord_d2(const chord *c, const double *q)
+{
+    double t = 0, qa2 = 0;
+    for (int k = 0; k < c->d; k++) {
+        double e = q[k] - c->a[k];
+        t += e * c->ab[k];
+        qa2 += e * e;
     }
-    return sqrt(r);
+    if (t <= 0 || c->ab2 <= 0)
+        return qa2;
+    if (t >= c->ab2) {
+        double r = 0;
+        for (int k = 0; k < c->d; k++) {
+            double e = q[k] - c->a[k] - c->ab[k];
+            r += e * e;
+        }
+        return r;
+    }
+    double r = qa2 - t * t / c->ab2;
+    return r > 0 ? r : 0;
+}
+
+/* Largest squared distance of n homogeneous points to the chord. */
+static double max_d2(const march *m, const chord *c, const double *hp, size_t n, double cur)
+{
+    size_t h = (size_t)m->h;
+    double q[3];
+    for (size_t i = 0; i < n; i++) {
+        const double *x = hp + i * h;
+        if (m->h > m->d) {
+            for (int k = 0; k < m->d; k++)
+                q[k] = x[k] / x[m->d];
+            x = q;
+        }
+        double e = chord_d2(c, x);
+        cur = e > cur ? e : cur;
+    }
+    return cur;
 }
 
 /* Triangle at x on the remaining spline with original span mu (left or
@@ -152,20 +192,22 @@ static double trial(march *m, double x)
     m->x = x;
     triangle(m, x, mu);
     size_t nu = p + mu - m->mua;
-    double a[3], b[3], q[3];
+    double a[3], b[3];
     proj(m, m->head, a);
     proj(m, m->le + p * h, b);
-    double dev = 0.0;
-    for (size_t i = 1; i + p < nu; i++) {
-        proj(m, rem_ctrl(m, i), q);
-        double dd = seg_dist(q, a, b, m->d);
-        dev = dd > dev ? dd : dev;
-    }
-    for (size_t k = 0; k < p; k++) {
-        proj(m, m->le + k * h, q);
-        double dd = seg_dist(q, a, b, m->d);
-        dev = dd > dev ? dd : dev;
-    }
+    chord c;
+    chord_init(&c, a, b, m->d);
+    double d2 = 0.0;
+    /* untouched control points between the two triangles: the head, then
+     * the original ones */
+    size_t mid = nu > p ? nu - p : 0; /* remaining indices 1 .. mid-1 */
+    size_t nhead = mid > p + 1 ? p + 1 : mid;
+    if (nhead > 1)
+        d2 = max_d2(m, &c, m->head + h, nhead - 1, d2);
+    if (mid > p + 1)
+        d2 = max_d2(m, &c, m->H + (m->mua + 1) * h, mid - (p + 1), d2);
+    d2 = max_d2(m, &c, m->le, p, d2);
+    double dev = sqrt(d2);
     m->flops += (double)(nu + 1) * (12.0 + 3.0 * (double)m->d);
     return dev;
 }
@@ -192,28 +234,19 @@ static double refine(march *m)
     double dd[(MAXP + 1) * HD], le2[(MAXP + 1) * HD], re2[(MAXP + 1) * HD];
     memcpy(dd, m->rc + (mu - p) * h, (p + 1) * h * sizeof *dd);
     m->flops += conica__deboor(m->rk, mu, m->p, xm, m->h, dd, le2, re2);
-    double a[3], b[3], q[3];
+    double a[3], b[3];
     proj(m, m->rc, a);
     proj(m, m->rc + M * h, b);
-    double dev = 0.0;
-    for (size_t i = 1; i + p < mu; i++) {
-        proj(m, m->rc + i * h, q);
-        double e = seg_dist(q, a, b, m->d);
-        dev = e > dev ? e : dev;
-    }
-    for (size_t k = 0; k <= p; k++) {
-        proj(m, le2 + k * h, q);
-        double e = seg_dist(q, a, b, m->d);
-        dev = e > dev ? e : dev;
-        proj(m, re2 + k * h, q);
-        e = seg_dist(q, a, b, m->d);
-        dev = e > dev ? e : dev;
-    }
-    for (size_t i = mu + 1; i < M; i++) {
-        proj(m, m->rc + i * h, q);
-        double e = seg_dist(q, a, b, m->d);
-        dev = e > dev ? e : dev;
-    }
+    chord c;
+    chord_init(&c, a, b, m->d);
+    double d2 = 0.0;
+    if (mu > p + 1)
+        d2 = max_d2(m, &c, m->rc + h, mu - p - 1, d2);
+    d2 = max_d2(m, &c, le2, p + 1, d2);
+    d2 = max_d2(m, &c, re2, p + 1, d2);
+    if (M > mu + 1)
+        d2 = max_d2(m, &c, m->rc + (mu + 1) * h, M - mu - 1, d2);
+    double dev = sqrt(d2);
     m->flops += (double)(M + p + 3) * (12.0 + 3.0 * (double)m->d);
     return dev;
 }
