@@ -36,21 +36,7 @@ static double now(void)
 
 static double diag_of(const conica_bspline *s)
 {
-    int pd = conica_bspline_point_dim(s);
-    double *P = malloc(s->n * (size_t)pd * sizeof *P);
-    conica_bspline_control_polygon(s, P);
-    double lo[3] = {1e300, 1e300, 1e300}, hi[3] = {-1e300, -1e300, -1e300};
-    for (size_t i = 0; i < s->n; i++)
-        for (int c = 0; c < pd; c++) {
-            double x = P[i * (size_t)pd + (size_t)c];
-            lo[c] = x < lo[c] ? x : lo[c];
-            hi[c] = x > hi[c] ? x : hi[c];
-        }
-    free(P);
-    double d2 = 0;
-    for (int c = 0; c < pd; c++)
-        d2 += (hi[c] - lo[c]) * (hi[c] - lo[c]);
-    return sqrt(d2);
+    return conica_plot_extent(s);
 }
 
 static void point(const conica_bspline *s, double t, double *out)

@@ -328,6 +328,11 @@ double conica__ctrl_diagonal(const conica_bspline *s)
     return sqrt(d2);
 }
 
+double conica_plot_extent(const conica_bspline *s)
+{
+    return s ? conica__ctrl_diagonal(s) : 0.0;
+}
+
 double conica_plot_tolerance(const conica_bspline *s, const conica_plot_settings *set)
 {
     if (set->abs_tolerance > 0)

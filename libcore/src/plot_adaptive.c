@@ -135,8 +135,10 @@ static double feature(work *w, size_t i)
             return 1.0;
         return base > 0 ? l / base : 1e300;
     }
-    case CONICA_CRIT_SIMPLIFIED_ANGLE:
-    case CONICA_CRIT_ANGLE: {
+    case CONICA_CRIT_ANGLE:
+        w->flops += 40;
+        return conica__turn_angle(a, q, b, d);
+    case CONICA_CRIT_SIMPLIFIED_ANGLE: {
         double dot = 0, la = 0, lb = 0;
         for (int c = 0; c < d; c++) {
             double u = q[c] - a[c], v = b[c] - q[c];
@@ -146,13 +148,6 @@ static double feature(work *w, size_t i)
         }
         if (la <= 0 || lb <= 0)
             return 0.0;
-        if (w->crit == CONICA_CRIT_ANGLE) {
-            /* eq. (3.15) */
-            double x = dot / sqrt(la * lb);
-            x = x > 1 ? 1 : (x < -1 ? -1 : x);
-            w->flops += 40;
-            return acos(x);
-        }
         /* Fig. 16: T(x) = -pi/2 x|x| + pi/2 from the squared cosine */
         double x2 = dot * fabs(dot) / (la * lb);
         w->flops += 23;
@@ -359,6 +354,23 @@ static double insert(work *w, double z, size_t *mu_out)
     return move;
 }
 
+/* Böhm insertion under the max_knots cap; *move gets the largest control
+ * point move, *mu the span. */
+static conica_code insert_capped(work *w, double z, size_t *knots_left,
+                                 const conica_plot_settings *set, conica_plot_stats *stats,
+                                 double *move, size_t *mu, conica_status *st)
+{
+    if (*knots_left == 0)
+        return conica__fail(st, CONICA_ERR_LIMIT, 0, 0,
+                            "more than %zu knots inserted (max_knots)", set->max_knots);
+    if (w->n == w->cap && !grow(w))
+        return conica__fail(st, CONICA_ERR_NOMEM, 0, 0, "out of memory");
+    *move = insert(w, z, mu);
+    (*knots_left)--;
+    stats->knots_inserted++;
+    return CONICA_OK;
+}
+
 static conica_code adaptive_piece(const conica_bspline *g, const conica_plot_settings *set,
                                   double eps, double thr, int first_is_join, size_t *knots_left,
                                   size_t *budget_left,
@@ -392,19 +404,11 @@ static conica_code adaptive_piece(const conica_bspline *g, const conica_plot_set
         double z = a + (b - a) * (double)q / (double)(set->prephase_knots + 1);
         if (!(z > a && z < b) || mult_at(&w, z) + 1 > p - 1 + (p == 1))
             continue;
-        if (*knots_left == 0) {
-            rc = conica__fail(st, CONICA_ERR_LIMIT, 0, 0, "more than %zu knots inserted (max_knots)",
-                              set->max_knots);
-            goto done;
-        }
-        if (w.n == w.cap && !grow(&w)) {
-            rc = conica__fail(st, CONICA_ERR_NOMEM, 0, 0, "out of memory");
-            goto done;
-        }
         size_t mu;
-        insert(&w, z, &mu);
-        (*knots_left)--;
-        stats->knots_inserted++;
+        double move;
+        rc = insert_capped(&w, z, knots_left, set, stats, &move, &mu, st);
+        if (rc != CONICA_OK)
+            goto done;
     }
     for (size_t i = 0; i < w.n; i++)
         w.f[i] = feature(&w, i);
@@ -439,20 +443,12 @@ static conica_code adaptive_piece(const conica_bspline *g, const conica_plot_set
             w.f[best] = -1; /* nothing to insert here any more */
             continue;
         }
-        if (*knots_left == 0) {
-            rc = conica__fail(st, CONICA_ERR_LIMIT, 0, 0, "more than %zu knots inserted (max_knots)",
-                              set->max_knots);
-            goto done;
-        }
-        if (w.n == w.cap && !grow(&w)) {
-            rc = conica__fail(st, CONICA_ERR_NOMEM, 0, 0, "out of memory");
-            goto done;
-        }
         size_t mu;
-        double move = insert(&w, z, &mu);
+        double move;
+        rc = insert_capped(&w, z, knots_left, set, stats, &move, &mu, st);
+        if (rc != CONICA_OK)
+            goto done;
         (*budget_left)--;
-        (*knots_left)--;
-        stats->knots_inserted++;
         /* features whose local polygon touched the changed points */
         size_t lo = mu >= p + 2 ? mu - p - 2 : 0, hi = mu + 3 < w.n ? mu + 3 : w.n;
         for (size_t i = lo; i < hi; i++)

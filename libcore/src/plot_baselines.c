@@ -66,8 +66,7 @@ static conica_code uniform_piece(const conica_bspline *s, size_t n, int join, co
     return rc;
 }
 
-/* Turning angle at q between a->q and q->b (0 for degenerate segments). */
-static double turn(const double *a, const double *q, const double *b, int d)
+double conica__turn_angle(const double *a, const double *q, const double *b, int d)
 {
     double dot = 0, la = 0, lb = 0;
     for (int c = 0; c < d; c++) {
@@ -127,7 +126,7 @@ static conica_code local_uniform(const conica__pieces *pc, const conica_plot_set
                 /* eq. (3.14)-(3.15), alpha_1 = alpha_n = pi/2 */
                 an += (i == 0 || i + 1 == s->n)
                           ? 0.5 * PI_
-                          : turn(P + (i - 1) * (size_t)pd, P + i * (size_t)pd,
+                          : conica__turn_angle(P + (i - 1) * (size_t)pd, P + i * (size_t)pd,
                                  P + (i + 1) * (size_t)pd, pd);
             }
             stats->flops += (double)p * (5.0 + 40.0);
@@ -293,7 +292,7 @@ static conica_code mathematica_piece(const conica_bspline *s, const conica_plot_
         }
         size_t add = 0;
         for (size_t i = 1; i + 1 < n; i++) {
-            double ang = turn(v[i - 1].xy, v[i].xy, v[i + 1].xy, d);
+            double ang = conica__turn_angle(v[i - 1].xy, v[i].xy, v[i + 1].xy, d);
             stats->flops += 40;
             if (ang > set->math_angle) {
                 if (v[i - 1].depth < set->math_max_recursion && !mark[i - 1]) {

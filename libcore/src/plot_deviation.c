@@ -174,6 +174,33 @@ static double curve_d2(const conica_bspline *s, double t, const double *q, int d
     return r;
 }
 
+/* Golden-section search of |f(t) - q|^2 on [lo, hi]; returns the smaller
+ * of the value found and `best`. */
+static double golden_min(const conica_bspline *s, double lo, double hi, const double *q, int d,
+                         double best)
+{
+    const double gr = 0.5 * (sqrt(5.0) - 1.0);
+    double x1 = hi - gr * (hi - lo), x2 = lo + gr * (hi - lo);
+    double f1 = curve_d2(s, x1, q, d), f2 = curve_d2(s, x2, q, d);
+    for (int it = 0; it < GOLDEN_STEPS; it++) {
+        if (f1 < f2) {
+            hi = x2;
+            x2 = x1;
+            f2 = f1;
+            x1 = hi - gr * (hi - lo);
+            f1 = curve_d2(s, x1, q, d);
+        } else {
+            lo = x1;
+            x1 = x2;
+            f1 = f2;
+            x2 = lo + gr * (hi - lo);
+            f2 = curve_d2(s, x2, q, d);
+        }
+    }
+    best = f1 < best ? f1 : best;
+    return f2 < best ? f2 : best;
+}
+
 typedef struct p2cctx {
     const conica_bspline *s;
     const grid *g;
@@ -187,29 +214,10 @@ typedef struct p2cctx {
  * golden-section search between the neighbouring samples' parameters. */
 static double p2c_query(const p2cctx *c, const double *q)
 {
-    const double gr = 0.5 * (sqrt(5.0) - 1.0);
     size_t j;
     double best = grid_nearest(c->g, q, pt_item, c->pc, &j);
     double a = c->ts[j > 0 ? j - 1 : 0], b = c->ts[j + 1 < c->m ? j + 1 : c->m - 1];
-    double x1 = b - gr * (b - a), x2 = a + gr * (b - a);
-    double f1 = curve_d2(c->s, x1, q, c->d), f2 = curve_d2(c->s, x2, q, c->d);
-    for (int it = 0; it < GOLDEN_STEPS; it++) {
-        if (f1 < f2) {
-            b = x2;
-            x2 = x1;
-            f2 = f1;
-            x1 = b - gr * (b - a);
-            f1 = curve_d2(c->s, x1, q, c->d);
-        } else {
-            a = x1;
-            x1 = x2;
-            f1 = f2;
-            x2 = a + gr * (b - a);
-            f2 = curve_d2(c->s, x2, q, c->d);
-        }
-    }
-    best = f1 < best ? f1 : best;
-    return f2 < best ? f2 : best;
+    return golden_min(c->s, a, b, q, c->d, best);
 }
 
 /* Local measure when every polyline point has a parameter: each chord
@@ -226,7 +234,6 @@ static conica_code deviation_local(const conica_bspline *s, const conica_polylin
         free(pts);
         return conica__fail(st, CONICA_ERR_NOMEM, 0, 0, "out of memory");
     }
-    const double gr = 0.5 * (sqrt(5.0) - 1.0);
     double c2p = 0, p2c = 0;
     for (size_t k = 0; k < pl->npieces; k++) {
         size_t a = pl->piece_start[k], b = k + 1 < pl->npieces ? pl->piece_start[k + 1] : pl->n;
@@ -254,26 +261,8 @@ static conica_code deviation_local(const conica_bspline *s, const conica_polylin
                         bj = j;
                     }
                 }
-                double lo = ts[bj > 0 ? bj - 1 : 0], hi = ts[bj < S ? bj + 1 : S];
-                double x1 = hi - gr * (hi - lo), x2 = lo + gr * (hi - lo);
-                double f1 = curve_d2(s, x1, q, pl->dim), f2 = curve_d2(s, x2, q, pl->dim);
-                for (int it = 0; it < GOLDEN_STEPS; it++) {
-                    if (f1 < f2) {
-                        hi = x2;
-                        x2 = x1;
-                        f2 = f1;
-                        x1 = hi - gr * (hi - lo);
-                        f1 = curve_d2(s, x1, q, pl->dim);
-                    } else {
-                        lo = x1;
-                        x1 = x2;
-                        f1 = f2;
-                        x2 = lo + gr * (hi - lo);
-                        f2 = curve_d2(s, x2, q, pl->dim);
-                    }
-                }
-                best = f1 < best ? f1 : best;
-                best = f2 < best ? f2 : best;
+                best = golden_min(s, ts[bj > 0 ? bj - 1 : 0], ts[bj < S ? bj + 1 : S], q,
+                                  pl->dim, best);
                 p2c = best > p2c ? best : p2c;
             }
         }

@@ -59,6 +59,10 @@ conica_code conica__guaranteed_piece(const conica_bspline *g, double tol,
                                      conica__out *o, double **params, size_t *np,
                                      conica_plot_stats *stats, conica_status *st);
 
+/* Turning angle at q between a->q and q->b, eq. (3.15) (0 when a segment
+ * is degenerate). */
+double conica__turn_angle(const double *a, const double *q, const double *b, int d);
+
 /* Bounding-box diagonal of the control points (Delta c of eq. (3.26)). */
 double conica__ctrl_diagonal(const conica_bspline *s);
 

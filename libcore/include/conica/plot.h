@@ -173,6 +173,10 @@ typedef struct conica_plot_stats {
 CONICA_API conica_code conica_plot(const conica_bspline *s, const conica_plot_settings *set,
         conica_polyline *out, conica_plot_stats *stats, conica_status *st);
 
+/** @brief Delta c of eq. (3.26): the diagonal of the control points' bounding
+ *         box ((t*_j, c_j) for a function; projected points if rational). */
+CONICA_API double conica_plot_extent(const conica_bspline *s);
+
 /** @brief Absolute tolerance the settings give for s (abs_tolerance, or eq. (3.26)). */
 CONICA_API double conica_plot_tolerance(const conica_bspline *s, const conica_plot_settings *set);
 
