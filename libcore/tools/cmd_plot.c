@@ -19,7 +19,9 @@ static void usage(FILE *f)
             "usage: conica plot [--method METHOD] [--criterion NAME] [--rule NAME]\n"
             "                   [--stop movement|threshold|budget] [--knot-budget K]\n"
             "                   [--abs-tolerance E | --tolerance PX [--viewport WxH]]\n"
-            "                   [--points N] [--curve-points] [--max-points N] [--stats]\n"
+            "                   [--points N] [--curve-points] [--prephase K]\n"
+            "                   [--local-weight length|angle|both] [--angle DEG]\n"
+            "                   [--max-recursion N] [--max-points N] [--stats]\n"
             "                   [-o OUT] IN.spl\n"
             "\n"
             "Plot a B-spline function or curve (optionally rational) as a polyline\n"
@@ -44,6 +46,11 @@ static void usage(FILE *f)
             "      --knot-budget K     adaptive: knots inserted at most (default %zu)\n"
             "      --curve-points      adaptive: emit curve points at the knot averages\n"
             "                          instead of the refined control polygon\n"
+            "      --prephase K        adaptive: insert K uniform knots before the loop\n"
+            "      --local-weight W    local-uniform: share points by control polygon\n"
+            "                          length, angle or both (default, omega = 0.5)\n"
+            "      --angle DEG         mathematica: angle threshold (default 5)\n"
+            "      --max-recursion N   mathematica: recursion depth (default 6)\n"
             "      --abs-tolerance E   tolerance in curve units\n"
             "      --tolerance PX      tolerance in pixels (default %g) for the viewport,\n"
             "                          eps = PX / diagonal * (control point box diagonal)\n"
@@ -164,6 +171,30 @@ static int parse_args(int argc, char **argv, options *o)
             NEED(v && !cli_parse_int(v, 0, (long)CONICA_PLOT_MAX_KNOTS_DEFAULT, &num),
                  "--knot-budget needs an integer in 0..%zu", (size_t)CONICA_PLOT_MAX_KNOTS_DEFAULT);
             o->set.knot_budget = (size_t)num;
+        } else if (is_opt(a, "--prephase")) {
+            v = opt_value(argc, argv, &i, a, 10);
+            NEED(v && !cli_parse_int(v, 0, (long)CONICA_PLOT_MAX_KNOTS_DEFAULT, &num),
+                 "--prephase needs an integer in 0..%zu", (size_t)CONICA_PLOT_MAX_KNOTS_DEFAULT);
+            o->set.prephase_knots = (size_t)num;
+        } else if (is_opt(a, "--local-weight")) {
+            v = opt_value(argc, argv, &i, a, 14);
+            if (v && strcmp(v, "length") == 0)
+                o->set.local_weight = CONICA_LOCAL_LENGTH;
+            else if (v && strcmp(v, "angle") == 0)
+                o->set.local_weight = CONICA_LOCAL_ANGLE;
+            else if (v && strcmp(v, "both") == 0)
+                o->set.local_weight = CONICA_LOCAL_BOTH;
+            else
+                NEED(0, "--local-weight takes length, angle or both");
+        } else if (is_opt(a, "--angle")) {
+            v = opt_value(argc, argv, &i, a, 7);
+            NEED(v && !cli_parse_double(v, &x) && x > 0 && x < 180,
+                 "--angle needs degrees in (0, 180)");
+            o->set.math_angle = x * 3.14159265358979323846 / 180.0;
+        } else if (is_opt(a, "--max-recursion")) {
+            v = opt_value(argc, argv, &i, a, 15);
+            NEED(v && !cli_parse_int(v, 0, 60, &num), "--max-recursion needs an integer in 0..60");
+            o->set.math_max_recursion = (size_t)num;
         } else if (is_opt(a, "--abs-tolerance")) {
             v = opt_value(argc, argv, &i, a, 15);
             NEED(v && !cli_parse_double(v, &x) && x > 0,

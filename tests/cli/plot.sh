@@ -27,7 +27,8 @@ check_true "$conica exists" test -x "$conica"
 check "--help" "$conica" plot --help
 check_grep '^usage: conica plot' "$out"
 for opt in --method --criterion --rule --stop --knot-budget --curve-points --abs-tolerance \
-    --tolerance --viewport --points --max-points --stats -o; do
+    --tolerance --viewport --points --max-points --stats -o --prephase --local-weight --angle \
+    --max-recursion; do
     check_grep " $opt" "$out" "help mentions $opt"
 done
 
@@ -80,6 +81,18 @@ for c in simplified-length length length-ratio simplified-angle angle base-line 
             --knot-budget 50 --stats "$tmp/space.spl"
     done
 done
+for w in length angle both; do
+    check "local-uniform $w" "$conica" plot --method local-uniform --local-weight "$w" "$tmp/space.spl"
+done
+check "mathematica, no recursion" "$conica" plot --method mathematica --points 12 --max-recursion 0 \
+    "$tmp/parabola.spl"
+check_true "12 points" test "$(lines "$out")" -eq 12
+check "mathematica, 2 degrees" "$conica" plot --method mathematica --points 12 --angle 2 \
+    "$tmp/parabola.spl"
+check_true "refined" test "$(lines "$out")" -gt 12
+check "prephase" "$conica" plot --method adaptive --prephase 20 --stop budget --knot-budget 0 \
+    --stats "$tmp/parabola.spl"
+check_grep '^plot: 23 points, 20 knots inserted' "$err"
 check "uniform N" "$conica" plot --method uniform --points 37 "$tmp/parabola.spl"
 check_true "37 points" test "$(lines "$out")" -eq 37
 check "budget stop" "$conica" plot --method adaptive --stop budget --knot-budget 25 --stats \
