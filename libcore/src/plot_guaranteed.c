@@ -47,12 +47,12 @@
 #define MAXP CONICA_BSPLINE_MAX_DEGREE
 #define HD CONICA__HDIM_MAX
 /* Step model D ~ h^2: aim at this fraction of tol. */
-#define G_TARGET 0.85
+#define G_TARGET 0.95
 /* Grow a certified chord while D is below this fraction of tol. */
 #define G_GROW_BELOW 0.55
 #define G_MAX_GROW 3
 /* A certified chord with D >= G_GOOD * tol is taken without searching on. */
-#define G_GOOD 0.8
+#define G_GOOD 0.7
 /* Trials per emitted point and relative bracket width that end the search. */
 #define G_MAX_TRIES 8
 #define G_BRACKET 0.03
