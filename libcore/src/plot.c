@@ -416,6 +416,20 @@ conica_code conica_plot(const conica_bspline *s, const conica_plot_settings *set
         rc = conica__plot_baseline(&pc, set, tol, &o, &sx, st);
     }
     conica__pieces_free(&pc);
+    if (rc == CONICA_OK) {
+        /* A rational spline whose weights underflow (denormal weights, found
+         * by fuzz_plot) evaluates to 0/0: never hand NaN or Inf to a caller
+         * as a result; every method goes through here. */
+        size_t nv = o.pl.n * (size_t)o.pl.dim;
+        for (size_t i = 0; i < nv; i++)
+            if (!isfinite(o.pl.xy[i])) {
+                rc = conica__fail(st, CONICA_ERR_NUMERIC, 0, i / (size_t)o.pl.dim,
+                                  "point %zu of the plot is not finite (weights too "
+                                  "small or too different to evaluate in double)",
+                                  i / (size_t)o.pl.dim);
+                break;
+            }
+    }
     if (rc != CONICA_OK) {
         conica_polyline_free(&o.pl);
         return rc;
