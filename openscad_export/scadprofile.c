@@ -27,7 +27,7 @@
 /* Tolerance (output units) when neither --levels nor --tolerance is given. */
 #define DEFAULT_TOLERANCE 0.01
 /* Curves are made dense within this fraction of the tolerance, then thinned
- * to the fewest points within the rest (see docs/scadprofile.md). */
+ * to the fewest points within the rest (see README.md). */
 #define DENSE_FRACTION (1.0 / 256.0)
 /* A spline whose end points are closer than this fraction of its bounding
  * box diagonal is closed; otherwise a straight segment closes it. */

@@ -14,7 +14,7 @@
  * (a full circle written as two arcs gets four vertices). More exact
  * samples where the vertices alone say too little: curves that change their
  * turning direction (split_inflections) and a curve alone between two
- * breaks (two point-normal pairs do not fix a conic). docs/svgsmooth.md
+ * breaks (two point-normal pairs do not fix a conic). README.md
  * describes the whole procedure. */
 #include "svg_internal.h"
 

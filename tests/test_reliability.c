@@ -1,5 +1,5 @@
 /* Regression tests for the findings of the fuzzers (tests/fuzz/) and the
- * hostile-input audit (docs/reliability.md): each case is an input that once
+ * hostile-input audit (README.md): each case is an input that once
  * crashed, hung or hit undefined behaviour. Under the sanitizer build
  * (make test-san) undefined behaviour aborts, so these cases fail there
  * until the code is right. */

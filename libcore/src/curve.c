@@ -237,7 +237,7 @@ conica_code conica_curve_estimate_normals(conica_curve *c, conica_normal_method 
             /* Open end: the normal of its one edge would make the chord the
              * curve's tangent there, which no convex curve has (the first
              * and last edges of every refined arc then wiggle,
-             * docs/cgal.md). Take the circle through the end point and its
+             * README.md). Take the circle through the end point and its
              * next two distinct points instead (the circle method's rule
              * one point further in); collinear points keep the edge
              * normal. */

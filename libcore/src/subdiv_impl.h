@@ -704,7 +704,7 @@ static void SFX(edge_ref)(SFX(worker) *w, size_t i, REAL *oxy, REAL *on)
 }
 
 /*
- * Convexity region of an edge (docs/subdiv.md, "Convexity region"). In the
+ * Convexity region of an edge (README.md, "Convexity region"). In the
  * rotated frame the edge runs from (-1,0) to (1,0) and its end tangents are
  * the lines L0 = a0 (x+1) + b0 y = 0 and L1 = a1 (x-1) + b1 y = 0. A
  * convex arc that joins the end points, touching L0 and L1 there, lies in
@@ -827,7 +827,7 @@ static void SFX(edge)(SFX(worker) *w, size_t i, REAL *oxy, REAL *on)
      * intersection far off the edge is an artefact: it must lie within
      * CONICA__IRREGULAR_MAX_T edge lengths of the midpoint.
      * Every result must moreover lie in the edge's convexity region
-     * (SFX(in_region), docs/subdiv.md): else the patch grows, then the
+     * (SFX(in_region), README.md): else the patch grows, then the
      * parabola of the pencil (a conic through both end pairs that stays in
      * the region) is taken. An edge whose region is the chord alone gets
      * the midpoint at once. Where the polygon and the end tangents

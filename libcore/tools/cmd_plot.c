@@ -1,6 +1,6 @@
 /* `conica plot`: plot a B-spline (.spl, ../shared/data/README.md) as a
  * polyline with any method of seed 004 or the guaranteed plotter
- * (docs/plot.md). Output: one `x y` (or `x y z`) line per vertex, a blank
+ * (README.md). Output: one `x y` (or `x y z`) line per vertex, a blank
  * line between pieces split at discontinuities. */
 #include <limits.h>
 #include <stdio.h>

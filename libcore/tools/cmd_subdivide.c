@@ -1,6 +1,6 @@
 /* `conica subdivide`: conic-preserving interpolatory subdivision of a
  * point-normal curve in the reference implementation's text format
- * (seed 000, Section 1.1; docs/subdivide-cli.md). */
+ * (seed 000, Section 1.1; README.md). */
 #include <errno.h>
 #include <limits.h>
 #include <stdio.h>

@@ -3,7 +3,7 @@
 # has a default, a flag and a clear error: each cap is hit on purpose and
 # the run must exit 1, name the cap in its message, and write nothing (the
 # -o file is never created, stdout stays empty). Levels past the hard
-# maximum are usage errors (exit 2). See docs/reliability.md for the table.
+# maximum are usage errors (exit 2). See README.md for the table.
 set -u
 . "$(dirname "$0")/harness.sh"
 conica=$build/bin/conica

@@ -1,5 +1,5 @@
 #!/bin/sh
-# CLI suite for `conica plot` (docs/plot.md).
+# CLI suite for `conica plot` (README.md).
 # usage (from the repository root): sh tests/cli/plot.sh BUILD_DIR
 set -u
 . "$(dirname "$0")/harness.sh"

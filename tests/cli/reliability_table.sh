@@ -1,6 +1,6 @@
 #!/bin/sh
 # tests/cli/reliability_table.sh BUILD_DIR - the "input -> behaviour" table
-# of docs/reliability.md, row by row: each tool on an empty file, a file of
+# of README.md, row by row: each tool on an empty file, a file of
 # the wrong format, NaN, one point, duplicate points, bad path data and a
 # point at 1e300. Exit status and message must be what the table says.
 set -u

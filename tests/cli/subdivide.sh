@@ -1,5 +1,5 @@
 #!/bin/sh
-# CLI suite for `conica subdivide` (docs/subdivide-cli.md).
+# CLI suite for `conica subdivide` (README.md).
 # usage (from the repository root): sh tests/cli/subdivide.sh BUILD_DIR
 set -u
 . "$(dirname "$0")/harness.sh"

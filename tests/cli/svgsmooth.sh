@@ -1,5 +1,5 @@
 #!/bin/sh
-# CLI suite for svgsmooth (docs/svgsmooth.md).
+# CLI suite for svgsmooth (README.md).
 # usage (from the repository root): sh tests/cli/svgsmooth.sh BUILD_DIR
 set -u
 . "$(dirname "$0")/harness.sh"

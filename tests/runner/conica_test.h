@@ -12,7 +12,7 @@
  *
  * The runner library provides main(); link the test object with
  * libconica_test.a. The command line, console summary, reporters and exit
- * codes follow Catch2 3.7.1 (see docs/runner.md).
+ * codes follow Catch2 3.7.1 (see README.md).
  *
  * Semantics worth knowing:
  * - A case re-runs once per leaf SECTION (Catch2's discovery: each run enters

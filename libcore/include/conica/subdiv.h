@@ -82,7 +82,7 @@ CONICA_API size_t conica_subdiv_count(size_t n, int closed, int levels);
  * Coincident consecutive points are an error (an edge of zero length has no
  * bisector), named in st->offset, as are non-finite values and zero normals.
  * The output size is checked against s->max_points before any allocation.
- * Results are bit-identical for any s->threads. See docs/subdiv.md.
+ * Results are bit-identical for any s->threads. See README.md.
  * @param[in]  in   input curve (at least 2 points; 3 for closed)
  * @param[in]  s    settings, or NULL for defaults
  * @param[out] out  receives the refined curve (previous content freed on success)
