@@ -627,7 +627,7 @@ int main(int argc, char **argv)
     if ((rc = parse_args(argc, argv, &o, &exit_now)) != 0 || exit_now)
         return rc;
     clock_gettime(CLOCK_MONOTONIC, &t0);
-    if (cli_read_file(PROG, o.in, CLI_DEFAULT_MAX_INPUT, &buf, &len) != 0)
+    if (cli_read_file(PROG, o.in, cli_max_input(PROG), &buf, &len) != 0)
         return CLI_EXIT_ERROR;
     name = strcmp(o.in, "-") == 0 ? "<stdin>" : o.in;
     kind k = detect(o.in, buf, len);

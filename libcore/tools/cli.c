@@ -46,6 +46,20 @@ int cli_usage_error(const char *prog, const char *fmt, ...)
     return CLI_EXIT_USAGE;
 }
 
+size_t cli_max_input(const char *prog)
+{
+    const char *v = getenv(CLI_MAX_INPUT_ENV);
+    long n;
+    if (!v || !*v)
+        return CLI_DEFAULT_MAX_INPUT;
+    if (cli_parse_int(v, 1, (long)1 << 40, &n) != 0) {
+        cli_warning(prog, NULL, "%s='%s' is not a whole number of bytes in 1..2^40; using %zu",
+                    CLI_MAX_INPUT_ENV, v, (size_t)CLI_DEFAULT_MAX_INPUT);
+        return CLI_DEFAULT_MAX_INPUT;
+    }
+    return (size_t)n;
+}
+
 int cli_read_file(const char *prog, const char *path, size_t max_bytes, char **buf, size_t *len)
 {
     int is_stdin = path == NULL || strcmp(path, "-") == 0;

@@ -16,6 +16,13 @@
 /* Default cap on an input file (input-controlled size). */
 #define CLI_DEFAULT_MAX_INPUT ((size_t)256 << 20)
 
+/* The input size cap of every tool: the environment variable
+ * CONICA_MAX_INPUT_BYTES (a whole number of bytes, 1 .. 2^40) when set,
+ * else CLI_DEFAULT_MAX_INPUT. A malformed value is reported as a warning
+ * and the default applies. svgsmooth's --max-input-bytes overrides both. */
+#define CLI_MAX_INPUT_ENV "CONICA_MAX_INPUT_BYTES"
+size_t cli_max_input(const char *prog);
+
 /* Exit statuses shared by every tool. */
 enum { CLI_EXIT_OK = 0, CLI_EXIT_ERROR = 1, CLI_EXIT_USAGE = 2 };
 

@@ -268,7 +268,7 @@ int conica_cmd_plot(int argc, char **argv)
     const char *name = strcmp(o.in, "-") == 0 ? "<stdin>" : o.in;
     char *buf = NULL;
     size_t len = 0;
-    if (cli_read_file(PROG, o.in, CLI_DEFAULT_MAX_INPUT, &buf, &len))
+    if (cli_read_file(PROG, o.in, cli_max_input(PROG), &buf, &len))
         return CLI_EXIT_ERROR;
     conica_bspline s;
     conica_bspline_init(&s);

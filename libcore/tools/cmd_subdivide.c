@@ -222,7 +222,7 @@ int conica_cmd_subdivide(int argc, char **argv)
         return rc;
     name = (o.in == NULL || strcmp(o.in, "-") == 0) ? "<stdin>" : o.in;
 
-    if (cli_read_file(PROG, o.in, CLI_DEFAULT_MAX_INPUT, &buf, &len))
+    if (cli_read_file(PROG, o.in, cli_max_input(PROG), &buf, &len))
         return CLI_EXIT_ERROR;
     conica_curve_init(&in);
     conica_curve_init(&out);

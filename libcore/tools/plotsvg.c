@@ -11,7 +11,7 @@ int plotsvg_load_curve(const char *prog, const char *path, int closed, conica_cu
     char *buf;
     size_t len;
     conica_status st;
-    if (cli_read_file(prog, path, CLI_DEFAULT_MAX_INPUT, &buf, &len))
+    if (cli_read_file(prog, path, cli_max_input(prog), &buf, &len))
         return 1;
     if (conica_curve_parse(buf, len, c, &st) != CONICA_OK) {
         char where[1100];

@@ -93,6 +93,19 @@ begin_case "XML: document size (--max-input-bytes)"
 refused 1 'input larger than the limit of 100 bytes' "$tmp/o.svg" \
     "$svgsmooth" --max-input-bytes 100 -o "$tmp/o.svg" "$ex/letter-R.svg"
 
+begin_case "input file size: CONICA_MAX_INPUT_BYTES for conica and scadprofile"
+refused 1 'input larger than the limit of 40 bytes' "$tmp/o.txt" \
+    env CONICA_MAX_INPUT_BYTES=40 "$conica" subdivide -o "$tmp/o.txt" "$ex/ellipse.txt"
+refused 1 'input larger than the limit of 40 bytes' "$tmp/o.txt" \
+    env CONICA_MAX_INPUT_BYTES=40 "$conica" plot -o "$tmp/o.txt" "$tmp/open.spl"
+refused 1 'input larger than the limit of 40 bytes' "$tmp/o.scad" \
+    env CONICA_MAX_INPUT_BYTES=40 "$scad" -o "$tmp/o.scad" "$ex/ellipse.txt"
+check "a larger cap lets the same file through" \
+    env CONICA_MAX_INPUT_BYTES=100000 "$conica" subdivide -k 1 -o "$tmp/o.txt" "$ex/ellipse.txt"
+check "a malformed value warns and keeps the default" \
+    env CONICA_MAX_INPUT_BYTES=lots "$conica" subdivide -k 1 -o "$tmp/o.txt" "$ex/ellipse.txt"
+check_grep "CONICA_MAX_INPUT_BYTES='lots' is not a whole number" "$err"
+
 begin_case "XML: nesting depth (--max-depth, default 256)"
 {
     printf '<svg xmlns="http://www.w3.org/2000/svg">'
