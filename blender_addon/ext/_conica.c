@@ -25,6 +25,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include <time.h>
+#include <unistd.h>
 
 #include "conica/bspline.h"
 #include "conica/common.h"
@@ -1130,6 +1131,13 @@ static PyObject *cx_subdivide(PyObject *self, PyObject *args, PyObject *kw)
         job.set.normal_method = nm;
         job.set.insert_inflections = inflections;
         job.set.max_points = (size_t)max_points * (handles ? 2u : 1u) + 1;
+        /* The GIL is released: use the cores (libcore splits a level's edges
+         * only when each thread gets enough of them, and its results are
+         * bit-identical for any thread count). */
+        {
+            long ncpu = sysconf(_SC_NPROCESSORS_ONLN);
+            job.set.threads = ncpu > 1 ? (int)(ncpu < 8 ? ncpu : 8) : 1;
+        }
         rc = cx_run(&job);
     }
     Py_END_ALLOW_THREADS
