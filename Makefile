@@ -34,12 +34,18 @@ WARN := -std=c11 -Wall -Wextra -Wpedantic -Wshadow -Wstrict-prototypes \
         -Wmissing-prototypes -Wconversion -Werror
 CXXWARN := -std=c++17 -Wall -Wextra -Wshadow -Werror
 SAN  ?=
+# CFLAGS, CXXFLAGS and LDFLAGS are the user's (`make CFLAGS=-O3` replaces the
+# optimisation and debug flags); the project's own are appended with
+# `override`, so no command line can drop the warning set, -Werror, -fPIC,
+# hidden visibility or the sanitizer flags. Extra CPPFLAGS go through the
+# environment (`CPPFLAGS=-DX make`): on the command line they would replace
+# the include paths.
 CFLAGS   ?= $(OPT) -g $(ARCH)
-CFLAGS   += $(WARN) -fPIC -fvisibility=hidden $(SAN)
+override CFLAGS   += $(WARN) -fPIC -fvisibility=hidden $(SAN)
 CXXFLAGS ?= $(OPT) -g $(ARCH)
-CXXFLAGS += $(CXXWARN) $(SAN)
+override CXXFLAGS += $(CXXWARN) $(SAN)
 CPPFLAGS += -Ilibcore/include -MMD -MP -D_POSIX_C_SOURCE=200809L
-LDFLAGS  += $(SAN)
+override LDFLAGS  += $(SAN)
 
 XML_CFLAGS := $(shell $(PKG_CONFIG) --cflags libxml-2.0 2>/dev/null)
 XML_LIBS   := $(shell $(PKG_CONFIG) --libs libxml-2.0 2>/dev/null || echo -lxml2)
