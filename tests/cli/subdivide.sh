@@ -61,6 +61,22 @@ for mode in --closed --precise; do
     check_true "$mode: relative radial error $e <= 1e-11" le "$e" 1e-11
 done
 
+begin_case "--reference-compatible fits in absolute coordinates, as the reference does"
+# Same scheme, other frame: at the origin it reproduces the circle too; at
+# (1e4, 1e4) the absolute-coordinate fit loses digits like the reference
+# (REFERENCE.md section 1), while the default local frame does not.
+check "--reference-compatible at the origin" "$conica" subdivide -k 3 --reference-compatible "$tmp/circle.txt"
+check_count 64 '^v ' "$out"
+e=$(max_radial "$out" 5 0 0)
+check_true "origin: relative radial error $e <= 1e-13" le "$e" 1e-13
+check "--reference-compatible far away" "$conica" subdivide -k 8 --reference-compatible "$tmp/far.txt"
+check_count 1536 '^v ' "$out"
+e=$(max_radial "$out" 5 10000 10000)
+check_true "far: relative radial error $e >= 1e-8 (the absolute fit drifts)" le 1e-8 "$e"
+check "default far away" "$conica" subdivide -k 8 "$tmp/far.txt"
+e=$(max_radial "$out" 5 10000 10000)
+check_true "far, default: relative radial error $e <= 1e-11" le "$e" 1e-11
+
 begin_case "-k 0 writes the input back"
 check "-k 0" "$conica" subdivide -k 0 -o "$tmp/k0.txt" "$tmp/circle.txt"
 grep '^v ' "$tmp/circle.txt" >"$tmp/a"
