@@ -5,6 +5,14 @@
 # Both operators first compute every spline's result and only then modify
 # the scene, so a failure leaves the scene unchanged; a spline that cannot
 # be processed (degenerate, NaN, non-planar) is reported and kept as it is.
+#
+# Edit Mode: for a curve object in Edit Mode, Curve.splines is Blender's
+# edit-mode list (RNA reads BKE_curve_nurbs_get(), which returns
+# editnurb->nurbs then), and splines.new()/remove() and points.add() work on
+# it. The operators read and write that list directly, as Blender's own
+# edit-mode operators do, instead of leaving Edit Mode and coming back
+# (which cost more than Blender's whole Subdivide, see the README); the
+# edit-mode undo step pushed after the operator stores the new list.
 import array
 import math
 import time
@@ -27,6 +35,11 @@ MAX_POINTS = 1 << 22
 
 # Timings of the last run (seconds), read by the benchmark.
 last_timing = {}
+
+# Reports of the last run, [(level, message)], in the order they were made:
+# what the user sees in the status bar and the Info editor (the tests read
+# them here, since Python cannot read an operator's reports back).
+last_reports = []
 
 
 def _zeros(n, typecode="f"):
@@ -52,8 +65,13 @@ class SplineData:
             pts.foreach_get("handle_left", self.hl)
             pts.foreach_get("handle_right", self.hr)
             self.weights = None
+            # a Bezier point counts as selected when its anchor or either
+            # handle is, as for Blender's own operators
             sel = array.array("b", bytes(n))
-            pts.foreach_get("select_control_point", sel)
+            for key in ("select_control_point", "select_left_handle", "select_right_handle"):
+                pts.foreach_get(key, sel)
+                if any(sel):
+                    break
         else:
             pts = sp.points
             n = len(pts)
@@ -257,6 +275,52 @@ class _Result:
         self.t_core = 0.0  # seconds inside libcore (measured in C)
 
 
+# Per-point attributes that copy_spline() carries over exactly.
+_POINT_KEYS = (("co", 4, "f"), ("radius", 1, "f"), ("tilt", 1, "f"),
+               ("weight_softbody", 1, "f"), ("select", 1, "b"), ("hide", 1, "b"))
+_BEZIER_KEYS = (("co", 3, "f"), ("handle_left", 3, "f"), ("handle_right", 3, "f"),
+                ("radius", 1, "f"), ("tilt", 1, "f"), ("weight_softbody", 1, "f"),
+                ("select_control_point", 1, "b"), ("select_left_handle", 1, "b"),
+                ("select_right_handle", 1, "b"), ("hide", 1, "b"))
+# Spline settings copy_spline() carries over. They are set after the points
+# are added (Blender clamps the order to the point count) and before the
+# point data is written: setting some of them recomputes automatic Bezier
+# handles (use_cyclic_u does), which would move the copied handles.
+_SPLINE_KEYS = ("use_cyclic_u", "use_cyclic_v", "resolution_u", "resolution_v",
+                "use_smooth", "hide", "material_index", "tilt_interpolation",
+                "radius_interpolation", "use_endpoint_u", "use_endpoint_v",
+                "use_bezier_u", "use_bezier_v", "order_u", "order_v")
+
+
+def copy_spline(cu, src):
+    """Append an exact copy of spline src (of any curve) to cu.splines."""
+    sp = cu.splines.new(src.type)
+    if src.type == "BEZIER":
+        pts, dst, keys = src.bezier_points, sp.bezier_points, _BEZIER_KEYS
+    else:
+        pts, dst, keys = src.points, sp.points, _POINT_KEYS
+    n = len(pts)
+    if n > 1:
+        dst.add(n - 1)
+    for key in _SPLINE_KEYS:
+        setattr(sp, key, getattr(src, key))
+    if src.type == "BEZIER":
+        # foreach_get/foreach_set cannot move enum values (Blender 3.4 reads
+        # nothing and writes nothing): handle types one by one. New points
+        # are FREE (Blender zero-fills them, HD_FREE == 0); every set of
+        # another type recomputes handles, which the raw writes below undo.
+        for a, b in zip(pts, dst):
+            for key in ("handle_left_type", "handle_right_type"):
+                value = getattr(a, key)
+                if value != "FREE":
+                    setattr(b, key, value)
+    for key, width, tc in keys:
+        buf = array.array(tc, bytes(array.array(tc).itemsize * width * n))
+        pts.foreach_get(key, buf)
+        dst.foreach_set(key, buf)
+    return sp
+
+
 def _fill_poly(sp, r, select):
     n = len(r.co) // 4
     have = len(sp.points)
@@ -265,53 +329,116 @@ def _fill_poly(sp, r, select):
     sp.points.foreach_set("co", r.co)
     sp.points.foreach_set("radius", r.attrs[0::2])
     sp.points.foreach_set("tilt", r.attrs[1::2])
+    sp.points.foreach_set("hide", array.array("b", bytes(n)))
     if select:
-        sp.points.foreach_set("select", [r.selected] * n)
+        sp.points.foreach_set("select", array.array("b", [r.selected]) * n)
 
 
-def write_results(cu, results, select):
-    """Write the results. A POLY spline that stays POLY is refilled in place
-    (it only gains points: cheaper, and it keeps its place); other splines
-    are appended and the ones they replace removed afterwards."""
+def _fill_bezier(sp, r, select):
+    """Fill a NEW Bezier spline: its points are FREE (Blender zero-fills
+    them, HD_FREE == 0), so Blender keeps our handles as given."""
+    n = len(r.co) // 3
+    bp = sp.bezier_points
+    bp.add(n - len(bp))
+    bp.foreach_set("co", r.co)
+    bp.foreach_set("handle_left", r.hl)
+    bp.foreach_set("handle_right", r.hr)
+    bp.foreach_set("radius", r.attrs[0::2])
+    bp.foreach_set("tilt", r.attrs[1::2])
+    bp.foreach_set("hide", array.array("b", bytes(n)))
+    if select:
+        for key in ("select_control_point", "select_left_handle", "select_right_handle"):
+            bp.foreach_set(key, array.array("b", [r.selected]) * n)
+
+
+def _result_count(r):
+    return len(r.co) // (4 if r.kind == "POLY" else 3)
+
+
+def _fits_in_place(src, r):
+    """A POLY result can refill a POLY spline in place when the points only
+    grow: splines cannot change type or drop points from Python without
+    being rebuilt. Bezier results always go to a new spline, whose points
+    are all FREE: an existing point's handle type (AUTO, ALIGNED, ...) can
+    only be changed one point at a time, each change recomputing handles."""
+    return r.kind == "POLY" and src.type == "POLY" and _result_count(r) >= len(src.points)
+
+
+def _new_spline(cu, src, r, select):
+    sp = cu.splines.new(r.kind)
+    sp.use_cyclic_u = r.cyclic  # before the points: see _SPLINE_KEYS
+    for key in ("material_index", "use_smooth", "resolution_u", "tilt_interpolation",
+                "radius_interpolation"):
+        setattr(sp, key, getattr(src, key))
+    if r.kind == "POLY":
+        _fill_poly(sp, r, select)
+    else:
+        _fill_bezier(sp, r, select)
+    return sp
+
+
+def write_results(cu, results, select, source=None):
+    """Write the results into cu, keeping the order of the splines.
+
+    POLY results for a POLY spline that only gains points refill it in
+    place (cheap). Splines can only be appended, so
+    from the first result that cannot be written in place on, that spline
+    and every following one are appended anew, in order (a result, or an
+    exact copy of an untouched spline), and the old ones removed.
+
+    With source (a list of splines; cu then holds none), every spline is
+    appended: a result or a copy of the source spline."""
+    by_index = {r.index: r for r in results}
+    if source is not None:
+        for i, src in enumerate(source):
+            r = by_index.get(i)
+            if r is None:
+                copy_spline(cu, src)
+            else:
+                _new_spline(cu, src, r, select)
+        return
     old = list(cu.splines)
-    replaced = []
-    for r in results:
-        src = old[r.index]
-        if r.kind == "POLY" and src.type == "POLY" and len(r.co) // 4 >= len(src.points):
-            _fill_poly(src, r, select)
-            continue
-        replaced.append(src)
-        if r.kind == "POLY":
-            sp = cu.splines.new("POLY")
-            _fill_poly(sp, r, select)
+    active = cu.splines.active
+    active_i = next((i for i, sp in enumerate(old) if active is not None and
+                     sp.as_pointer() == active.as_pointer()), -1)
+    active_n = (len(active.bezier_points) if active.type == "BEZIER" else
+                len(active.points)) if active_i >= 0 else 0
+    first = len(old)
+    for i in sorted(by_index):
+        if not _fits_in_place(old[i], by_index[i]):
+            first = i
+            break
+    for i in sorted(by_index):
+        if i >= first:
+            break
+        r = by_index[i]
+        _fill_poly(old[i], r, select)
+    for i in range(first, len(old)):
+        r = by_index.get(i)
+        if r is None:
+            copy_spline(cu, old[i])
         else:
-            n = len(r.co) // 3
-            sp = cu.splines.new("BEZIER")
-            bp = sp.bezier_points
-            bp.add(n - 1)
-            bp.foreach_set("handle_left_type", [3] * n)  # FREE: keep our handles
-            bp.foreach_set("handle_right_type", [3] * n)
-            bp.foreach_set("co", r.co)
-            bp.foreach_set("handle_left", r.hl)
-            bp.foreach_set("handle_right", r.hr)
-            bp.foreach_set("radius", r.attrs[0::2])
-            bp.foreach_set("tilt", r.attrs[1::2])
-            if select:
-                for key in ("select_control_point", "select_left_handle",
-                            "select_right_handle"):
-                    bp.foreach_set(key, [r.selected] * n)
-        sp.use_cyclic_u = r.cyclic
-        sp.material_index = r.material
-        sp.use_smooth = r.smooth
-        sp.resolution_u = r.resolution
-    for sp in replaced:
+            _new_spline(cu, old[i], r, select)
+    for sp in old[first:]:
         cu.splines.remove(sp)
+    # Blender keeps the active spline and point as indices. The spline keeps
+    # its index; when it lost points the active point index may now be past
+    # its end (Blender reads it unchecked), so the active spline is unset.
+    if active_i >= 0 and active_i in by_index and \
+            _result_count(by_index[active_i]) < active_n:
+        cu.splines.active = None
 
 
-def _new_object_copy(context, ob):
+def _new_object_copy(context, ob, edit):
+    """A copy of ob with a copy of its curve. In Edit Mode the data-block
+    copy holds the Object Mode splines, not the edited ones: the caller
+    then rebuilds the splines from the edit-mode list (write_results with
+    source), so the copy gets no splines here."""
     new = ob.copy()
     new.data = ob.data.copy()
     new.name = ob.name + ".conic"
+    if edit:
+        new.data.splines.clear()
     for coll in ob.users_collection:
         coll.objects.link(new)
     return new
@@ -338,19 +465,17 @@ class _CurveOperator:
     def wants(self, sp, data, edit):
         return (not edit) or data.selected
 
+    def _report(self, level, message):
+        self.report({level}, message)
+        last_reports.append((level, message))
+
     def execute(self, context):
+        last_reports.clear()
         objs, edit = curve_objects(context)
         if not objs:
-            self.report({"ERROR"}, "No curve object selected")
+            self._report("ERROR", "No curve object selected")
             return {"CANCELLED"}
-        t_start = time.perf_counter()
-        if edit:
-            bpy.ops.object.mode_set(mode="OBJECT")
-        try:
-            return self._run(context, objs, edit, t_start)
-        finally:
-            if edit:
-                bpy.ops.object.mode_set(mode="EDIT")
+        return self._run(context, objs, edit, time.perf_counter())
 
     def _run(self, context, objs, edit, t_start):
         t_lib = t_core = t_read = 0.0
@@ -359,6 +484,13 @@ class _CurveOperator:
         skipped = 0
         for ob in objs:
             results = []
+            if ob.data.shape_keys is not None:
+                # Points inserted between shape-keyed points would need every
+                # key block to grow with them (Blender's own edit operators
+                # track that internally; Python cannot): refuse, unchanged.
+                problems.append("%s: has shape keys, which %s cannot carry over; "
+                                "left unchanged" % (ob.name, self.bl_label))
+                continue
             for i, sp in enumerate(ob.data.splines):
                 t0 = time.perf_counter()
                 data = SplineData(sp)
@@ -388,10 +520,14 @@ class _CurveOperator:
         t_write = time.perf_counter()
         done = 0
         for ob, results in plans:
-            target = ob
             if self.output == "NEW_OBJECT":
-                target = _new_object_copy(context, ob)
-            write_results(target.data, results, edit)
+                target = _new_object_copy(context, ob, edit)
+                write_results(target.data, results, edit,
+                              source=list(ob.data.splines) if edit else None)
+            else:
+                target = ob
+                write_results(target.data, results, edit)
+            target.data.update_tag()
             done += len(results)
         t_end = time.perf_counter()
         last_timing.clear()
@@ -400,16 +536,16 @@ class _CurveOperator:
         last_timing.update(total=t_end - t_start, read=t_read, extension=t_lib,
                            libcore=t_core, write=t_end - t_write, splines=done)
         for p in problems:
-            self.report({"WARNING"}, p)
+            self._report("WARNING", p)
         if done == 0:
             if not problems:
-                self.report({"WARNING"}, "Nothing to do: no %sspline to process"
-                            % ("selected " if edit else ""))
+                self._report("WARNING", "Nothing to do: no %sspline to process"
+                             % ("selected " if edit else ""))
             return {"CANCELLED"}
         msg = "%s: %d spline%s" % (self.bl_label, done, "" if done == 1 else "s")
         if problems:
             msg += ", %d left unchanged (see the warnings)" % len(problems)
-        self.report({"INFO"}, msg)
+        self._report("INFO", msg)
         return {"FINISHED"}
 
 

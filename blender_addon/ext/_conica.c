@@ -50,6 +50,12 @@
  * hangs on coordinates near 1e308 (reported to its owner). Blender's float32
  * coordinates end at 3.4e38, so no Blender curve comes near this. */
 #define CX_MAX_ABS_COORD 1e150
+/* Smallest extent (largest side of the bounding box) of a 3D spline that
+ * can be put into its plane: below DBL_MIN the coordinates relative to the
+ * centroid are subnormal, with fewer than 53 significant bits, and their
+ * squares and the size underflow to 0. Such a spline is degenerate
+ * (DegenerateError), not "non-planar". */
+#define CX_MIN_PLANE_SIZE DBL_MIN
 
 typedef struct cx_state {
     PyObject *error;       /* ConicaError */
@@ -386,13 +392,16 @@ typedef struct cx_plane {
     double origin[3], normal[3], u[3], v[3];
     double deviation; /* largest distance of a point from the plane */
     double size;      /* bounding-box diagonal */
+    double extent;    /* largest side of the bounding box */
 } cx_plane;
 
 /*
  * Best-fit plane of n 3D points: through the centroid, normal along the
  * eigenvector of the smallest eigenvalue of the covariance matrix (total
  * least squares). Coordinates are taken relative to the centroid first so
- * the result does not depend on where the spline sits.
+ * the result does not depend on where the spline sits, and scaled by the
+ * largest extent so that neither the covariance nor the size underflows
+ * for a tiny spline (squares of extents below ~1.5e-154 would).
  */
 static void cx_fit_plane(const double *p, size_t n, cx_plane *pl)
 {
@@ -416,9 +425,17 @@ static void cx_fit_plane(const double *p, size_t n, cx_plane *pl)
             d[k] += p[3 * i + (size_t)k] - c[k];
     for (int k = 0; k < 3; k++)
         c[k] += d[k] / (double)n;
+    double ext = 0.0;
+    for (int k = 0; k < 3; k++)
+        if (hi[k] - lo[k] > ext)
+            ext = hi[k] - lo[k];
+    /* 1/ext when that is finite; the caller rejects a spline whose extent
+     * is below CX_MIN_PLANE_SIZE before using the plane. */
+    double scale = isfinite(ext) && ext >= CX_MIN_PLANE_SIZE ? 1.0 / ext : 1.0;
     double cov[3][3] = {{0}};
     for (size_t i = 0; i < n; i++) {
-        double q[3] = {p[3 * i] - c[0], p[3 * i + 1] - c[1], p[3 * i + 2] - c[2]};
+        double q[3] = {(p[3 * i] - c[0]) * scale, (p[3 * i + 1] - c[1]) * scale,
+                       (p[3 * i + 2] - c[2]) * scale};
         for (int r = 0; r < 3; r++)
             for (int s = 0; s < 3; s++)
                 cov[r][s] += q[r] * q[s];
@@ -444,8 +461,11 @@ static void cx_fit_plane(const double *p, size_t n, cx_plane *pl)
             dev = fabs(q);
     }
     pl->deviation = dev;
-    pl->size = sqrt((hi[0] - lo[0]) * (hi[0] - lo[0]) + (hi[1] - lo[1]) * (hi[1] - lo[1]) +
-                    (hi[2] - lo[2]) * (hi[2] - lo[2]));
+    double e2 = 0.0;
+    for (int k = 0; k < 3; k++)
+        e2 += ((hi[k] - lo[k]) * scale) * ((hi[k] - lo[k]) * scale);
+    pl->size = sqrt(e2) / scale;
+    pl->extent = ext;
 }
 
 static void cx_to_plane(const cx_plane *pl, const double *p3, size_t n, double *p2, int is_vector)
@@ -1085,11 +1105,13 @@ static PyObject *cx_subdivide(PyObject *self, PyObject *args, PyObject *kw)
     cx_plane pl;
     memset(&pl, 0, sizeof pl);
     conica_code rc = CONICA_OK;
-    int nonplanar = 0;
+    int nonplanar = 0, tiny = 0;
     Py_BEGIN_ALLOW_THREADS
     if (dim == 3) {
         cx_fit_plane(pts, n, &pl);
-        if (pl.deviation > plane_tol * pl.size + abs_tol) {
+        if (pl.extent > 0.0 && pl.extent < CX_MIN_PLANE_SIZE) {
+            tiny = 1; /* coincident points (extent 0) are libcore's to report */
+        } else if (pl.deviation > plane_tol * pl.size + abs_tol) {
             nonplanar = 1;
         } else {
             cx_to_plane(&pl, pts, n, xy, 0);
@@ -1105,7 +1127,7 @@ static PyObject *cx_subdivide(PyObject *self, PyObject *args, PyObject *kw)
         if (nrm_out)
             memcpy(nout2, nrm_out, 2 * n * sizeof *nout2);
     }
-    if (!nonplanar && tangents) {
+    if (!nonplanar && !tiny && tangents) {
         /* tangent (tx, ty) -> normal (ty, -tx): right of the direction of
          * travel, libcore's orientation (curve.h) */
         double *vs[2] = {nin2, nout2};
@@ -1117,7 +1139,7 @@ static PyObject *cx_subdivide(PyObject *self, PyObject *args, PyObject *kw)
                     vs[q][2 * i + 1] = -tx;
                 }
     }
-    if (!nonplanar) {
+    if (!nonplanar && !tiny) {
         job.n = n;
         job.closed = closed;
         job.xy = xy;
@@ -1141,6 +1163,12 @@ static PyObject *cx_subdivide(PyObject *self, PyObject *args, PyObject *kw)
         rc = cx_run(&job);
     }
     Py_END_ALLOW_THREADS
+    if (tiny) {
+        cx_raisef(S->degenerate,
+                  "spline is too small: its extent %.3g is below %.3g, the smallest "
+                  "normal double", pl.extent, CX_MIN_PLANE_SIZE);
+        goto done;
+    }
     if (nonplanar) {
         cx_raisef(S->nonplanar,
                   "spline is not planar: its points are up to %.3g from their best-fit plane, "

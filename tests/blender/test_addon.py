@@ -131,6 +131,29 @@ def curve_snapshot(cu):
     return [spline_snapshot(s) for s in cu.splines]
 
 
+def full_snapshot(sp):
+    """Everything a curve spline holds that RNA shows (for "left exactly as
+    it was" checks): settings, and every point's coordinates, weights,
+    handles and handle types, radius, tilt, soft-body weight, selection and
+    hidden flags."""
+    head = tuple(getattr(sp, k) for k in (
+        "type", "use_cyclic_u", "order_u", "use_endpoint_u", "use_bezier_u", "resolution_u",
+        "use_smooth", "material_index", "tilt_interpolation", "radius_interpolation", "hide"))
+    if sp.type == "BEZIER":
+        pts = [(tuple(b.co), tuple(b.handle_left), tuple(b.handle_right), b.handle_left_type,
+                b.handle_right_type, b.radius, b.tilt, b.weight_softbody,
+                b.select_control_point, b.select_left_handle, b.select_right_handle, b.hide)
+               for b in sp.bezier_points]
+    else:
+        pts = [(tuple(p.co), p.radius, p.tilt, p.weight_softbody, p.select, p.hide)
+               for p in sp.points]
+    return repr((head, pts))  # repr: NaN-aware equality
+
+
+def last_reports():
+    return list(conica_pkg().operators.last_reports)
+
+
 def conica_pkg():
     return sys.modules["conica"]
 
@@ -302,6 +325,19 @@ def extension_rejects_bad_input():
             report("ext_rejects_" + name, isinstance(e, (ext.ConicaError, TypeError)), str(e))
         except Exception as e:  # noqa: BLE001
             report("ext_rejects_" + name, False, "%s: %s" % (type(e).__name__, e))
+    # a triangle whose size underflows is degenerate, not "non-planar";
+    # a tiny one above DBL_MIN is processed like any other
+    for e, exc in ((1e-310, ext.DegenerateError), (1e-200, None), (1e-160, None)):
+        tri = [0, 0, 0, e, 0, 0, 0, e, 0]
+        try:
+            res = ext.subdivide(tri, dim=3, closed=True, levels=1)
+            ok = exc is None and len(res[0]) == 18 and all(math.isfinite(v) for v in res[0]) \
+                and max(abs(v) for v in res[0]) <= 2 * e and res[0][:3].tolist() == [0, 0, 0]
+            why = "processed"
+        except ext.ConicaError as err:
+            ok = exc is not None and type(err) is exc and "too small" in str(err)
+            why = "%s: %s" % (type(err).__name__, err)
+        report("ext_tiny_triangle_%g" % e, ok, why)
     report("ext_error_hierarchy", issubclass(ext.DegenerateError, ValueError) and
            issubclass(ext.NumericError, RuntimeError) and
            issubclass(ext.OutOfMemoryError, MemoryError) and
@@ -648,6 +684,8 @@ def output_bezier():
             d = h - p
             worst_dir = max(worst_dir, abs(d.dot(p)) / max(d.length, 1e-30))
             worst_len = max(worst_len, abs(d.length - k))
+    report("output_bezier_handles_free", all(
+        bp.handle_left_type == bp.handle_right_type == "FREE" for bp in s.bezier_points))
     report("output_bezier_tangent_handles", worst_dir < 1e-5, "%.3g" % worst_dir)
     report("output_bezier_handle_length", worst_len < 1e-3 * k, "%.3g vs %.3g" % (worst_len, k))
     ev = eval_points(ob)
@@ -732,8 +770,8 @@ def undo_restores():
 
 @case
 def undo_in_edit_mode():
-    """Edit mode: the operator switches to object mode and back to write the
-    splines; the edit-mode undo steps around it still restore them."""
+    """Edit mode: the operator writes the edit-mode splines directly; the
+    edit-mode undo steps around it restore them exactly."""
     fresh_scene()
     ob = new_curve("undo_edit")
     add_poly(ob.data, [(math.cos(i * math.pi / 3), math.sin(i * math.pi / 3), 0)
@@ -749,6 +787,39 @@ def undo_in_edit_mode():
     bpy.ops.object.mode_set(mode="OBJECT")
     n = len(bpy.data.objects["undo_edit"].data.splines[0].points)
     report("undo_edit_mode", r == {"FINISHED"} and n == 6, "%r, %d points after undo" % (r, n))
+    # Every spline exactly restored (and brought back by redo) when the
+    # operator rebuilt splines in Edit Mode: a Bezier spline became POLY, so
+    # the splines after it were rebuilt too.
+    fresh_scene()
+    ob = new_curve("undo_edit2")
+    add_poly(ob.data, [(math.cos(i * math.pi / 3), math.sin(i * math.pi / 3), 0)
+                       for i in range(6)], True, [1, 2, 3, 4, 5, 6])
+    circle_bezier(ob.data, 2.0)
+    add_poly(ob.data, [(5, 0, 0), (6, 1, 0), (7, 0, 0)], False)
+    for sp in ob.data.splines:
+        for p in sp.points:
+            p.select = True
+        for b in sp.bezier_points:
+            b.select_control_point = True
+    select_only(ob)
+    bpy.ops.object.mode_set(mode="EDIT")
+    before = [full_snapshot(sp) for sp in ob.data.splines]
+    bpy.ops.ed.undo_push(message="before")
+    r = bpy.ops.curve.conic_subdivide(levels=2)
+    bpy.ops.ed.undo_push(message="Conic Subdivide")
+    cu = bpy.data.objects["undo_edit2"].data
+    after = [full_snapshot(sp) for sp in cu.splines]
+    bpy.ops.ed.undo()
+    cu = bpy.data.objects["undo_edit2"].data
+    restored = [full_snapshot(sp) for sp in cu.splines]
+    bpy.ops.ed.redo()
+    cu = bpy.data.objects["undo_edit2"].data
+    redone = [full_snapshot(sp) for sp in cu.splines]
+    mode = bpy.context.mode
+    bpy.ops.object.mode_set(mode="OBJECT")
+    report("undo_edit_mode_exact", r == {"FINISHED"} and after != before and
+           restored == before and mode == "EDIT_CURVE", "%r, mode %s" % (r, mode))
+    report("redo_edit_mode_exact", redone == after)
 
 
 @case
@@ -788,6 +859,16 @@ def degenerate_splines_reported():
     report("degenerate_others_processed", r == {"FINISHED"} and len(splines) == 5 and
            sorted(len(s.points) for s in splines)[-1] == 32, "%r %d" % (r, len(splines)))
     report("degenerate_left_unchanged", kept)
+    # one WARNING per bad spline, naming the object and the spline, then
+    # the INFO summary
+    reps = last_reports()
+    warns = [m for lv, m in reps if lv == "WARNING"]
+    want = [("mixed, spline 0:", "at least"), ("mixed, spline 1:", "coincide"),
+            ("mixed, spline 2:", "non-finite"), ("mixed, spline 3:", "not planar")]
+    ok = len(warns) == 4 and all(w.startswith(a) and b in w for w, (a, b) in zip(warns, want))
+    report("degenerate_warnings_name_splines", ok, repr(reps))
+    report("degenerate_info_summary", reps and reps[-1][0] == "INFO" and
+           "1 spline" in reps[-1][1] and "4 left unchanged" in reps[-1][1], repr(reps))
     # all bad: cancelled, nothing changed
     fresh_scene()
     ob = new_curve("allbad")
@@ -859,6 +940,196 @@ def keep_corners_and_modes():
     r = bpy.ops.curve.conic_subdivide(levels=2)
     report("nonplanar_unchanged", r == {"CANCELLED"} and curve_snapshot(ob.data) == before,
            str(r))
+    reps = last_reports()
+    report("nonplanar_warning", len(reps) == 1 and reps[0][0] == "WARNING" and
+           reps[0][1].startswith("twisted, spline 0: spline is not planar"), repr(reps))
+
+
+def order_fixture(name):
+    """Five splines in a row along x, each kind once: 0 POLY hexagon, 1
+    Bezier circle, 2 non-planar POLY (left unchanged), 3 NURBS arc, 4
+    non-planar Bezier with AUTO/VECTOR handles (left unchanged); odd
+    settings on the unchanged ones so a lossy copy would show."""
+    ob = new_curve(name)
+    cu = ob.data
+    cu.materials.append(bpy.data.materials.new(name + "m0"))
+    cu.materials.append(bpy.data.materials.new(name + "m1"))
+    add_poly(cu, [(math.cos(i * math.pi / 3), math.sin(i * math.pi / 3), 0)
+                  for i in range(6)], True)
+    sp = circle_bezier(cu)
+    for b in sp.bezier_points:
+        b.co.x += 10
+        b.handle_left.x += 10
+        b.handle_right.x += 10
+    sp = add_poly(cu, [(20, 0, 0), (21, 0, 0.5), (21, 1, 0), (20, 1, 0.5)], True,
+                  [0.5, 1.5, 2.5, 3.5], [0.1, 0.2, 0.3, 0.4])
+    sp.material_index = 1
+    sp.resolution_u = 7
+    sp.use_smooth = False
+    sp.tilt_interpolation = "EASE"
+    sp.radius_interpolation = "CARDINAL"
+    for i, p in enumerate(sp.points):
+        p.weight_softbody = 0.25 * (i + 1)
+        p.select = i % 2 == 0
+    add_nurbs(cu, [(30, 0, 0), (31, 2, 0), (33, 2.5, 0), (34, 0, 0), (35, -1, 0)],
+              [1, 0.5, 2, 1, 1], 3, endpoint=True)
+    sp = add_bezier(cu, [(40, 0, 0), (41, 1, 1), (42, 0, 0), (43, 1, -1)],
+                    [(0.3, 0, 0.2)] * 4, False)
+    for i, b in enumerate(sp.bezier_points):
+        b.handle_left_type = ("AUTO", "VECTOR", "ALIGNED", "FREE")[i]
+        b.radius = 1 + i
+        b.select_right_handle = i == 2
+    return ob
+
+
+def spline_xmin(sp):
+    """Which of order_fixture's splines this is: 0, 10, .., 40."""
+    pts = sp.bezier_points if sp.type == "BEZIER" else sp.points
+    xs = [p.co[0] for p in pts]
+    return 10 * math.floor((min(xs) + max(xs)) / 20)
+
+
+@case
+def spline_order_kept():
+    """Results keep their splines' places, and the splines left alone keep
+    every value (object mode: all splines; edit mode: the selected ones)."""
+    for mode in ("OBJECT", "EDIT"):
+        fresh_scene()
+        ob = order_fixture("order_" + mode)
+        cu = ob.data
+        if mode == "EDIT":
+            # select splines 1 and 3 only
+            for i, sp in enumerate(cu.splines):
+                for p in sp.points:
+                    p.select = i == 3
+                for b in sp.bezier_points:
+                    b.select_control_point = i == 1
+                    b.select_left_handle = b.select_right_handle = False
+        select_only(ob)
+        if mode == "EDIT":
+            bpy.ops.object.mode_set(mode="EDIT")
+        before = [full_snapshot(sp) for sp in ob.data.splines]
+        r = bpy.ops.curve.conic_subdivide(levels=2)
+        cu = ob.data
+        xs = [spline_xmin(sp) for sp in cu.splines]
+        types = [sp.type for sp in cu.splines]
+        kept = [0, 2, 4] if mode == "EDIT" else [2, 4]
+        same = [full_snapshot(cu.splines[i]) == before[i] for i in kept] \
+            if len(cu.splines) == 5 else []
+        changed = [i for i in range(min(5, len(cu.splines)))
+                   if full_snapshot(cu.splines[i]) != before[i]]
+        tag = mode.lower()
+        report("order_kept_" + tag, r == {"FINISHED"} and xs == [0, 10, 20, 30, 40],
+               "%r %r %r" % (r, xs, types))
+        report("order_untouched_exact_" + tag, same and all(same), repr(same))
+        report("order_processed_" + tag,
+               changed == ([1, 3] if mode == "EDIT" else [0, 1, 3]) and
+               types == ["POLY", "POLY", "POLY", "POLY", "BEZIER"], "%r %r" % (changed, types))
+        if mode == "EDIT":
+            bpy.ops.object.mode_set(mode="OBJECT")
+            after_edit = [full_snapshot(sp) for sp in ob.data.splines]
+            report("order_kept_after_leaving_edit_mode",
+                   [after_edit[i] for i in kept] == [before[i] for i in kept] and
+                   [spline_xmin(sp) for sp in ob.data.splines] == [0, 10, 20, 30, 40])
+
+
+@case
+def edit_mode_works_in_place():
+    """In Edit Mode the operator writes Blender's edit-mode splines
+    directly: it stays in Edit Mode, and the Object Mode data (what a copy of
+    the curve holds until Edit Mode is left) is not touched."""
+    fresh_scene()
+    ob = new_curve("inplace")
+    add_poly(ob.data, [(math.cos(i * math.pi / 3), math.sin(i * math.pi / 3), 0)
+                       for i in range(6)], True)
+    select_only(ob)
+    bpy.ops.object.mode_set(mode="EDIT")
+    bpy.ops.curve.select_all(action="SELECT")
+    r = bpy.ops.curve.conic_subdivide(levels=1)
+    objdata = ob.data.copy()  # copies the Object Mode splines only
+    n_obj = len(objdata.splines[0].points)
+    bpy.data.curves.remove(objdata)
+    n_edit = len(ob.data.splines[0].points)
+    mode = bpy.context.mode
+    bpy.ops.object.mode_set(mode="OBJECT")
+    n_after = len(ob.data.splines[0].points)
+    report("edit_mode_no_mode_switch", r == {"FINISHED"} and mode == "EDIT_CURVE" and
+           n_edit == 12 and n_obj == 6 and n_after == 12,
+           "%r %s edit %d object %d after %d" % (r, mode, n_edit, n_obj, n_after))
+    # New Object from Edit Mode takes the edited splines, not the stale
+    # Object Mode ones; the original stays as it is in Edit Mode
+    fresh_scene()
+    ob = new_curve("editnew")
+    add_poly(ob.data, [(math.cos(i * math.pi / 3), math.sin(i * math.pi / 3), 0)
+                       for i in range(6)], True)
+    select_only(ob)
+    bpy.ops.object.mode_set(mode="EDIT")
+    bpy.ops.curve.select_all(action="DESELECT")
+    sp = add_poly(ob.data, [(5 + math.cos(i * math.pi / 2), math.sin(i * math.pi / 2), 0)
+                            for i in range(4)], True)  # made in Edit Mode
+    for p in sp.points:
+        p.select = True
+    before = [full_snapshot(s) for s in ob.data.splines]
+    r = bpy.ops.curve.conic_subdivide(levels=2, output="NEW_OBJECT")
+    orig_same = [full_snapshot(s) for s in ob.data.splines] == before
+    bpy.ops.object.mode_set(mode="OBJECT")
+    new = bpy.data.objects.get("editnew.conic")
+    counts = [len(s.points) for s in new.data.splines] if new else []
+    report("edit_mode_new_object_uses_edit_data", r == {"FINISHED"} and counts == [6, 16] and
+           orig_same and len(ob.data.splines) == 2, "%r %r %s" % (r, counts, orig_same))
+
+
+@case
+def edit_mode_bezier_handle_selection():
+    """A Bezier spline whose only selected parts are handles counts as
+    selected, as for Blender's own operators."""
+    for key in ("select_left_handle", "select_right_handle"):
+        fresh_scene()
+        ob = new_curve("handles")
+        circle_bezier(ob.data)
+        circle_bezier(ob.data, 2.0)
+        for i, sp in enumerate(ob.data.splines):
+            for j, b in enumerate(sp.bezier_points):
+                b.select_control_point = b.select_left_handle = b.select_right_handle = False
+                if i == 1 and j == 2:
+                    setattr(b, key, True)
+        select_only(ob)
+        bpy.ops.object.mode_set(mode="EDIT")
+        r = bpy.ops.curve.conic_subdivide(levels=3)
+        bpy.ops.object.mode_set(mode="OBJECT")
+        kinds = [(s.type, len(s.points) if s.type == "POLY" else len(s.bezier_points))
+                 for s in ob.data.splines]
+        report("edit_mode_" + key, r == {"FINISHED"} and
+               kinds == [("BEZIER", 4), ("POLY", 32)], "%r %r" % (r, kinds))
+
+
+@case
+def shape_keys_refused():
+    """Inserting points would need every shape key to grow with them:
+    curves with shape keys are reported and left unchanged, in both modes."""
+    for mode in ("OBJECT", "EDIT"):
+        fresh_scene()
+        ob = new_curve("keyed")
+        add_poly(ob.data, [(math.cos(i * math.pi / 3), math.sin(i * math.pi / 3), 0)
+                           for i in range(6)], True)
+        select_only(ob)
+        ob.shape_key_add(name="Basis")
+        kb = ob.shape_key_add(name="Big")
+        for d in kb.data:
+            d.co = d.co * 2
+        before = curve_snapshot(ob.data)
+        if mode == "EDIT":
+            bpy.ops.object.mode_set(mode="EDIT")
+            bpy.ops.curve.select_all(action="SELECT")
+        r = bpy.ops.curve.conic_subdivide(levels=2)
+        reps = last_reports()
+        if mode == "EDIT":
+            bpy.ops.object.mode_set(mode="OBJECT")
+        keys = [len(k.data) for k in ob.data.shape_keys.key_blocks]
+        report("shape_keys_refused_" + mode.lower(), r == {"CANCELLED"} and
+               curve_snapshot(ob.data) == before and keys == [6, 6] and
+               reps and reps[0][0] == "WARNING" and "keyed: has shape keys" in reps[0][1],
+               "%r %r %r" % (r, keys, reps))
 
 
 @case

@@ -28,6 +28,17 @@ if ! grep -q '^SUMMARY ' "$log"; then
     tail -n 40 "$log"
 fi
 
+# The operators' warnings go through Blender's report system (self.report),
+# which prints them in background mode: the degenerate and non-planar cases
+# of the script must show up there, naming object and spline.
+begin_case "blender: warnings reach Blender's reports"
+check_grep '^Warning: mixed, spline 3: spline is not planar' "$log" \
+    "the non-planar spline of 'mixed' is reported as a warning"
+check_grep '^Warning: twisted, spline 0: spline is not planar' "$log" \
+    "the lone non-planar spline is reported as a warning"
+check_grep '^Warning: keyed: has shape keys' "$log" \
+    "a curve with shape keys is reported as a warning"
+
 # One case per check the script reported.
 grep -E '^(PASS|FAIL) ' "$log" >"$tmp/results"
 while IFS= read -r line; do
