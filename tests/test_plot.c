@@ -155,6 +155,102 @@ static void random_regime(ct_rng *r, int dim, conica_bspline *s)
     free(c);
 }
 
+/* Samples of the dense check evaluated together (independent Horner
+ * chains the compiler vectorises). */
+#define DENSE_BLOCK 8
+
+/* Dense check of a guaranteed plot of a polynomial spline in one output
+ * piece: per_interval samples in every knot interval, each measured
+ * against the chord whose parameter range holds it (the certificate is
+ * per chord, and the distance to one chord bounds the distance to the
+ * polyline). The samples come from the interval's Bézier form by Horner's
+ * scheme in u/(1-u) for u <= 1/2 and in (1-u)/u above, O(p) per sample,
+ * DENSE_BLOCK samples at a time. Returns the largest distance; a spline
+ * function is checked as its graph (t, f(t)). */
+static double dense_chord_dev(const conica_bspline *s, const conica_polyline *pl,
+                              size_t per_interval)
+{
+    int p = s->degree, d = s->dim, pd = d == 1 ? 2 : d;
+    REQUIRE(s->w == NULL);
+    REQUIRE(pl->t != NULL);
+    REQUIRE_EQ_U(pl->npieces, 1);
+    size_t pieces = conica_bspline_bezier_count(s), ci = 0;
+    double *bz = malloc((size_t)(p + 1) * (size_t)d * sizeof *bz);
+    double binom[CONICA_BSPLINE_MAX_DEGREE + 1];
+    binom[0] = 1;
+    for (int i = 1; i <= p; i++)
+        binom[i] = floor(binom[i - 1] * (double)(p - i + 1) / (double)i + 0.5);
+    double worst2 = 0.0;
+    for (size_t k = 0; k < pieces; k++) {
+        double a, b;
+        REQUIRE_EQ(conica_bspline_bezier_piece(s, k, bz, NULL, &a, &b, NULL), CONICA_OK);
+        for (int i = 0; i <= p; i++)
+            for (int c = 0; c < d; c++)
+                bz[i * d + c] *= binom[i];
+        size_t ns = per_interval + (k + 1 == pieces ? 1 : 0), mid = per_interval / 2 + 1;
+        for (size_t j0 = 0; j0 < ns;) {
+            /* blocks stay on one side of u = 1/2 (mid is a block start
+             * when DENSE_BLOCK divides per_interval / 2 + 1; otherwise the
+             * block is cut there) */
+            size_t jend = j0 + DENSE_BLOCK < ns ? j0 + DENSE_BLOCK : ns;
+            if (j0 < mid && jend > mid)
+                jend = mid;
+            int lo = j0 < mid;
+            double u[DENSE_BLOCK], t[DENSE_BLOCK], pw[DENSE_BLOCK], v[3][DENSE_BLOCK];
+            for (int j = 0; j < DENSE_BLOCK; j++) {
+                size_t jj = j0 + (size_t)j < jend ? j0 + (size_t)j : jend - 1;
+                u[j] = (double)jj / (double)per_interval;
+                t[j] = lo ? u[j] / (1.0 - u[j]) : (1.0 - u[j]) / u[j];
+            }
+            for (int c = 0; c < d; c++) {
+                double acc[DENSE_BLOCK] = {0};
+                for (int i = 0; i <= p; i++) {
+                    double coef = bz[(size_t)(lo ? p - i : i) * (size_t)d + (size_t)c];
+                    for (int j = 0; j < DENSE_BLOCK; j++)
+                        acc[j] = acc[j] * t[j] + coef;
+                }
+                for (int j = 0; j < DENSE_BLOCK; j++)
+                    v[c][j] = acc[j];
+            }
+            for (int j = 0; j < DENSE_BLOCK; j++) {
+                double base = lo ? 1.0 - u[j] : u[j], r = 1.0;
+                for (int e = p; e; e >>= 1, base *= base) /* base^p */
+                    if (e & 1)
+                        r *= base;
+                pw[j] = r;
+            }
+            for (int j = 0; j < DENSE_BLOCK && j0 + (size_t)j < jend; j++) {
+                double x = a + (b - a) * u[j], q[3];
+                if (d == 1) {
+                    q[0] = x;
+                    q[1] = v[0][j] * pw[j];
+                } else {
+                    for (int c = 0; c < d; c++)
+                        q[c] = v[c][j] * pw[j];
+                }
+                while (ci + 2 < pl->n && pl->t[ci + 1] < x)
+                    ci++;
+                const double *A = pl->xy + ci * (size_t)pd, *B = A + pd;
+                double ab2 = 0, tq = 0, e2 = 0;
+                for (int c = 0; c < pd; c++) {
+                    ab2 += (B[c] - A[c]) * (B[c] - A[c]);
+                    tq += (q[c] - A[c]) * (B[c] - A[c]);
+                }
+                tq = ab2 > 0 ? tq / ab2 : 0;
+                tq = tq < 0 ? 0 : (tq > 1 ? 1 : tq);
+                for (int c = 0; c < pd; c++) {
+                    double e = q[c] - A[c] - tq * (B[c] - A[c]);
+                    e2 += e * e;
+                }
+                worst2 = e2 > worst2 ? e2 : worst2;
+            }
+            j0 = jend;
+        }
+    }
+    free(bz);
+    return sqrt(worst2);
+}
+
 #if defined(__has_feature)
 #if __has_feature(address_sanitizer)
 #define UNDER_ASAN 1
@@ -162,6 +258,13 @@ static void random_regime(ct_rng *r, int dim, conica_bspline *s)
 #endif
 #if defined(__SANITIZE_ADDRESS__)
 #define UNDER_ASAN 1
+#endif
+/* Samples per knot interval of the random set's dense check (the issue
+ * asks for >= 1e4; the sanitizer run, about 10x slower, uses 1e3). */
+#ifdef UNDER_ASAN
+#define RANDOM_DENSE 1000
+#else
+#define RANDOM_DENSE 10000
 #endif
 
 TEST_CASE("guaranteed mode holds on 200 random splines of the thesis regime",
@@ -172,17 +275,25 @@ TEST_CASE("guaranteed mode holds on 200 random splines of the thesis regime",
     for (int trial = 0; trial < 200; trial++) {
         conica_bspline s;
         random_regime(&r, 1 + trial % 2, &s);
-#ifdef UNDER_ASAN
-        if (trial % 4 != 0) { /* the sanitizer run checks every 4th (time) */
-            conica_bspline_free(&s);
-            continue;
-        }
-#endif
         INFO("trial %d: n %zu p %d dim %d", trial, s.n, s.degree, s.dim);
-        /* 0.5 px of a 1000 px view; 40 samples per chord plus a golden
-         * search at 5 points of each chord (chords are shorter than knot
-         * intervals on these wild curves) */
-        check_guaranteed(&s, 5e-4 * diag_of(&s), 40, 0, NULL);
+        double tol = 5e-4 * diag_of(&s); /* 0.5 px of a 1000 px view */
+        /* every spline: 1e4 samples per knot interval, each against its
+         * own chord (curve -> polyline) */
+        conica_plot_settings set = conica_plot_defaults();
+        set.abs_tolerance = tol;
+        conica_polyline pl;
+        conica_polyline_init(&pl);
+        REQUIRE_EQ(conica_plot(&s, &set, &pl, NULL, NULL), CONICA_OK);
+        CHECK_LE(dense_chord_dev(&s, &pl, RANDOM_DENSE), tol);
+        conica_polyline_free(&pl);
+        /* and both directions chord by chord (16 samples per chord plus a
+         * golden-section search at 5 points of each chord; polyline ->
+         * curve too), end points on the curve; the sanitizer run does
+         * this on every 4th spline (time) */
+#ifdef UNDER_ASAN
+        if (trial % 4 == 0)
+#endif
+            check_guaranteed(&s, tol, 16, 0, NULL);
         conica_bspline_free(&s);
     }
 }

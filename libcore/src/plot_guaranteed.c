@@ -8,15 +8,26 @@
  * Certificate (proof sketch).
  * 1. Restriction. Inserting u_a and u_b p times each (Böhm, Lemma 1.18;
  *    the triangular algorithm of eq. (1.11) computes exactly these
- *    coefficients on its left/right diagonals) makes the spline on
- *    [u_a, u_b] a clamped B-spline whose control points Q_0..Q_m start at
- *    Q_0 = f(u_a) and end at Q_m = f(u_b) (Lemma 1.11).
+ *    coefficients on its left/right diagonals; inside one knot interval the
+ *    same coefficients come from de Casteljau splits of the interval's
+ *    Bézier form, the case t_mu = t_{mu+1-p}, ... of eq. (1.11)) makes the
+ *    spline on [u_a, u_b] a clamped B-spline whose control points Q_0..Q_m
+ *    start at Q_0 = f(u_a) and end at Q_m = f(u_b) (Lemma 1.11).
  * 2. Curve -> chord. By the convex hull property (Lemma 1.13; for a
  *    rational spline the projected point is a convex combination of the
  *    projected control points with weights N_i w_i / sum N_j w_j > 0), f(u)
  *    lies in conv{Q_i}. The distance to the chord segment S is a convex
  *    function, so its maximum over conv{Q_i} is attained at a vertex:
  *    dist(f(u), S) <= D := max_i dist(Q_i, S).
+ *    Tighter, planar case: if every Q_i projects onto S (not beyond its
+ *    ends), so does every f(u) (same convex combination), and then
+ *    dist(f(u), S) = |s(f(u))| with s the signed distance to the chord's
+ *    line, an affine function: s(f(u)) = sum_i B_i(u) w_i s_i /
+ *    sum_i B_i(u) w_i for a Bézier sub-arc, s_i = s(Q_i). That scalar
+ *    (rational) Bernstein form is bounded by max |s_i|, more tightly by
+ *    the same bound on its two halves after a de Casteljau split at 1/2,
+ *    and exactly for a polynomial of degree 2 (|s_1| / 2) or 3 (the
+ *    extremum of 3u(1-u)((1-u) s_1 + u s_2), a quadratic equation).
  * 3. Chord -> curve. Let pi be the nearest-point projection onto S; it is
  *    continuous, and pi(f(u_a)) = f(u_a), pi(f(u_b)) = f(u_b) are the two
  *    ends of S. So pi(f([u_a, u_b])) is a connected subset of S holding
@@ -24,17 +35,32 @@
  *    |q - f(u)| = dist(f(u), S) <= D.
  * Hence D <= tol certifies both directions of the Hausdorff distance.
  * D shrinks quadratically under refinement (the control polygon converges
- * quadratically, Theorem 1.16), so the march below terminates; a margin of
- * a few ulps of the coordinates' magnitude covers rounding.
+ * quadratically, Theorem 1.16), so the march below terminates.
  *
- * The march: from u_a, guess u_b (the whole piece first, then from the
- * D ~ h^2 model), compute D for [u_a, u_b] with one triangular algorithm
- * (Bézier-like restriction across any number of knot intervals: the
- * control points strictly between stay untouched), shrink on failure, grow
- * while D is well under tol, accept the longest certified chord. Cost per
- * trial: one de Boor evaluation, 3/2 p(p+1) flops per homogeneous
- * coordinate (eq. (1.14)) plus the hull test, linear in the number of
- * control points spanned. */
+ * Rounding. The interval's Bézier form comes from two triangular
+ * algorithms on the input coefficients; the remainder of the interval is
+ * re-split from it every G_RESET emitted points, so every certified
+ * sub-arc is at most G_RESET + 1 convex de Casteljau splits (3p ulps of the
+ * coordinates' magnitude each) away from exact data, and the margin
+ * G_ULPS (p + 2) ulps (twice for rational input, whose homogeneous
+ * coordinates are divided once more) covers the emitted vertices' error
+ * and the certificate's arithmetic.
+ *
+ * The march, per knot interval: convert the interval to Bézier form once
+ * (O(p^2)); keep the remainder [u_a, t_{mu+1}] as a Bézier curve; each
+ * trial chord [u_a, x] is one de Casteljau split of the remainder at a
+ * fixed ratio (no divisions, no span search), its left part is certified
+ * and its right part is the next remainder when the trial is accepted.
+ * Trials follow the D ~ C h^k model (k = 2 ahead, k fitted to a pass/fail
+ * bracket), grow while D is well under tol, and the longest certified
+ * chord is taken. When the chord reaching the interval's end was certified with
+ * D < G_CROSS tol, longer chords across the knot are tried on the chain of
+ * the following intervals' Bézier polygons (loaded as the trials reach
+ * them, at most G_CHAIN_MAX intervals): the curve on [u_a, x] lies in the
+ * union of the sub-arcs' hulls, and in the planar case with every control
+ * point projecting onto the chord its distance is the largest of the
+ * sub-arcs' signed-distance forms -- so short knot intervals do not force
+ * extra vertices. */
 #include <float.h>
 #include <math.h>
 #include <stdlib.h>
@@ -46,16 +72,23 @@
 
 #define MAXP CONICA_BSPLINE_MAX_DEGREE
 #define HD CONICA__HDIM_MAX
-/* Step model D ~ h^2: aim at this fraction of tol. */
+/* Step model D ~ C h^k: aim at this fraction of tol. */
 #define G_TARGET 0.95
+/* The first trial from a new point aims at this fraction of tol (the
+ * curvature ahead may be larger than behind). */
+#define G_NEXT 0.8
 /* Grow a certified chord while D is below this fraction of tol. */
 #define G_GROW_BELOW 0.55
 #define G_MAX_GROW 3
 /* A certified chord with D >= G_GOOD * tol is taken without searching on. */
-#define G_GOOD 0.7
+#define G_GOOD 0.6
 /* Trials per emitted point and relative bracket width that end the search. */
 #define G_MAX_TRIES 8
 #define G_BRACKET 0.03
+/* Range of the exponent k of the step model D ~ C h^k fitted to a
+ * bracket. */
+#define G_K_MIN 1.5
+#define G_K_MAX 6.0
 /* Up to this degree the tight (halves) certificate also steers growth. */
 #define G_REFINE_MAX_P 8
 /* When the hull bound misses tol by at most this factor (the hull of a
@@ -65,24 +98,50 @@
  * convex, so the largest vertex distance over both halves is also a valid
  * bound -- a much tighter one (exact for a parabola). */
 #define G_REFINE_RATIO 2.1
-/* Rounding margin in units of DBL_EPSILON * (p + 2) * coordinate scale. */
+/* Rounding margin in units of DBL_EPSILON * (p + 2) * coordinate scale
+ * (doubled for rational input). */
 #define G_ULPS 64.0
+/* Re-split the interval's remainder from its Bézier form after this many
+ * accepted splits (bounds the accumulated rounding, see the top). */
+#define G_RESET 4
+/* Try a chord across the knot when the chord reaching the knot was
+ * certified with D below this fraction of tol, with at most this many
+ * trials. */
+#define G_CROSS 0.5
+#define G_CROSS_TRIES 4
+/* A trial this close to the end (relative to the piece) ends there. */
+#define G_SNAP 1e-9
+/* Knot intervals one chord may span. */
+#define G_CHAIN_MAX 64
+#define BZ ((MAXP + 1) * HD)
 
 typedef struct march {
     int p, h, d;
     const double *T;
     size_t nk, n;
     double *H; /* homogeneous control points n * h */
+    /* the remaining B-spline from ua (ua inserted p times): head, then the
+     * input's control points from mua + 1 on (for the triangles) */
     double head[(MAXP + 1) * HD];
     double ua;
     size_t mua;
-    /* last trial */
+    /* diagonals of the last triangle */
     double le[(MAXP + 1) * HD], re[(MAXP + 1) * HD];
-    size_t mu_o;
-    double x;
     double flops;
-    /* scratch for the refined certificate: restricted spline */
-    double *rk, *rc;
+    /* Bézier march: interval [ba, bb] of span mu in Bézier form *B (the
+     * remainder on [ua, bb] in *R; trial
+     * halves *Lt, *Rt; the best certified trial's halves *Lb, *Rb
+     * (pointers swap, no copies) */
+    size_t mu;
+    double ba, bb;
+    double buf[6][BZ];
+    double *B, *R, *Lt, *Rt, *Lb, *Rb;
+    double tol, tol_eff;
+    /* chain for chords across knots: Bézier forms of the intervals
+     * cmu[1..] after the current one, at C + k (p+1) h (allocated when a
+     * chord first crosses a knot) */
+    double *C;
+    size_t *cmu, ccap;
 } march;
 
 static const double *rem_ctrl(const march *m, size_t i)
@@ -181,92 +240,575 @@ static void triangle(march *m, double x, size_t mu)
     m->flops += conica__deboor(kl, p, m->p, x, m->h, dd, m->le, m->re);
 }
 
-/* Certified deviation D of the chord [f(ua), f(x)]. */
-static double trial(march *m, double x)
+static void swap_ptr(double **x, double **y)
 {
-    size_t p = (size_t)m->p, h = (size_t)m->h;
-    size_t mu = conica__find_span(m->T, m->nk, m->p, x, 1);
-    if (mu < m->mua)
-        mu = m->mua;
-    m->mu_o = mu;
-    m->x = x;
-    triangle(m, x, mu);
-    size_t nu = p + mu - m->mua;
-    double a[3], b[3];
-    proj(m, m->head, a);
-    proj(m, m->le + p * h, b);
-    chord c;
-    chord_init(&c, a, b, m->d);
-    double d2 = 0.0;
-    /* untouched control points between the two triangles: the head, then
-     * the original ones */
-    size_t mid = nu > p ? nu - p : 0; /* remaining indices 1 .. mid-1 */
-    size_t nhead = mid > p + 1 ? p + 1 : mid;
-    if (nhead > 1)
-        d2 = max_d2(m, &c, m->head + h, nhead - 1, d2);
-    if (mid > p + 1)
-        d2 = max_d2(m, &c, m->H + (m->mua + 1) * h, mid - (p + 1), d2);
-    d2 = max_d2(m, &c, m->le, p, d2);
-    double dev = sqrt(d2);
-    m->flops += (double)(nu + 1) * (12.0 + 3.0 * (double)m->d);
-    return dev;
+    double *t = *x;
+    *x = *y;
+    *y = t;
 }
 
-/* Tighter certificate for the last trial: split the restriction to
- * [ua, x] at its middle and take the vertex distances of both halves. */
-static double refine(march *m)
+/* Start the remaining spline at u in span mu of the input: head = the
+ * right diagonal of the triangle at u (u inserted p times). */
+static void set_head(march *m, double u, size_t mu)
 {
     size_t p = (size_t)m->p, h = (size_t)m->h;
-    size_t nu = p + m->mu_o - m->mua;
-    size_t M = nu; /* control points 0..M */
-    for (size_t i = 0; i + p < nu; i++)
-        memcpy(m->rc + i * h, rem_ctrl(m, i), h * sizeof *m->rc);
-    memcpy(m->rc + (nu - p) * h, m->le, (p + 1) * h * sizeof *m->rc);
-    size_t nk = 0;
-    for (size_t i = 0; i <= p; i++)
-        m->rk[nk++] = m->ua;
-    for (size_t i = p + 1; i <= nu; i++)
-        m->rk[nk++] = rem_knot(m, i);
-    for (size_t i = 0; i <= p; i++)
-        m->rk[nk++] = m->x;
-    double xm = 0.5 * (m->ua + m->x);
-    size_t mu = conica__find_span(m->rk, nk, m->p, xm, 0);
-    double dd[(MAXP + 1) * HD], le2[(MAXP + 1) * HD], re2[(MAXP + 1) * HD];
-    memcpy(dd, m->rc + (mu - p) * h, (p + 1) * h * sizeof *dd);
-    m->flops += conica__deboor(m->rk, mu, m->p, xm, m->h, dd, le2, re2);
-    double a[3], b[3];
-    proj(m, m->rc, a);
-    proj(m, m->rc + M * h, b);
-    chord c;
-    chord_init(&c, a, b, m->d);
-    double d2 = 0.0;
-    if (mu > p + 1)
-        d2 = max_d2(m, &c, m->rc + h, mu - p - 1, d2);
-    d2 = max_d2(m, &c, le2, p + 1, d2);
-    d2 = max_d2(m, &c, re2, p + 1, d2);
-    if (M > mu + 1)
-        d2 = max_d2(m, &c, m->rc + (mu + 1) * h, M - mu - 1, d2);
-    double dev = sqrt(d2);
-    m->flops += (double)(M + p + 3) * (12.0 + 3.0 * (double)m->d);
-    return dev;
+    double dd[BZ];
+    memcpy(dd, m->H + (mu - p) * h, (p + 1) * h * sizeof *dd);
+    m->flops += conica__deboor(m->T, mu, m->p, u, m->h, dd, NULL, m->head);
+    m->ua = u;
+    m->mua = mu;
 }
 
-/* Move the start of the remaining spline to the last trial's x. */
-static void commit(march *m)
+/* Bézier form of knot interval mu into dst: insert t_mu, then t_{mu+1},
+ * p times each (two triangles; the second's left diagonal is the Bézier
+ * polygon). */
+static void load_bezier(march *m, size_t mu, double *dst)
 {
     size_t p = (size_t)m->p, h = (size_t)m->h;
-    double x = m->x;
-    if (!(m->T[m->mu_o + 1] == x)) {
-        memcpy(m->head, m->re, (p + 1) * h * sizeof *m->head);
-        m->mua = m->mu_o;
-    } else {
-        /* x is a knot: the right half needs the span to the right of x */
-        size_t mu = conica__find_span(m->T, m->nk, m->p, x, 0);
-        triangle(m, x, mu);
-        memcpy(m->head, m->re, (p + 1) * h * sizeof *m->head);
-        m->mua = mu;
+    double ua = m->ua;
+    size_t mua = m->mua;
+    set_head(m, m->T[mu], mu);
+    triangle(m, m->T[mu + 1], mu);
+    memcpy(dst, m->le, (p + 1) * h * sizeof *dst);
+    m->ua = ua;
+    m->mua = mua;
+}
+
+/* Make interval mu current (its Bézier form copied from `form` when not
+ * NULL, else computed), the remainder being the whole interval. */
+static void enter_interval(march *m, size_t mu, const double *form)
+{
+    size_t nb = (size_t)(m->p + 1) * (size_t)m->h;
+    if (form)
+        memcpy(m->B, form, nb * sizeof *m->B);
+    else
+        load_bezier(m, mu, m->B);
+    memcpy(m->R, m->B, nb * sizeof *m->R);
+    m->mu = mu;
+    m->ba = m->T[mu];
+    m->bb = m->T[mu + 1];
+    m->ua = m->ba;
+}
+
+/* De Casteljau split of the Bézier polygon P (p+1 points of H values) at
+ * lam in [0, 1]: L gets the polygon of [0, lam], Rr that of [lam, 1]
+ * (Rr is the working array; its last point is P's exactly). H is a
+ * constant at each call site below, so the inner loops unroll. */
+static inline void casteljau(const double *P, int p, int H, double lam, double *L, double *Rr)
+{
+    size_t hh = (size_t)H, pp = (size_t)p;
+    for (size_t c = 0; c < hh; c++) {
+        L[c] = P[c];
+        Rr[pp * hh + c] = P[pp * hh + c];
     }
-    m->ua = x;
+    for (size_t k = 0; k < pp; k++) /* first level straight from P */
+        for (size_t c = 0; c < hh; c++)
+            Rr[k * hh + c] = P[k * hh + c] + lam * (P[(k + 1) * hh + c] - P[k * hh + c]);
+    for (size_t c = 0; c < hh; c++)
+        L[hh + c] = Rr[c];
+    for (size_t r = 2; r <= pp; r++) {
+        for (size_t k = 0; k <= pp - r; k++) {
+            double *q = Rr + k * hh;
+            for (size_t c = 0; c < hh; c++)
+                q[c] += lam * (q[c + hh] - q[c]);
+        }
+        for (size_t c = 0; c < hh; c++)
+            L[r * hh + c] = Rr[c];
+    }
+}
+
+static void split(march *m, const double *P, double lam, double *L, double *Rr)
+{
+    switch (m->h * 8 + (m->p <= 3 ? m->p : 0)) { /* unrolled for p <= 3 */
+    case 2 * 8 + 2: casteljau(P, 2, 2, lam, L, Rr); break;
+    case 2 * 8 + 3: casteljau(P, 3, 2, lam, L, Rr); break;
+    case 3 * 8 + 2: casteljau(P, 2, 3, lam, L, Rr); break;
+    case 3 * 8 + 3: casteljau(P, 3, 3, lam, L, Rr); break;
+    case 2 * 8 + 0: case 2 * 8 + 1: casteljau(P, m->p, 2, lam, L, Rr); break;
+    case 3 * 8 + 0: case 3 * 8 + 1: casteljau(P, m->p, 3, lam, L, Rr); break;
+    default: casteljau(P, m->p, 4, lam, L, Rr); break;
+    }
+    m->flops += 1.5 * (double)(m->p * (m->p + 1)) * (double)m->h;
+}
+
+/* Value at u of the scalar Bézier polynomial s_0..s_p, p <= 3. */
+static double bern_eval(const double *s, int p, double u)
+{
+    double v = 1.0 - u;
+    switch (p) {
+    case 1: return v * s[0] + u * s[1];
+    case 2: return v * v * s[0] + 2.0 * u * v * s[1] + u * u * s[2];
+    default: return v * v * v * s[0] + 3.0 * u * v * (v * s[1] + u * s[2]) + u * u * u * s[3];
+    }
+}
+
+/* max over [0,1] of |3u(1-u)((1-u) s1 + u s2)|, the cubic Bézier
+ * (0, s1, s2, 0) of a single sub-arc: the extrema are the roots of
+ * g'(u) = s1 + 2(k - s1) u - 3k u^2, k = s2 - s1, whose discriminant
+ * 4(k^2 + k s1 + s1^2) is never negative; both roots are evaluated,
+ * clamped to [0, 1] (a root outside, infinite or NaN when k = 0 gives
+ * an end, where the cubic vanishes, or 1/2 for k = 0 and s1 != 0). */
+static double cubic_max(double s1, double s2)
+{
+    double k = s2 - s1, A = -3.0 * k, Bq = 2.0 * (k - s1);
+    double sq = sqrt(4.0 * (k * k + k * s1 + s1 * s1));
+    double q = -0.5 * (Bq + copysign(sq, Bq));
+    double u1 = q / A, u2 = s1 / q;
+    u1 = u1 > 0.0 ? (u1 < 1.0 ? u1 : 1.0) : 0.0;
+    u2 = u2 > 0.0 ? (u2 < 1.0 ? u2 : 1.0) : 0.0;
+    double v1 = fabs(3.0 * u1 * (1.0 - u1) * ((1.0 - u1) * s1 + u1 * s2));
+    double v2 = fabs(3.0 * u2 * (1.0 - u2) * ((1.0 - u2) * s1 + u2 * s2));
+    return v1 > v2 ? v1 : v2;
+}
+
+/* max over [0,1] of |sum B_i^p(u) s_i| for p <= 3, exactly: the ends and
+ * the roots of the derivative, whose Bernstein coefficients are the
+ * differences D_i = s_{i+1} - s_i (degree 1: one root; degree 2: the
+ * quadratic (D0 - 2 D1 + D2) u^2 + 2 (D1 - D0) u + D0). */
+static double bern_max(const double *s, int p)
+{
+    double best = fabs(s[0]) > fabs(s[p]) ? fabs(s[0]) : fabs(s[p]);
+    double u[2];
+    int nu = 0;
+    if (p == 2) {
+        double d0 = s[1] - s[0], d1 = s[2] - s[1];
+        if (d0 != d1)
+            u[nu++] = d0 / (d0 - d1);
+    } else if (p == 3) {
+        double d0 = s[1] - s[0], d1 = s[2] - s[1], d2 = s[3] - s[2];
+        double A = d0 - 2.0 * d1 + d2, B = 2.0 * (d1 - d0), C = d0;
+        if (A == 0.0) {
+            if (B != 0.0)
+                u[nu++] = -C / B;
+        } else {
+            double disc = B * B - 4.0 * A * C;
+            if (disc >= 0.0) {
+                double q = -0.5 * (B + copysign(sqrt(disc), B));
+                u[nu++] = q / A;
+                if (q != 0.0)
+                    u[nu++] = C / q;
+            }
+        }
+    }
+    for (int i = 0; i < nu; i++)
+        if (u[i] > 0.0 && u[i] < 1.0) {
+            double v = fabs(bern_eval(s, p, u[i]));
+            best = v > best ? v : best;
+        }
+    return best;
+}
+
+/* Bound of the scalar rational Bernstein form sum B_i a_i / sum B_i w_i
+ * (w == NULL: polynomial) by its halves' coefficients after a split at
+ * 1/2. */
+static double scalar_halves(march *m, const double *a, const double *w, int p)
+{
+    double la[MAXP + 1], lw[MAXP + 1], ra[MAXP + 1], rw[MAXP + 1];
+    memcpy(ra, a, (size_t)(p + 1) * sizeof *ra);
+    if (w)
+        memcpy(rw, w, (size_t)(p + 1) * sizeof *rw);
+    la[0] = ra[0];
+    lw[0] = w ? rw[0] : 1.0;
+    for (int r = 1; r <= p; r++) {
+        for (int k = 0; k <= p - r; k++)
+            ra[k] = 0.5 * (ra[k] + ra[k + 1]);
+        la[r] = ra[0];
+        if (w) {
+            for (int k = 0; k <= p - r; k++)
+                rw[k] = 0.5 * (rw[k] + rw[k + 1]);
+            lw[r] = rw[0];
+        }
+    }
+    double best = 0.0;
+    for (int i = 0; i <= p; i++) {
+        double x = w ? fabs(la[i]) / lw[i] : fabs(la[i]);
+        double y = w ? fabs(ra[i]) / rw[i] : fabs(ra[i]);
+        best = x > best ? x : best;
+        best = y > best ? y : best;
+    }
+    m->flops += (double)(p * (p + 1)) * (w ? 3.0 : 1.5) + (w ? 2.0 * (p + 1) : 0.0);
+    return best;
+}
+
+/* The planar chord from a with direction (cx, cy), |c|^2 = c2: signed
+ * distances times |c| of the points i0..i1 of polygon P into s[i] (and
+ * their weights into w[i] when rational). Returns 0 when a point projects
+ * beyond the chord's ends (step 2 then needs the hull bound). */
+static int signed_dists(const march *m, const double *P, int i0, int i1, const double *a, double cx,
+                        double cy, double c2, double *s, double *w, double *smax)
+{
+    size_t hh = (size_t)m->h;
+    int rational = m->h > m->d;
+    for (int i = i0; i <= i1; i++) {
+        const double *q = P + (size_t)i * hh;
+        double x = q[0], y = q[1];
+        if (rational) {
+            w[i] = q[2];
+            x /= q[2];
+            y /= q[2];
+        }
+        double ex = x - a[0], ey = y - a[1];
+        double t = ex * cx + ey * cy;
+        if (t < 0 || t > c2)
+            return 0;
+        s[i] = ex * cy - ey * cx;
+        double v = fabs(s[i]);
+        *smax = v > *smax ? v : *smax;
+    }
+    return 1;
+}
+
+/* Certified bound D for the chord from the first point of P1 to the last
+ * point of the Bézier sub-arc (P2 == NULL: P1 alone; else the curve is P1
+ * followed by P2, which starts where P1 ends, across a knot). Planar: the
+ * signed-distance form of step 2 when every control point projects onto
+ * the chord (exact for polynomial degree <= 3, else max |s_i|, tightened
+ * by halves near tol); otherwise the hull bound (tightened by halves for
+ * a single sub-arc). `steer` asks for the tight value also when D is
+ * under tol (growth decisions). */
+static double bez_cert(march *m, const double *P1, const double *P2, int steer)
+{
+    int p = m->p, d = m->d, h = m->h;
+    size_t hh = (size_t)h, pp = (size_t)p;
+    int rational = h > d;
+    const double *Pe = P2 ? P2 : P1;
+    double a[3], b[3];
+    proj(m, P1, a);
+    proj(m, Pe + pp * hh, b);
+    int near_tol_check = 0;
+    if (d == 2) {
+        double cx = b[0] - a[0], cy = b[1] - a[1], c2 = cx * cx + cy * cy;
+        double s1[MAXP + 1], w1[MAXP + 1], s2[MAXP + 1], w2[MAXP + 1], smax = 0.0;
+        int inside = c2 > 0;
+        s1[0] = 0.0;
+        w1[0] = rational ? P1[2] : 1.0;
+        if (!P2) {
+            s1[p] = 0.0;
+            w1[p] = rational ? P1[pp * hh + 2] : 1.0;
+            inside = inside && signed_dists(m, P1, 1, p - 1, a, cx, cy, c2, s1, w1, &smax);
+        } else {
+            s2[p] = 0.0;
+            w2[p] = rational ? P2[pp * hh + 2] : 1.0;
+            inside = inside && signed_dists(m, P1, 1, p, a, cx, cy, c2, s1, w1, &smax) &&
+                     signed_dists(m, P2, 0, p - 1, a, cx, cy, c2, s2, w2, &smax);
+        }
+        m->flops += 10.0 + (double)(P2 ? 2 * p : p - 1) * (rational ? 12.0 : 10.0);
+        if (inside) {
+            double inv = 1.0 / sqrt(c2);
+            double D = smax * inv;
+            if (!rational && p == 3 && !P2) {
+                D = cubic_max(s1[1], s1[2]) * inv;
+                m->flops += 30.0;
+            } else if (!rational && p <= 3) {
+                double e = bern_max(s1, p);
+                if (P2) {
+                    double e2 = bern_max(s2, p);
+                    e = e2 > e ? e2 : e;
+                }
+                D = e * inv;
+                m->flops += P2 ? 60.0 : 30.0;
+            } else if (D > m->tol_eff ? D <= G_REFINE_RATIO * m->tol_eff
+                                      : (steer && D >= G_GROW_BELOW * m->tol &&
+                                         p <= G_REFINE_MAX_P)) {
+                if (rational)
+                    for (int i = 0; i <= p; i++) {
+                        s1[i] *= w1[i];
+                        s2[i] *= P2 ? w2[i] : 0.0;
+                    }
+                double e = scalar_halves(m, s1, rational ? w1 : NULL, p);
+                if (P2) {
+                    double e2 = scalar_halves(m, s2, rational ? w2 : NULL, p);
+                    e = e2 > e ? e2 : e;
+                }
+                D = e * inv < D ? e * inv : D;
+            }
+            return D;
+        }
+    }
+    chord c;
+    chord_init(&c, a, b, d);
+    double d2 = max_d2(m, &c, P1 + hh, P2 ? pp : pp - 1, 0.0);
+    if (P2)
+        d2 = max_d2(m, &c, P2, pp, d2);
+    double D = sqrt(d2);
+    m->flops += (double)(P2 ? 2 * p + 2 : p + 1) * (12.0 + 3.0 * (double)d);
+    near_tol_check = D > m->tol_eff ? D <= G_REFINE_RATIO * m->tol_eff
+                                    : (steer && D >= G_GROW_BELOW * m->tol && p <= G_REFINE_MAX_P);
+    if (!P2 && p > 1 && near_tol_check) {
+        double l2[BZ], r2[BZ];
+        split(m, P1, 0.5, l2, r2);
+        d2 = max_d2(m, &c, l2 + hh, pp, 0.0);
+        d2 = max_d2(m, &c, r2, pp, d2);
+        m->flops += (double)(2 * p + 2) * (12.0 + 3.0 * (double)d);
+        double D2 = sqrt(d2);
+        D = D2 < D ? D2 : D;
+    }
+    return D;
+}
+
+static conica_code too_many(const conica_plot_settings *set, conica_plot_stats *stats,
+                            conica_status *st)
+{
+    if (stats->iterations >= set->max_iterations)
+        return conica__fail(st, CONICA_ERR_LIMIT, 0, 0,
+                            "guaranteed plot needs more than %zu trial steps "
+                            "(max_iterations)",
+                            set->max_iterations);
+    stats->iterations++;
+    return CONICA_OK;
+}
+
+/* Next step length from a bracket [hp passing with D = dp, hf failing
+ * with df]: D ~ C h^k through both (k from the pair, kept in
+ * [G_K_MIN, G_K_MAX]; k = 2 for a smooth arc, larger near a feature),
+ * solved for D = G_TARGET tol, kept inside the bracket. */
+static double secant(double hp, double dp, double hf, double df, double tol)
+{
+    double h;
+    if (dp > 0 && df > dp && hf > hp) {
+        double k = log(df / dp) / log(hf / hp);
+        k = k < G_K_MIN ? G_K_MIN : (k > G_K_MAX ? G_K_MAX : k);
+        h = hp * pow(G_TARGET * tol / dp, 1.0 / k);
+    } else {
+        h = 0.5 * (hp + hf);
+    }
+    double lo = hp + 0.1 * (hf - hp), hi = hp + 0.9 * (hf - hp);
+    return h < lo ? lo : (h > hi ? hi : h);
+}
+
+/* Longest certified chord from m->ua inside the current interval (trial
+ * steps *hs from ua, at most to bb): on return *xo and *devo, the halves
+ * of the accepted split in m->Lb / m->Rb (unless *xo == bb: then the
+ * chord is the whole remainder m->R). */
+static conica_code bez_search(march *m, double *hs, double span_all, double min_step,
+                              const conica_plot_settings *set, conica_plot_stats *stats,
+                              double *xo, double *devo, conica_status *st)
+{
+    double ua = m->ua, bb = m->bb, tol = m->tol;
+    int have = 0, have_fail = 0, grows = 0, tries = 0;
+    double best_dev = 0, best_x = bb, fail_x = bb, fail_dev = 0;
+    for (;;) {
+        double x = ua + *hs;
+        if (!(x < bb) || bb - x < G_SNAP * span_all)
+            x = bb;
+        conica_code rc = too_many(set, stats, st);
+        if (rc != CONICA_OK)
+            return rc;
+        tries++;
+        double dev;
+        if (x == bb) { /* the whole remainder */
+            dev = bez_cert(m, m->R, NULL, 0);
+        } else {
+            split(m, m->R, (x - ua) / (bb - ua), m->Lt, m->Rt);
+            dev = bez_cert(m, m->Lt, NULL, 1);
+        }
+        if (dev <= m->tol_eff) {
+            have = 1;
+            best_dev = dev;
+            best_x = x;
+            if (x < bb) {
+                swap_ptr(&m->Lt, &m->Lb);
+                swap_ptr(&m->Rt, &m->Rb);
+            }
+            if (x >= bb || dev >= G_GOOD * tol)
+                break;
+        } else {
+            have_fail = 1;
+            fail_x = x;
+            fail_dev = dev;
+        }
+        double hp = best_x - ua, hf = fail_x - ua;
+        if (have && have_fail) {
+            if (tries >= G_MAX_TRIES || hf - hp < G_BRACKET * hp)
+                break;
+            *hs = secant(hp, best_dev, hf, fail_dev, tol);
+        } else if (have) {
+            if (grows++ >= G_MAX_GROW)
+                break;
+            double f = dev > 0 ? sqrt(G_TARGET * tol / dev) : 4.0;
+            f = f < 1.15 ? 1.15 : (f > 4.0 ? 4.0 : f);
+            *hs = hp * f;
+        } else {
+            double f = sqrt(G_TARGET * tol / dev); /* D ~ h^2 */
+            f = f < 0.1 ? 0.1 : (f > 0.8 ? 0.8 : f);
+            *hs = hf * f;
+            if (*hs < min_step)
+                return conica__fail(st, CONICA_ERR_NUMERIC, 0, 0,
+                                    "cannot certify tolerance %.3g near parameter %.17g", tol,
+                                    ua);
+        }
+    }
+    *xo = best_x;
+    *devo = best_dev;
+    return CONICA_OK;
+}
+
+/* First non-empty knot interval at or after span mu. */
+static size_t next_span(const march *m, size_t mu)
+{
+    while (mu + 1 < m->n && !(m->T[mu] < m->T[mu + 1]))
+        mu++;
+    return mu;
+}
+
+/* Certified bound for the chord from the first point of R to the last of
+ * `last` over the chain R, C[1..j-1], last of Bézier sub-arcs of
+ * consecutive knot intervals (step 2 on each sub-arc: the curve lies in
+ * the union of their hulls; planar: the signed-distance form on each,
+ * exact per sub-arc for polynomial degree <= 3, else max |s_i|). */
+static double chain_cert(march *m, const double *last, size_t j)
+{
+    int p = m->p, d = m->d, h = m->h;
+    size_t hh = (size_t)h, pp = (size_t)p, bz = (pp + 1) * hh;
+    int rational = h > d;
+    double a[3], b[3];
+    proj(m, m->R, a);
+    proj(m, last + pp * hh, b);
+    if (d == 2) {
+        double cx = b[0] - a[0], cy = b[1] - a[1], c2 = cx * cx + cy * cy;
+        double s[MAXP + 1], w[MAXP + 1], D = 0.0;
+        int inside = c2 > 0;
+        for (size_t k = 0; k <= j && inside; k++) {
+            const double *P = k == 0 ? m->R : (k == j ? last : m->C + k * bz);
+            double smax = 0.0;
+            s[0] = s[p] = 0.0;
+            inside = signed_dists(m, P, k == 0 ? 1 : 0, k == j ? p - 1 : p, a, cx, cy, c2, s, w,
+                                  &smax);
+            double e = !rational && p <= 3 ? bern_max(s, p) : smax;
+            D = e > D ? e : D;
+        }
+        m->flops += 10.0 + (double)((j + 1) * pp) * (rational ? 12.0 : 10.0) +
+                    (!rational && p <= 3 ? 30.0 * (double)(j + 1) : 0.0);
+        if (inside)
+            return D / sqrt(c2);
+    }
+    chord c;
+    chord_init(&c, a, b, d);
+    double d2 = max_d2(m, &c, m->R + hh, pp, 0.0);
+    for (size_t k = 1; k < j; k++)
+        d2 = max_d2(m, &c, m->C + k * bz, pp + 1, d2);
+    d2 = max_d2(m, &c, last, pp, d2);
+    m->flops += (double)((j + 1) * (pp + 1)) * (12.0 + 3.0 * (double)d);
+    return sqrt(d2);
+}
+
+/* Load the Bézier form of the interval after chain element nc as element
+ * nc + 1 (element 0 is the current interval). 0 when the chain is full,
+ * the piece ends there, or memory runs out (then no longer chord). */
+static int chain_grow(march *m, size_t nc)
+{
+    size_t bz = (size_t)(m->p + 1) * (size_t)m->h;
+    size_t prev = nc == 0 ? m->mu : m->cmu[nc];
+    if (nc + 1 >= G_CHAIN_MAX || m->T[prev + 1] >= m->T[m->n])
+        return 0;
+    if (nc + 2 > m->ccap) {
+        size_t cap = m->ccap ? 2 * m->ccap : 8;
+        cap = cap > G_CHAIN_MAX ? G_CHAIN_MAX : cap;
+        double *C = realloc(m->C, cap * bz * sizeof *C);
+        if (!C)
+            return 0;
+        m->C = C;
+        size_t *cm = realloc(m->cmu, cap * sizeof *cm);
+        if (!cm)
+            return 0;
+        m->cmu = cm;
+        m->ccap = cap;
+    }
+    size_t mu = next_span(m, prev + 1);
+    load_bezier(m, mu, m->C + (nc + 1) * bz);
+    m->cmu[nc + 1] = mu;
+    return 1;
+}
+
+/* The chord from m->ua to the interval's end bb is certified with dev0:
+ * try longer chords across the knot into the following intervals
+ * (loaded into the chain as the trials reach them). *found tells whether
+ * one, ending at *xo in chain interval *jo, passed; that interval's
+ * split halves are then in m->Lb / m->Rb (m->Lb its whole polygon when
+ * *xo is its end). *nco gets the number of intervals loaded. */
+static conica_code cross_search(march *m, double dev0, double b_end, double span_all,
+                                const conica_plot_settings *set, conica_plot_stats *stats,
+                                int *found, double *xo, double *devo, size_t *jo, size_t *nco,
+                                conica_status *st)
+{
+    double ua = m->ua, bb = m->bb, tol = m->tol;
+    size_t bz = (size_t)(m->p + 1) * (size_t)m->h;
+    size_t nc = 0;
+    double best_x = bb, best_dev = dev0, fail_x = b_end, fail_dev = 0;
+    int have_fail = 0, grows = 0, tries = 0;
+    double f = dev0 > 0 ? sqrt(G_TARGET * tol / dev0) : 4.0;
+    f = f < 1.15 ? 1.15 : (f > 4.0 ? 4.0 : f);
+    double hs = (bb - ua) * f;
+    *found = 0;
+    for (;;) {
+        double x = ua + hs;
+        while (nc == 0 || x > m->T[m->cmu[nc] + 1]) {
+            if (!chain_grow(m, nc))
+                break;
+            nc++;
+        }
+        if (nc == 0)
+            break;
+        double end = m->T[m->cmu[nc] + 1];
+        if (!(x < end) || end - x < G_SNAP * span_all)
+            x = end;
+        if (!(x < b_end) || b_end - x < G_SNAP * span_all)
+            x = b_end;
+        if (x <= best_x)
+            break;
+        conica_code rc = too_many(set, stats, st);
+        if (rc != CONICA_OK)
+            return rc;
+        tries++;
+        size_t j = 1;
+        while (x > m->T[m->cmu[j] + 1])
+            j++;
+        double t0 = m->T[m->cmu[j]], t1 = m->T[m->cmu[j] + 1];
+        const double *Cj = m->C + j * bz;
+        double dev;
+        if (x >= t1) {
+            dev = chain_cert(m, Cj, j);
+        } else {
+            split(m, Cj, (x - t0) / (t1 - t0), m->Lt, m->Rt);
+            dev = chain_cert(m, m->Lt, j);
+        }
+        if (dev <= m->tol_eff) {
+            *found = 1;
+            best_dev = dev;
+            best_x = x;
+            *jo = j;
+            if (x < t1) {
+                swap_ptr(&m->Lt, &m->Lb);
+                swap_ptr(&m->Rt, &m->Rb);
+            } else {
+                memcpy(m->Lb, Cj, bz * sizeof *m->Lb);
+            }
+            if (x >= b_end || dev >= G_GOOD * tol)
+                break;
+        } else {
+            have_fail = 1;
+            fail_x = x;
+            fail_dev = dev;
+        }
+        if (tries >= G_CROSS_TRIES)
+            break;
+        double hp = best_x - ua, hf = fail_x - ua;
+        if (have_fail) {
+            if (hf - hp < G_BRACKET * hp)
+                break;
+            hs = secant(hp, best_dev, hf, fail_dev, tol);
+        } else {
+            if (grows++ >= G_MAX_GROW)
+                break;
+            double g = dev > 0 ? sqrt(G_TARGET * tol / dev) : 4.0;
+            g = g < 1.15 ? 1.15 : (g > 4.0 ? 4.0 : g);
+            hs = hp * g;
+        }
+    }
+    *xo = best_x;
+    *devo = best_dev;
+    *nco = nc;
+    return CONICA_OK;
 }
 
 static conica_code push_param(double **params, size_t *np, size_t *cap, double u,
@@ -301,22 +843,25 @@ conica_code conica__guaranteed_piece(const conica_bspline *g, double tol,
     m->n = g->n;
     m->nk = g->n + (size_t)g->degree + 1;
     m->flops = 0;
+    m->B = m->buf[0];
+    m->C = NULL;
+    m->cmu = NULL;
+    m->ccap = 0;
+    m->R = m->buf[1];
+    m->Lt = m->buf[2];
+    m->Rt = m->buf[3];
+    m->Lb = m->buf[4];
+    m->Rb = m->buf[5];
     m->H = malloc(g->n * (size_t)m->h * sizeof *m->H);
-    m->rk = malloc((g->n + 2 * (size_t)g->degree + 4) * sizeof *m->rk);
-    m->rc = malloc((g->n + (size_t)g->degree + 2) * (size_t)m->h * sizeof *m->rc);
-    if (!m->H || !m->rk || !m->rc) {
-        free(m->H);
-        free(m->rk);
-        free(m->rc);
+    if (!m->H) {
         free(m);
         return conica__fail(st, CONICA_ERR_NOMEM, 0, 0, "out of memory");
     }
     conica__homog(g, 0, g->n, m->H);
     size_t p = (size_t)m->p, h = (size_t)m->h;
-    memcpy(m->head, m->H, (p + 1) * h * sizeof *m->head);
-    m->ua = g->knots[p];
-    m->mua = p;
     double a = g->knots[p], b = g->knots[g->n];
+    m->ua = a;
+    m->mua = p;
 
     /* rounding margin from the magnitude of the coordinates */
     double scale = 0.0, pt[3];
@@ -325,8 +870,10 @@ conica_code conica__guaranteed_piece(const conica_bspline *g, double tol,
         for (int c = 0; c < m->d; c++)
             scale = fabs(pt[c]) > scale ? fabs(pt[c]) : scale;
     }
-    double margin = G_ULPS * (double)(p + 2) * DBL_EPSILON * scale;
+    double margin = G_ULPS * (m->h > m->d ? 2.0 : 1.0) * (double)(p + 2) * DBL_EPSILON * scale;
     double tol_eff = tol - margin;
+    m->tol = tol;
+    m->tol_eff = tol_eff;
     conica_code rc = CONICA_OK;
     size_t cap = 0;
     if (params)
@@ -339,120 +886,86 @@ conica_code conica__guaranteed_piece(const conica_bspline *g, double tol,
         goto done;
     }
     if (!first_is_join) {
-        proj(m, m->head, pt);
+        proj(m, m->H, pt);
         rc = conica__out_push(o, pt, a, st);
-        if (rc == CONICA_OK)
-            rc = push_param(params, np, &cap, a, st);
-        if (rc != CONICA_OK)
-            goto done;
-    } else if (params) {
-        rc = push_param(params, np, &cap, a, st);
-        if (rc != CONICA_OK)
-            goto done;
     }
+    if (rc == CONICA_OK)
+        rc = push_param(params, np, &cap, a, st);
+    if (rc != CONICA_OK)
+        goto done;
     double hs = b - a; /* first guess: the whole piece */
     double min_step = (b - a) * 1e-13;
     double maxdev = 0.0;
-    double save_le[(MAXP + 1) * HD], save_re[(MAXP + 1) * HD];
-    while (m->ua < b) {
-        /* Search for the longest certified chord from ua: shrink until a
-         * trial passes, grow while it passes comfortably, then narrow the
-         * bracket [pass, fail] with the sqrt(D) ~ h model. */
-        int have = 0, have_fail = 0, grows = 0, tries = 0;
-        double best_dev = 0, best_x = b, fail_x = b, fail_dev = 0;
-        size_t best_mu = 0;
-        for (;;) {
-            double x = m->ua + hs;
-            if (!(x < b) || b - x < 1e-9 * (b - a))
-                x = b;
-            if (stats->iterations >= set->max_iterations) {
-                rc = conica__fail(st, CONICA_ERR_LIMIT, 0, 0,
-                                  "guaranteed plot needs more than %zu trial steps "
-                                  "(max_iterations)",
-                                  set->max_iterations);
-                goto done;
-            }
-            stats->iterations++;
-            tries++;
-            double dev = trial(m, x);
-            if (dev > tol_eff && dev <= G_REFINE_RATIO * tol_eff) {
-                double d2 = refine(m);
-                dev = d2 < dev ? d2 : dev;
-            } else if (dev <= tol_eff && dev >= G_GROW_BELOW * tol && m->p <= G_REFINE_MAX_P &&
-                       x < b) {
-                /* cheap at low degree: the tight value decides growth */
-                double d2 = refine(m);
-                dev = d2 < dev ? d2 : dev;
-            }
-            if (dev <= tol_eff) {
-                have = 1;
-                best_dev = dev;
-                best_x = x;
-                best_mu = m->mu_o;
-                memcpy(save_le, m->le, (p + 1) * h * sizeof *save_le);
-                memcpy(save_re, m->re, (p + 1) * h * sizeof *save_re);
-                if (x >= b || dev >= G_GOOD * tol)
-                    break;
-            } else {
-                have_fail = 1;
-                fail_x = x;
-                fail_dev = dev;
-            }
-            double hp = best_x - m->ua, hf = fail_x - m->ua;
-            if (have && have_fail) {
-                if (tries >= G_MAX_TRIES || hf - hp < G_BRACKET * hp)
-                    break;
-                double sp = sqrt(best_dev), sf = sqrt(fail_dev), sg = sqrt(G_TARGET * tol);
-                double fr = sf > sp ? (sg - sp) / (sf - sp) : 0.5;
-                fr = fr < 0.1 ? 0.1 : (fr > 0.9 ? 0.9 : fr);
-                hs = hp + fr * (hf - hp);
-            } else if (have) {
-                if (grows++ >= G_MAX_GROW)
-                    break;
-                double f = dev > 0 ? sqrt(G_TARGET * tol / dev) : 4.0;
-                f = f < 1.15 ? 1.15 : (f > 4.0 ? 4.0 : f);
-                hs = hp * f;
-            } else {
-                double f = 0.9 * sqrt(tol / dev);
-                f = f < 0.1 ? 0.1 : (f > 0.8 ? 0.8 : f);
-                hs = hf * f;
-                if (hs < min_step) {
-                    rc = conica__fail(st, CONICA_ERR_NUMERIC, 0, 0,
-                                      "cannot certify tolerance %.3g near parameter %.17g",
-                                      tol, m->ua);
-                    goto done;
-                }
-            }
-        }
-        /* accept the longest certified chord */
-        memcpy(m->le, save_le, (p + 1) * h * sizeof *save_le);
-        memcpy(m->re, save_re, (p + 1) * h * sizeof *save_re);
-        m->x = best_x;
-        m->mu_o = best_mu;
-        maxdev = best_dev > maxdev ? best_dev : maxdev;
-        proj(m, m->le + p * h, pt);
-        if (best_x >= b) /* the end point of the piece exactly */
-            proj(m, m->H + (g->n - 1) * h, pt);
-        rc = conica__out_push(o, pt, best_x, st);
-        if (rc == CONICA_OK)
-            rc = push_param(params, np, &cap, best_x, st);
+    size_t splits = 0;
+    enter_interval(m, next_span(m, p), 0);
+    for (;;) {
+        double x = b, dev = 0.0;
+        rc = bez_search(m, &hs, b - a, min_step, set, stats, &x, &dev, st);
         if (rc != CONICA_OK)
             goto done;
-        double step = best_x - m->ua;
-        if (best_x >= b)
+        double step = x - m->ua;
+        int last = 0;
+        if (x < m->bb) { /* inside the interval: the split's right half goes on */
+            proj(m, m->Lb + p * h, pt);
+            swap_ptr(&m->R, &m->Rb);
+            m->ua = x;
+            if (++splits >= G_RESET) { /* re-split from the Bézier form */
+                split(m, m->B, (x - m->ba) / (m->bb - m->ba), m->Lt, m->R);
+                splits = 0;
+            }
+        } else if (m->bb >= b) { /* the end point of the piece exactly */
+            proj(m, m->H + (g->n - 1) * h, pt);
+            last = 1;
+        } else {
+            int found = 0;
+            size_t nc = 0, j = 0, bz = (p + 1) * h;
+            double x2 = x, dev2 = dev;
+            if (dev < G_CROSS * tol) { /* try a longer chord across the knot */
+                rc = cross_search(m, dev, b, b - a, set, stats, &found, &x2, &dev2, &j, &nc, st);
+                if (rc != CONICA_OK)
+                    goto done;
+            }
+            if (found) { /* interval cmu[j] becomes current */
+                step = x2 - m->ua;
+                x = x2;
+                dev = dev2;
+                proj(m, m->Lb + p * h, pt);
+                size_t muj = m->cmu[j];
+                if (x < m->T[muj + 1]) {
+                    enter_interval(m, muj, m->C + j * bz);
+                    swap_ptr(&m->R, &m->Rb);
+                    m->ua = x;
+                    splits = 1;
+                } else if (m->T[muj + 1] >= b) {
+                    proj(m, m->H + (g->n - 1) * h, pt); /* the end point exactly */
+                    last = 1;
+                } else {
+                    enter_interval(m, next_span(m, muj + 1), j < nc ? m->C + (j + 1) * bz : NULL);
+                    splits = 0;
+                }
+            } else { /* the knot itself, exactly as the interval's end */
+                proj(m, m->R + p * h, pt);
+                enter_interval(m, next_span(m, m->mu + 1), nc ? m->C + bz : NULL);
+                splits = 0;
+            }
+        }
+        maxdev = dev > maxdev ? dev : maxdev;
+        rc = conica__out_push(o, pt, x, st);
+        if (rc == CONICA_OK)
+            rc = push_param(params, np, &cap, x, st);
+        if (rc != CONICA_OK || last)
             break;
-        commit(m);
-        double f = best_dev > 0 ? sqrt(G_TARGET * tol / best_dev) : 2.0;
+        double f = dev > 0 ? sqrt(G_NEXT * tol / dev) : 2.0;
         f = f < 0.7 ? 0.7 : (f > 2.0 ? 2.0 : f);
         hs = step * f;
     }
-    if (maxdev + margin > stats->bound)
+    if (rc == CONICA_OK && maxdev + margin > stats->bound)
         stats->bound = maxdev + margin;
 done:
     stats->flops += m->flops;
     free(m->H);
-    free(m->rk);
-    free(m->rc);
+    free(m->C);
+    free(m->cmu);
     free(m);
     return rc;
 }
