@@ -9,16 +9,22 @@
  * Prints E, E_max (eqs. (13)-(14)) at k = 4, 8, 12 on the four conics of
  * Table 1 (samples as REFERENCE.md section 1), then the normal angle error
  * and the comb roughness at k = 10 on a non-convex example of the reference
- * (../shared/data/conis/input/example9.txt, skipped with a notice when absent),
- * and with --svg FILE draws the four combs at k = 10 side by side (Figure 6).
+ * (conis/input/example9.txt of the shared data, found as the tests find it:
+ * $CONICA_SHARED_DATA, else ../shared/data from the working directory, else
+ * ../shared/data next to the repository holding this executable; skipped
+ * with a notice naming every place tried when absent), and with --svg FILE
+ * draws the four combs at k = 10 side by side (Figure 6).
  * A benchmark: prints figures, asserts nothing.
  *
  * usage: bench_ablation [--svg OUT.svg] [--example FILE] */
+#include <limits.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 #include <time.h>
+#include <unistd.h>
 
 #include "cli.h"
 #include "conica/curve.h"
@@ -32,6 +38,11 @@
 #define NFRAME 2
 #define NRUN (NVAR * NFRAME)
 #define COMB_LEVEL 10
+/* The example inside the shared data directory. */
+#define EXAMPLE_REL "conis/input/example9.txt"
+/* From the executable (BUILD/bench/bench_ablation with BUILD = REPO/build)
+ * to the shared data next to the repository. */
+#define EXE_TO_DATA "/../../../shared/data"
 
 static const char *const var_name[NVAR] = {"base", "norm-skip", "final", "precise"};
 static const char *const var_label[NVAR] = {"BASE", "NORM_SKIP", "FINAL", "PRECISE"};
@@ -143,6 +154,7 @@ static void example(const char *path, const char *svg)
     FILE *probe = fopen(path, "rb");
     if (!probe) {
         printf("non-convex example: notice: %s absent, skipped\n", path);
+        fprintf(stderr, "bench_ablation: notice: %s absent: non-convex example skipped\n", path);
         return;
     }
     fclose(probe);
@@ -238,10 +250,53 @@ static void example(const char *path, const char *svg)
     conica_curve_free(&in);
 }
 
+static int is_file(const char *path)
+{
+    struct stat st;
+    return stat(path, &st) == 0 && S_ISREG(st.st_mode);
+}
+
+#define NPLACES 3
+#define PLACE_MAX (PATH_MAX + 64)
+
+/* The places the shared data's example may be (see the header comment)
+ * into tried[]; returns the index of the first that exists, or -1 after a
+ * notice on stderr naming them all. */
+static int find_example(char tried[NPLACES][PLACE_MAX])
+{
+    char exe[PATH_MAX];
+    const char *env = getenv("CONICA_SHARED_DATA");
+    int nt = 0;
+    if (env && env[0])
+        snprintf(tried[nt++], PLACE_MAX, "%s/%s", env, EXAMPLE_REL);
+    snprintf(tried[nt++], PLACE_MAX, "../shared/data/%s", EXAMPLE_REL);
+    {
+        ssize_t len = readlink("/proc/self/exe", exe, sizeof exe - 1);
+        char *slash;
+        if (len > 0) {
+            exe[len] = '\0';
+            if ((slash = strrchr(exe, '/')) != NULL) {
+                *slash = '\0';
+                snprintf(tried[nt++], PLACE_MAX, "%s%s/%s", exe, EXE_TO_DATA, EXAMPLE_REL);
+            }
+        }
+    }
+    for (int i = 0; i < nt; i++)
+        if (is_file(tried[i]))
+            return i;
+    fprintf(stderr, "bench_ablation: notice: the shared data's %s was not found (tried:",
+            EXAMPLE_REL);
+    for (int i = 0; i < nt; i++)
+        fprintf(stderr, " %s", tried[i]);
+    fprintf(stderr, "); set CONICA_SHARED_DATA or pass --example FILE\n");
+    return -1;
+}
+
 int main(int argc, char **argv)
 {
     const char *svg = NULL;
-    const char *ex = "../shared/data/conis/input/example9.txt";
+    const char *ex = NULL;
+    char places[NPLACES][PLACE_MAX];
     for (int i = 1; i < argc; i++) {
         if (!strcmp(argv[i], "--svg") && i + 1 < argc)
             svg = argv[++i];
@@ -251,6 +306,10 @@ int main(int argc, char **argv)
             fprintf(stderr, "usage: bench_ablation [--svg OUT.svg] [--example FILE]\n");
             return 2;
         }
+    }
+    if (!ex) {
+        int k = find_example(places);
+        ex = places[k < 0 ? 0 : k];
     }
     conic_table();
     example(ex, svg);

@@ -31,9 +31,15 @@ render "$out/comb-flower.svg"
 render "$out/errors-ellipse.svg"
 
 # The ablation: E, E_max at k = 4, 8, 12 per variant, and the combs at k = 10
-# side by side (uses ../shared/data when present, else the bundled flower).
-example=../shared/data/conis/input/example9.txt
-[ -f "$example" ] || example=examples/flower.txt
+# side by side, on the reference's example9 from the shared data
+# ($CONICA_SHARED_DATA, else ../shared/data, as the tests find it), else on
+# the bundled flower (with a notice: the README's pictures use example9).
+example=${CONICA_SHARED_DATA:-../shared/data}/conis/input/example9.txt
+if [ ! -f "$example" ]; then
+    echo "demo-diagnostics: notice: $example absent (set CONICA_SHARED_DATA);" \
+        "the ablation uses examples/flower.txt instead" >&2
+    example=examples/flower.txt
+fi
 "$build/bench/bench_ablation" --example "$example" --svg "$out/ablation-combs.svg" \
     | tee "$out/ablation.md"
 render "$out/ablation-combs.svg"

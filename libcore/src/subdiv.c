@@ -28,6 +28,15 @@
  * midpoint along its normal. Regular (convex) patches, which every conic
  * produces, are not limited. */
 #define CONICA__IRREGULAR_MAX_T 1.0
+/* Outer neighbours within this many rounding units of an edge line count
+ * as on it (see SFX(line_class)). The unit is DBL_EPSILON in both modes: the
+ * points collinear by construction (an inflection point (9), the S-shaped
+ * edges' midpoints and the midpoints next to them) are off their line by
+ * the rounding of the working type, which a double's unit covers in either
+ * mode, and precise mode must take the same branches as default mode (it
+ * only computes the same choices more exactly). */
+#define CONICA__ON_LINE_ULPS 64
+#define CONICA__ON_LINE_EPS DBL_EPSILON
 /* Threads: at most this many, and only with at least this many edges
  * each (below that, thread start-up costs more than it saves). */
 #define CONICA__MAX_THREADS 16
@@ -37,6 +46,29 @@
 /* Dekker's splitter for the 64-bit significand of x87 long double: 2^32+1. */
 #define CONICA__DEKKER_SPLIT 4294967297.0L
 #define CONICA__PI 3.14159265358979323846264338327950288L
+
+/* Exact product a*b = *p + *e by Dekker's splitting (the x87 has no fused
+ * multiply-add: glibc's fmal is emulated in software and made precise mode
+ * 100x slower). */
+static void conica__two_prodl(long double a, long double b, long double *p, long double *e)
+{
+    long double ca = CONICA__DEKKER_SPLIT * a, cb = CONICA__DEKKER_SPLIT * b;
+    long double ah = ca - (ca - a), al = a - ah, bh = cb - (cb - b), bl = b - bh;
+    *p = a * b;
+    *e = ((ah * bh - *p) + ah * bl + al * bh) + al * bl;
+}
+
+/* a*b - c*d as Kahan's algorithm (seed 000, Code 4) computes it, with the
+ * exact product errors from conica__two_prodl in place of the FMAs. The
+ * long double instance's diffprod, and in both instances the inflection
+ * test of the input (SFX(needs_infl)), so that both modes decide it alike. */
+static long double conica__diffprodl(long double a, long double b, long double c, long double d)
+{
+    long double w, ew, p, ep;
+    conica__two_prodl(d, c, &w, &ew);
+    conica__two_prodl(a, b, &p, &ep);
+    return ((p - w) + ep) - ew;
+}
 
 /* ---------------------------------------------------- double instance */
 #define REAL double

@@ -43,7 +43,11 @@ typedef struct SFX(job) {
     int maxgrow;   /* outer neighbours per side when growing a patch */
     size_t n;      /* points of the level being refined */
     const REAL *xy, *nxy;
-    const unsigned char *infl; /* inflection flags per point, or NULL */
+    /* Inflection flags per point of this level (eq. (9) points and the
+     * midpoints of S-shaped edges), or NULL; dinfl receives the next
+     * level's (each worker writes its own edges' entries). */
+    const unsigned char *infl;
+    unsigned char *dinfl;
 } SFX(job);
 
 /* Per-thread state: fit workspace and counters. */
@@ -85,25 +89,10 @@ static REAL SFX(diffprod)(REAL a, REAL b, REAL c, REAL d)
     return f + e;
 }
 #else
-/* Exact product a*b = *p + *e by Dekker's splitting (the x87 has no fused
- * multiply-add: glibc's fmal is emulated in software and made precise mode
- * 100x slower). */
-static void SFX(two_prod)(REAL a, REAL b, REAL *p, REAL *e)
-{
-    REAL ca = RC(CONICA__DEKKER_SPLIT) * a, cb = RC(CONICA__DEKKER_SPLIT) * b;
-    REAL ah = ca - (ca - a), al = a - ah, bh = cb - (cb - b), bl = b - bh;
-    *p = a * b;
-    *e = ((ah * bh - *p) + ah * bl + al * bh) + al * bl;
-}
-
-/* a*b - c*d as Kahan's algorithm (seed 000, Code 4) computes it, with the
- * exact product errors from two_prod in place of the FMAs. */
+/* a*b - c*d in long double: conica__diffprodl (subdiv.c). */
 static REAL SFX(diffprod)(REAL a, REAL b, REAL c, REAL d)
 {
-    REAL w, ew, p, ep;
-    SFX(two_prod)(d, c, &w, &ew);
-    SFX(two_prod)(a, b, &p, &ep);
-    return ((p - w) + ep) - ew;
+    return conica__diffprodl(a, b, c, d);
 }
 #endif
 
@@ -182,16 +171,48 @@ static size_t SFX(next)(const SFX(job) *j, size_t i)
     return i + 1 == j->n ? 0 : i + 1;
 }
 
+/* Point q in the rotated frame of SFX(frame) (edge from (-1,0) to (1,0)). */
+static void SFX(to_frame)(const SFX(job) *j, const SFX(frame) *f, size_t q, REAL *x, REAL *y)
+{
+    REAL wx = (j->xy[2 * q] - f->mx) * f->sc, wy = (j->xy[2 * q + 1] - f->my) * f->sc;
+    *x = FMA(wx, f->hsx, wy * f->hsy) * f->ihh;
+    *y = DIFFPROD_WP(f->hsx, wy, f->hsy, wx) * f->ihh;
+}
+
+/* Tolerance of SFX(line_class) for the edge of frame f: CONICA__ON_LINE_ULPS
+ * rounding units of the patch's coordinates (eps * |p|) against the half
+ * edge |h|, in the frame's units. */
+static REAL SFX(on_line_tol)(const SFX(frame) *f)
+{
+    return RC(CONICA__ON_LINE_ULPS) * RC(CONICA__ON_LINE_EPS) *
+           (1 + (M(fabs)(f->mx) + M(fabs)(f->my)) * f->sc);
+}
+
+/* Side of the edge line of the frame point (x, y): -1 above (y > 0), +1
+ * below, 0 on the line to within tol (scaled by the distance along the
+ * edge, where the frame's rotation errors grow). Points collinear by
+ * construction (an inflection point (9), an S-shaped edge's midpoint and
+ * the points next to them) are off the line only by rounding: their side
+ * is the sign of a rounding error, which differs between default and
+ * precise mode, so every branch that asks for a side asks here. */
+static int SFX(line_class)(REAL tol, REAL x, REAL y)
+{
+    REAL lim = tol * (1 + M(fabs)(x));
+    return y > lim ? -1 : (y < -lim ? 1 : 0);
+}
+
 /*
  * "Same half plane" rule for growing patches (REFERENCE.md section 1): a
  * further outer neighbour `cand` joins only if it lies on the same side as
  * the first outer neighbour `first` on that side. Default mode uses the edge
- * line p_i p_{i+1} as REFERENCE.md describes it (points on the line count as
- * the same side). Reference mode reproduces the reference's
- * areInSameHalfPlane(p_i, p_{i+1}, first, cand) exactly, which measures
- * against the line through p_{i+1} and `first`.
+ * line p_i p_{i+1} as REFERENCE.md describes it (points on the line, to
+ * within SFX(line_class)'s tolerance, count as the same side). Reference
+ * mode reproduces the reference's areInSameHalfPlane(p_i, p_{i+1}, first,
+ * cand) exactly, which measures against the line through p_{i+1} and
+ * `first`.
  */
-static int SFX(same_side)(const SFX(job) *j, size_t i, size_t i1, size_t first, size_t cand)
+static int SFX(same_side)(const SFX(job) *j, const SFX(frame) *f, size_t i, size_t i1,
+                          size_t first, size_t cand)
 {
     const REAL *p = j->xy;
     if (j->ref) {
@@ -207,12 +228,13 @@ static int SFX(same_side)(const SFX(job) *j, size_t i, size_t i1, size_t first, 
             return 1;
         return d2 * (d1 > 0 ? 1 : -1) >= 0;
     } else {
-        REAL dx = p[2 * i1] - p[2 * i], dy = p[2 * i1 + 1] - p[2 * i + 1];
-        REAL s1 = SFX(diffprod)(dx, p[2 * first + 1] - p[2 * i + 1], dy, p[2 * first] - p[2 * i]);
-        REAL s2 = SFX(diffprod)(dx, p[2 * cand + 1] - p[2 * i + 1], dy, p[2 * cand] - p[2 * i]);
-        if (s1 == 0 || s2 == 0)
-            return 1;
-        return (s1 > 0) == (s2 > 0);
+        REAL tol = SFX(on_line_tol)(f), x, y;
+        int s1, s2;
+        SFX(to_frame)(j, f, first, &x, &y);
+        s1 = SFX(line_class)(tol, x, y);
+        SFX(to_frame)(j, f, cand, &x, &y);
+        s2 = SFX(line_class)(tol, x, y);
+        return s1 == 0 || s2 == 0 || s1 == s2;
     }
 }
 
@@ -222,9 +244,11 @@ static int SFX(same_side)(const SFX(job) *j, size_t i, size_t i1, size_t first, 
  * edge end point is an inserted inflection point takes no neighbour beyond
  * it (seed 000, modified neighbourhoods after (10)). Open curves take the
  * neighbours that exist. In default mode a closed curve never wraps round
- * onto the patch's own points. Returns the number of pairs.
+ * onto the patch's own points. f is the edge's frame (default mode; NULL in
+ * reference mode). Returns the number of pairs.
  */
-static int SFX(collect)(const SFX(job) *j, size_t i, int maxl, int maxr, size_t *idx)
+static int SFX(collect)(const SFX(job) *j, const SFX(frame) *f, size_t i, int maxl, int maxr,
+                        size_t *idx)
 {
     size_t n = j->n, i1 = SFX(next)(j, i), jj;
     int cnt = 2, k, nl = 0;
@@ -242,7 +266,7 @@ static int SFX(collect)(const SFX(job) *j, size_t i, int maxl, int maxr, size_t 
                     break;
                 jj = i - (size_t)k;
             }
-            if (k > 1 && !SFX(same_side)(j, i, i1, idx[2], jj))
+            if (k > 1 && !SFX(same_side)(j, f, i, i1, idx[2], jj))
                 break;
             idx[cnt++] = jj;
             nl++;
@@ -262,7 +286,7 @@ static int SFX(collect)(const SFX(job) *j, size_t i, int maxl, int maxr, size_t 
                     break;
                 jj = i1 + (size_t)k;
             }
-            if (k > 1 && !SFX(same_side)(j, i, i1, idx[first], jj))
+            if (k > 1 && !SFX(same_side)(j, f, i, i1, idx[first], jj))
                 break;
             idx[cnt++] = jj;
         }
@@ -306,9 +330,7 @@ static void SFX(local_pairs)(const SFX(job) *j, const SFX(frame) *f, const size_
             P[k].wv = j->wev;
             P[k].wn = j->wen;
         } else {
-            REAL wx = (j->xy[2 * q] - f->mx) * f->sc, wy = (j->xy[2 * q + 1] - f->my) * f->sc;
-            P[k].x = FMA(wx, f->hsx, wy * f->hsy) * f->ihh;
-            P[k].y = DIFFPROD_WP(f->hsx, wy, f->hsy, wx) * f->ihh;
+            SFX(to_frame)(j, f, q, &P[k].x, &P[k].y);
             P[k].wv = j->wov;
             P[k].wn = j->won;
         }
@@ -428,6 +450,11 @@ static int SFX(jacobi_min_right)(REAL *a, int rows, int n, REAL *v)
     REAL V[CONICA__FIT_MAX_COLS * CONICA__FIT_MAX_COLS];
     int p, q, k, sweep, rotated = 1, best = 0;
     REAL bestn = 0;
+    /* Columns count as orthogonal when |a_p . a_q| <= tol |a_p| |a_q|: the
+     * rounding of a dot product of `rows` terms is about sqrt(rows) eps of
+     * that, so asking for eps alone can stall (long double, weights
+     * 1e5 : 1); sqrt(rows) eps is LAPACK's dgesvj threshold. */
+    REAL tol = M(sqrt)((REAL)rows) * R_EPSILON;
 
     for (p = 0; p < n; p++)
         for (q = 0; q < n; q++)
@@ -443,7 +470,7 @@ static int SFX(jacobi_min_right)(REAL *a, int rows, int n, REAL *v)
                     be = FMA(aq[k], aq[k], be);
                     ga = FMA(ap[k], aq[k], ga);
                 }
-                if (ga == 0 || M(fabs)(ga) <= R_EPSILON * M(sqrt)(al) * M(sqrt)(be))
+                if (ga == 0 || M(fabs)(ga) <= tol * M(sqrt)(al) * M(sqrt)(be))
                     continue;
                 rotated = 1;
                 zeta = (be - al) / (2 * ga);
@@ -652,7 +679,7 @@ static void SFX(edge_ref)(SFX(worker) *w, size_t i, REAL *oxy, REAL *on)
 
     for (g = 1; g <= j->maxgrow; g++) {
         REAL q[6], qux, quy, qpx, qpy, qpz, a, b, c, t, px, py, nx, ny;
-        cnt = SFX(collect)(j, i, g, g, idx);
+        cnt = SFX(collect)(j, NULL, i, g, g, idx);
         if (cnt == prev)
             break;
         prev = cnt;
@@ -765,17 +792,14 @@ static int SFX(in_region)(const SFX(pair) *P, int side, REAL y)
 /* The side of the chord away from the patch's outer neighbours (see
  * SFX(in_region)): +1, -1, 0 when they do not decide it (none, or all on
  * the edge line), or 2 when they lie on both sides (the polygon itself
- * turns both ways here). Neighbours within a few rounding units of the
- * edge line count as on it: points collinear by construction (an
- * inflection point (9) and the midpoints next to it) are off it by the
- * rounding of their coordinates, eps * |p| against the half edge |h|. */
+ * turns both ways here). Neighbours on the edge line to within rounding
+ * (SFX(line_class)) count as on it. */
 static int SFX(bulge_side)(const SFX(frame) *f, const SFX(pair) *P, int cnt)
 {
     int k, s = 0;
-    REAL tol = 64 * R_EPSILON * (1 + (M(fabs)(f->mx) + M(fabs)(f->my)) * f->sc);
+    REAL tol = SFX(on_line_tol)(f);
     for (k = 2; k < cnt; k++) {
-        REAL lim = tol * (1 + M(fabs)(P[k].x));
-        int t = P[k].y > lim ? -1 : (P[k].y < -lim ? 1 : 0);
+        int t = SFX(line_class)(tol, P[k].x, P[k].y);
         if (t == 0)
             continue;
         if (s != 0 && t != s)
@@ -785,19 +809,21 @@ static int SFX(bulge_side)(const SFX(frame) *f, const SFX(pair) *P, int cnt)
     return s;
 }
 
-/* Edge point of edge (i, i+1) in default mode (local frame). */
-static void SFX(edge)(SFX(worker) *w, size_t i, REAL *oxy, REAL *on)
+/* Edge point of edge (i, i+1) in default mode (local frame). Returns 1
+ * when the point is an inflection point (an S-shaped edge's midpoint),
+ * which the next levels treat as seed 000 treats those of eq. (9). */
+static int SFX(edge)(SFX(worker) *w, size_t i, REAL *oxy, REAL *on)
 {
     const SFX(job) *j = w->job;
     size_t idx[CONICA__FIT_MAX_PAIRS], i1;
     SFX(pair) P[CONICA__FIT_MAX_PAIRS];
     SFX(frame) f;
     REAL y = 0, gx = 0, gy = 0, ox = 0, oy = 0, nx = 0, ny = 0;
-    int cnt, ok = 0, g, maxl = 1, maxr = 1, regular = 1, local = 0, side, conflict;
+    int cnt, ok = 0, g, maxl = 1, maxr = 1, regular = 1, local = 0, side, conflict, infl = 0;
 
     if (j->ref) {
         SFX(edge_ref)(w, i, oxy, on);
-        return;
+        return 0;
     }
     i1 = SFX(next)(j, i);
     if (!SFX(make_frame)(j, i, i1, &f)) {
@@ -805,17 +831,20 @@ static void SFX(edge)(SFX(worker) *w, size_t i, REAL *oxy, REAL *on)
          * point; its normal is as good as any. */
         w->fallbacks++;
         SFX(store)(j, j->xy[2 * i], j->xy[2 * i + 1], j->nxy[2 * i], j->nxy[2 * i + 1], oxy, on);
-        return;
+        return 0;
     }
     /* Seed 000 after (10): next to an inflection point the patch is the
-     * inflection point, the edge's other end and two neighbours beyond it. */
+     * inflection point, the edge's other end and two neighbours beyond it.
+     * The same holds next to an S-shaped edge's midpoint (below): beyond
+     * it the curve turns the other way, so a neighbour there says nothing
+     * about the side this edge's arc bulges to. */
     if (j->infl) {
         if (j->infl[i])
             maxr = 2;
         if (j->infl[i1])
             maxl = 2;
     }
-    cnt = SFX(collect)(j, i, maxl, maxr, idx);
+    cnt = SFX(collect)(j, &f, i, maxl, maxr, idx);
     SFX(local_pairs)(j, &f, idx, cnt, P);
     /* The pencil describes a convex arc between the end points; it is used
      * when the patch looks like one: the end normals do not tilt the same
@@ -846,11 +875,9 @@ static void SFX(edge)(SFX(worker) *w, size_t i, REAL *oxy, REAL *on)
         goto midpoint;
     }
     if (j->fast) {
-        int k;
-        regular = (P[0].nx * P[0].ny) * (P[1].nx * P[1].ny) <= 0;
-        for (k = 3; regular && k < cnt; k++)
-            if ((P[2].y > 0 && P[k].y < 0) || (P[2].y < 0 && P[k].y > 0))
-                regular = 0;
+        /* Outer neighbours on both sides (side 2, with points on the edge
+         * line to within rounding counting as neither) make it irregular. */
+        regular = (P[0].nx * P[0].ny) * (P[1].nx * P[1].ny) <= 0 && side != 2;
         if (regular)
             ok = SFX(fast_fit)(j, P, cnt, &y, &gx, &gy);
         else
@@ -866,7 +893,7 @@ static void SFX(edge)(SFX(worker) *w, size_t i, REAL *oxy, REAL *on)
      * neighbour a side at a time (REFERENCE.md section 1) and refit with
      * the general fit. */
     for (g = 2; !ok && g <= j->maxgrow; g++) {
-        int c2 = SFX(collect)(j, i, g, g, idx);
+        int c2 = SFX(collect)(j, &f, i, g, g, idx);
         if (c2 <= cnt)
             continue;
         cnt = c2;
@@ -885,7 +912,8 @@ static void SFX(edge)(SFX(worker) *w, size_t i, REAL *oxy, REAL *on)
          * that each half of the edge gets a proper convex region. (The
          * edge normal of the plain midpoint fallback would put the chord
          * in as both halves' tangent: straight pieces, whose rounded
-         * midpoints then wiggle at the rounding level.) */
+         * midpoints then wiggle at the rounding level.) The point is
+         * flagged as an inflection point for the next levels. */
         w->fallbacks++;
         ox = f.mx;
         oy = f.my;
@@ -893,8 +921,10 @@ static void SFX(edge)(SFX(worker) *w, size_t i, REAL *oxy, REAL *on)
         gy = 4 * P[0].ny * P[1].ny;
         nx = FMA(gx, f.hsx, -gy * f.hsy);
         ny = FMA(gx, f.hsy, gy * f.hsx);
-        if (isfinite(nx) && isfinite(ny) && !(nx == 0 && ny == 0))
+        if (isfinite(nx) && isfinite(ny) && !(nx == 0 && ny == 0)) {
+            infl = 1;
             goto oriented;
+        }
     }
     if (!ok && conflict == 0) {
         /* The parabola of the pencil (the quadratic Bezier through the
@@ -939,20 +969,29 @@ oriented : {
         }
     }
     SFX(store)(j, ox, oy, nx, ny, oxy, on);
+    return infl;
 }
+
 /* One subdivision level: src (j->n points) -> dst. Old vertices copied
- * bit-for-bit (step 1), one edge point per edge (steps 2-4). */
+ * bit-for-bit (step 1), one edge point per edge (steps 2-4); inflection
+ * flags follow their points (i -> 2i), edge points get their own. */
 static void SFX(level)(SFX(worker) *w, REAL *dxy, REAL *dn, size_t e_begin, size_t e_end)
 {
     const SFX(job) *j = w->job;
     size_t e;
     for (e = e_begin; e < e_end; e++) {
+        int fl;
         dxy[4 * e] = j->xy[2 * e];
         dxy[4 * e + 1] = j->xy[2 * e + 1];
         dn[4 * e] = j->nxy[2 * e];
         dn[4 * e + 1] = j->nxy[2 * e + 1];
-        if (e + 1 < j->n || j->closed)
-            SFX(edge)(w, e, dxy + 4 * e + 2, dn + 4 * e + 2);
+        if (j->dinfl)
+            j->dinfl[2 * e] = j->infl[e];
+        if (e + 1 < j->n || j->closed) {
+            fl = SFX(edge)(w, e, dxy + 4 * e + 2, dn + 4 * e + 2);
+            if (j->dinfl)
+                j->dinfl[2 * e + 1] = (unsigned char)fl;
+        }
     }
 }
 
@@ -1040,7 +1079,13 @@ static void SFX(in_nrm)(const SFX(input) *in, size_t k, REAL *x, REAL *y)
  * Does edge (i, i+1) need an inflection point (seed 000, before (9)):
  * p_{i-1} and p_{i+2} strictly on different sides of the edge line. Edges
  * without both neighbours (open ends) and edges whose neighbourhood has
- * coincident points never do, as in the reference.
+ * coincident points never do, as in the reference. In default mode the
+ * sides are the exact ones of the input's coordinates (conica__diffprodl in
+ * long double, whatever REAL is): the input of both modes is the same, so
+ * both insert the same points, also where a neighbour lies on the edge line
+ * to within rounding (a midpoint rounded to the input's decimals, as on
+ * ExStar_sub0's collinear runs), where a rounded evaluation decides by the
+ * sign of its own error.
  */
 static int SFX(needs_infl)(const SFX(input) *in, int ref, size_t i)
 {
@@ -1070,8 +1115,16 @@ static int SFX(needs_infl)(const SFX(input) *in, int ref, size_t i)
         d1 = nx * (x3 - x1) + ny * (y3 - y1);
         d2 = nx * (x0 - x1) + ny * (y0 - y1);
     } else {
-        d1 = SFX(diffprod)(x2 - x1, y3 - y1, y2 - y1, x3 - x1);
-        d2 = SFX(diffprod)(x2 - x1, y0 - y1, y2 - y1, x0 - x1);
+        /* Differences of two doubles are exact in long double (short of an
+         * exponent gap over 11 bits), the products exact by Dekker. */
+        long double ex = (long double)x2 - (long double)x1, ey = (long double)y2 - (long double)y1;
+        long double e1 = conica__diffprodl(ex, (long double)y3 - (long double)y1, ey,
+                                           (long double)x3 - (long double)x1);
+        long double e2 = conica__diffprodl(ex, (long double)y0 - (long double)y1, ey,
+                                           (long double)x0 - (long double)x1);
+        if (e1 == 0 || e2 == 0)
+            return 0;
+        return (e1 > 0) != (e2 > 0);
     }
     if (M(fabs)(d1) <= eps || M(fabs)(d2) <= eps)
         return 0;
@@ -1090,6 +1143,19 @@ static REAL SFX(clamped_acos)(REAL c)
     return M(acos)(c > 1 ? 1 : (c < -1 ? -1 : c));
 }
 
+/* Angle between the unit vectors u and v, in [0, pi]. Reference mode:
+ * acos of the dot product, as the reference. Default mode: atan2 of cross
+ * and dot, accurate to a rounding unit at every angle; acos loses half the
+ * digits near 0 and pi (acos(1 - d) ~ sqrt(2d)), i.e. at the nearly
+ * collinear edges where eq. (10) meets inflections, and there its error
+ * differs between the modes. */
+static REAL SFX(angle)(int ref, REAL ux, REAL uy, REAL vx, REAL vy)
+{
+    if (ref)
+        return SFX(clamped_acos)(ux * vx + uy * vy);
+    return M(atan2)(M(fabs)(DIFFPROD_WP(ux, vy, uy, vx)), FMA(ux, vx, uy * vy));
+}
+
 /*
  * Candidate inflection normal of eq. (10): (1 - gamma) * orth + gamma * d
  * with gamma = 1/2 - |phi/pi - 1/2|, phi the angle between the edges AB and
@@ -1099,10 +1165,10 @@ static REAL SFX(clamped_acos)(REAL c)
  * (the reference's "area weighted" blend uses the lengths of two unit
  * vectors, so it is a no-op there and is left out).
  */
-static REAL SFX(infl_candidate)(REAL abx, REAL aby, REAL bcx, REAL bcy, REAL ox, REAL oy, REAL *nx,
-                                REAL *ny)
+static REAL SFX(infl_candidate)(int ref, REAL abx, REAL aby, REAL bcx, REAL bcy, REAL ox, REAL oy,
+                                REAL *nx, REAL *ny)
 {
-    REAL ang = SFX(clamped_acos)(abx * bcx + aby * bcy);
+    REAL ang = SFX(angle)(ref, abx, aby, bcx, bcy);
     REAL gam = RC(0.5) - M(fabs)(ang / RC(CONICA__PI) - RC(0.5));
     REAL rx = bcx, ry = bcy, cx, cy;
     if (abx * ox + aby * oy >= 0) {
@@ -1118,7 +1184,7 @@ static REAL SFX(infl_candidate)(REAL abx, REAL aby, REAL bcx, REAL bcy, REAL ox,
         cx = -cx;
         cy = -cy;
     }
-    return M(fabs)(SFX(clamped_acos)(*nx * cx + *ny * cy));
+    return M(fabs)(SFX(angle)(ref, *nx, *ny, cx, cy));
 }
 
 /* Position (9) and normal (10) of the inflection point on edge (i, i+1). */
@@ -1142,8 +1208,8 @@ static void SFX(infl_point)(const SFX(input) *in, int ref, size_t i, REAL *pxy, 
     SFX(unit)(&bx, &by);
     ox = -ey;
     oy = ex;
-    la = SFX(infl_candidate)(ax, ay, -ex, -ey, ox, oy, &lx, &ly);
-    ra = SFX(infl_candidate)(bx, by, ex, ey, ox, oy, &rx, &ry);
+    la = SFX(infl_candidate)(ref, ax, ay, -ex, -ey, ox, oy, &lx, &ly);
+    ra = SFX(infl_candidate)(ref, bx, by, ex, ey, ox, oy, &rx, &ry);
     pxy[0] = RC(0.5) * x1 + RC(0.5) * x2;
     pxy[1] = RC(0.5) * y1 + RC(0.5) * y2;
     if (la < ra) {
@@ -1220,7 +1286,7 @@ static conica_code SFX(run)(const SFX(input) *in, const conica_subdiv_settings *
     size_t ninfl = insert ? SFX(count_infl)(in, ref) : 0;
     size_t n0 = in->n + ninfl, N, NB = 0, i;
     REAL *A = NULL, *An = NULL, *B = NULL, *Bn = NULL;
-    unsigned char *flags = NULL;
+    unsigned char *F[2] = {NULL, NULL}; /* inflection flags, double-buffered like A/B */
     size_t *infl = NULL;
     SFX(job) job;
     SFX(worker) wk[CONICA__MAX_THREADS];
@@ -1247,10 +1313,14 @@ static conica_code SFX(run)(const SFX(input) *in, const conica_subdiv_settings *
         B = malloc(2 * NB * sizeof *B);
         Bn = malloc(2 * NB * sizeof *Bn);
     }
-    if (ninfl) {
-        flags = malloc(N);
-        infl = malloc(ninfl * sizeof *infl);
+    /* Flags of levels 0..L-1 (the last level's are not needed): level l
+     * in F[(L - l) % 2], at most NB points. */
+    if (L > 0) {
+        F[0] = malloc(NB);
+        F[1] = malloc(NB);
     }
+    if (ninfl)
+        infl = malloc(ninfl * sizeof *infl);
 #if REAL_IS_DOUBLE
     for (t = 0; t < nth; t++)
         ws[t].work = NULL;
@@ -1258,14 +1328,15 @@ static conica_code SFX(run)(const SFX(input) *in, const conica_subdiv_settings *
         if (conica__svdws_init(&ws[t]) != 0)
             code = CONICA_ERR_NOMEM;
 #endif
-    if (!A || !An || (NB && (!B || !Bn)) || (ninfl && (!flags || !infl)))
+    if (!A || !An || (NB && (!B || !Bn)) || (L > 0 && (!F[0] || !F[1])) || (ninfl && !infl))
         code = CONICA_ERR_NOMEM;
     if (code != CONICA_OK) {
         free(A);
         free(An);
         free(B);
         free(Bn);
-        free(flags);
+        free(F[0]);
+        free(F[1]);
         free(infl);
 #if REAL_IS_DOUBLE
         for (t = 0; t < nth; t++)
@@ -1278,7 +1349,7 @@ static conica_code SFX(run)(const SFX(input) *in, const conica_subdiv_settings *
      * lands in A (double buffering, no allocation per level or point). */
     {
         REAL *sx = (L % 2) ? B : A, *sn = (L % 2) ? Bn : An;
-        size_t cur = SFX(load)(in, ref, insert, sx, sn, flags, infl);
+        size_t cur = SFX(load)(in, ref, insert, sx, sn, L > 0 ? F[L % 2] : NULL, infl);
 
         job.wev = (REAL)s->w_edge_point;
         job.wen = (REAL)s->w_edge_normal;
@@ -1290,7 +1361,6 @@ static conica_code SFX(run)(const SFX(input) *in, const conica_subdiv_settings *
         job.normalize = s->normalize_normals != 0;
         job.closed = in->closed;
         job.maxgrow = ref ? (s->patch_grow < 3 ? s->patch_grow : 3) : s->patch_grow;
-        job.infl = ninfl ? flags : NULL;
         for (t = 0; t < nth; t++) {
             wk[t].job = &job;
 #if REAL_IS_DOUBLE
@@ -1306,16 +1376,10 @@ static conica_code SFX(run)(const SFX(input) *in, const conica_subdiv_settings *
             job.n = cur;
             job.xy = sx;
             job.nxy = sn;
+            job.infl = F[(L - lev + 1) % 2];
+            job.dinfl = lev < L ? F[(L - lev) % 2] : NULL;
             SFX(level_threads)(wk, nth, dx, dn, cur);
             stats->edge_points += ne;
-            if (flags) {
-                /* Inflection flags follow their points: index i -> 2i. */
-                for (i = cur; i-- > 0;) {
-                    flags[2 * i] = flags[i];
-                    if (2 * i + 1 < cur + ne)
-                        flags[2 * i + 1] = 0;
-                }
-            }
             cur += ne;
             sx = dx;
             sn = dn;
@@ -1330,7 +1394,8 @@ static conica_code SFX(run)(const SFX(input) *in, const conica_subdiv_settings *
     }
     free(B);
     free(Bn);
-    free(flags);
+    free(F[0]);
+    free(F[1]);
 #if REAL_IS_DOUBLE
     for (t = 0; t < nth; t++)
         conica__svdws_free(&ws[t]);
