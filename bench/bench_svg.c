@@ -6,7 +6,10 @@
  * which splits its own time), XML save. Modes: smoothing with 3 levels and
  * flattening within 0.01 units. Prints figures, asserts nothing.
  *
- *   build/bench/bench_svg [SUBPATHS [VERTICES]]
+ *   build/bench/bench_svg [--write FILE] [SUBPATHS [VERTICES]]
+ *
+ * --write FILE also saves the generated document, for timing the tool end
+ * to end: `build/bin/svgsmooth --stats --levels 3 -o out.svg FILE`.
  */
 #include <math.h>
 #include <stdio.h>
@@ -131,16 +134,30 @@ static int run(const char *label, const text *doc, const conica_svg_settings *s)
 
 int main(int argc, char **argv)
 {
-    size_t nsub = argc > 1 ? (size_t)atol(argv[1]) : 10000;
-    size_t nv = argc > 2 ? (size_t)atol(argv[2]) : 100;
+    const char *write_to = NULL;
+    size_t nsub, nv;
     conica_svg_settings s = conica_svg_defaults();
     text doc;
     int rc = 0;
+    if (argc > 2 && !strcmp(argv[1], "--write")) {
+        write_to = argv[2];
+        argc -= 2;
+        argv += 2;
+    }
+    nsub = argc > 1 ? (size_t)atol(argv[1]) : 10000;
+    nv = argc > 2 ? (size_t)atol(argv[2]) : 100;
     if (nsub == 0 || nv < 4 || nv % 2) {
         fprintf(stderr, "usage: bench_svg [SUBPATHS [EVEN VERTICES >= 4]]\n");
         return 2;
     }
     doc = make_doc(nsub, nv);
+    if (write_to) {
+        FILE *f = fopen(write_to, "wb");
+        if (!f || fwrite(doc.s, 1, doc.n, f) != doc.n || fclose(f) != 0) {
+            fprintf(stderr, "bench_svg: cannot write %s\n", write_to);
+            return 1;
+        }
+    }
     printf("bench_svg: %zu subpaths x %zu vertices (half lines, half cubics), %.1f MB of SVG\n",
            nsub, nv, (double)doc.n / 1e6);
     printf("SVG layer = XML parse + path parse/write + XML save; ratio = SVG layer / geometry\n\n");

@@ -181,7 +181,18 @@ typedef struct conica_scad_write_options {
 /** @brief Defaults: module "profile", no wrappers, instantiate. */
 CONICA_API conica_scad_write_options conica_scad_write_defaults(void);
 
-/** @brief Non-zero when s is a valid OpenSCAD identifier for a module name. */
+/**
+ * @brief Why s cannot name the module, or NULL when it can: it must be an
+ *        OpenSCAD identifier ([A-Za-z_][A-Za-z0-9_]*, at most
+ *        CONICA_SCAD_MAX_MODULE_NAME characters), not a reserved word
+ *        (for, module, function, if, else, let, each, assert, echo, true,
+ *        false, undef, include, use) and not a built-in module the written
+ *        file calls (polygon, linear_extrude, rotate_extrude).
+ * @return a static string (never free it), or NULL
+ */
+CONICA_API const char *conica_scad_name_problem(const char *s);
+
+/** @brief Non-zero when s can name the module (conica_scad_name_problem() is NULL). */
 CONICA_API int conica_scad_valid_name(const char *s);
 
 /**

@@ -70,7 +70,9 @@ static conica_code report(const conica_scad_profile *p, conica_scad_violation *v
                                  "%s: points %zu and %zu are equal (%s, %s)", da, sa + 1,
                                  (sa + 1) % na + 1, xs, ys);
     case CONICA_SCAD_ZERO_AREA:
-        return conica__fail(st, CONICA_ERR_DEGENERATE, 0, ca, "%s encloses no area", da);
+        return conica__fail(st, CONICA_ERR_DEGENERATE, 0, ca,
+                            "%s has zero area (its points are collinear or it encloses no area)",
+                            da);
     case CONICA_SCAD_NEGATIVE_X:
         return conica__fail(st, CONICA_ERR_DEGENERATE, 0, ca,
                                  "%s: point %zu (%s, %s) has x < 0; rotate_extrude needs the "
@@ -331,7 +333,18 @@ conica_code conica_scad_validate(const conica_scad_profile *p, int rotate_extrud
                 return report(p, v, st, CONICA_SCAD_NEGATIVE_X, c, i, c, i, a[0], a[1]);
         }
     }
-    /* crossings first: a bowtie's lobes cancel to zero signed area */
+    /* A contour whose points all lie on one line (exact orientation
+     * tests) encloses no area; it would otherwise be reported as running
+     * back over itself. */
+    for (size_t c = 0; c < p->ncontours; c++) {
+        const conica_scad_contour *k = &p->contours[c];
+        size_t i = 2;
+        while (i < k->n && conica__scad_orient(k->xy, k->xy + 2, k->xy + 2 * i) == 0)
+            i++;
+        if (i == k->n)
+            return report(p, v, st, CONICA_SCAD_ZERO_AREA, c, 0, c, 0, k->xy[0], k->xy[1]);
+    }
+    /* crossings next: a bowtie's lobes cancel to zero signed area */
     conica_code rc = check_crossings(p, v, st);
     if (rc != CONICA_OK)
         return rc;

@@ -27,20 +27,46 @@ size_t conica_scad_format_double(double v, char *buf, size_t cap)
     return len < 0 ? 0 : (size_t)len;
 }
 
-int conica_scad_valid_name(const char *s)
+/* Words OpenSCAD's lexer (2021.01, src/lexer.l) turns into tokens, so they
+ * cannot name a module or function: `module for()` is a syntax error.
+ * `include` and `use` are lexed only before `<`, but are kept out too. */
+static const char *const scad_keywords[] = {
+    "assert", "each", "echo", "else", "false", "for", "function", "if",
+    "include", "let", "module", "true", "undef", "use",
+};
+/* Built-in modules the written file calls: a module of that name would
+ * replace the built-in (`module polygon() polygon(...)` recurses). */
+static const char *const scad_called_builtins[] = {
+    "linear_extrude", "polygon", "rotate_extrude",
+};
+
+const char *conica_scad_name_problem(const char *s)
 {
     size_t n = 0;
     if (!s || !*s)
-        return 0;
+        return "an empty name";
     if (!((s[0] >= 'A' && s[0] <= 'Z') || (s[0] >= 'a' && s[0] <= 'z') || s[0] == '_'))
-        return 0;
+        return "not an OpenSCAD identifier (it must start with a letter or '_')";
     for (; s[n]; n++) {
         char c = s[n];
         if (!((c >= 'A' && c <= 'Z') || (c >= 'a' && c <= 'z') || (c >= '0' && c <= '9') ||
               c == '_'))
-            return 0;
+            return "not an OpenSCAD identifier (letters, digits and '_' only)";
     }
-    return n <= CONICA_SCAD_MAX_MODULE_NAME;
+    if (n > CONICA_SCAD_MAX_MODULE_NAME)
+        return "too long for a module name";
+    for (size_t i = 0; i < sizeof scad_keywords / sizeof scad_keywords[0]; i++)
+        if (strcmp(s, scad_keywords[i]) == 0)
+            return "an OpenSCAD reserved word";
+    for (size_t i = 0; i < sizeof scad_called_builtins / sizeof scad_called_builtins[0]; i++)
+        if (strcmp(s, scad_called_builtins[i]) == 0)
+            return "the name of a built-in module the generated file calls";
+    return NULL;
+}
+
+int conica_scad_valid_name(const char *s)
+{
+    return conica_scad_name_problem(s) == NULL;
 }
 
 conica_scad_write_options conica_scad_write_defaults(void)
@@ -81,8 +107,8 @@ conica_code conica_scad_write(FILE *f, const conica_scad_profile *p, const conic
         return conica__fail(st, CONICA_ERR_ARG, 0, 0, "nothing to write");
     name = o->module ? o->module : "profile";
     if (!conica_scad_valid_name(name))
-        return conica__fail(st, CONICA_ERR_ARG, 0, 0,
-                                 "module name '%s' is not an OpenSCAD identifier", name);
+        return conica__fail(st, CONICA_ERR_ARG, 0, 0, "module name '%.80s' is %s", name,
+                            conica_scad_name_problem(name));
     if (o->extrude && !(isfinite(o->extrude_height) && o->extrude_height > 0))
         return conica__fail(st, CONICA_ERR_ARG, 0, 0, "extrusion height must be > 0");
     if (o->revolve && !(isfinite(o->revolve_angle) && o->revolve_angle > 0 &&

@@ -19,6 +19,7 @@
 #include "conica/subdiv.h"
 #include "conica_scad.h"
 #include "conica_svg.h"
+#include "svg_cli.h"
 #include "conica/bspline.h"
 #include "conica/plot.h"
 
@@ -32,8 +33,6 @@
 /* A spline whose end points are closer than this fraction of its bounding
  * box diagonal is closed; otherwise a straight segment closes it. */
 #define SPLINE_CLOSE_REL 1e-9
-#define MM_PER_INCH 25.4
-#define PX_PER_INCH 96.0
 
 typedef enum kind { IN_POINTS, IN_SVG, IN_SPLINE } kind;
 typedef enum units { U_DEFAULT, U_PX, U_MM, U_IN } units;
@@ -48,6 +47,8 @@ typedef struct options {
     const char *select;
     int force, stats, flatten_only;
     size_t max_points;
+    conica_svg_limits limits; /* SVG: XML caps; max_bytes also caps other inputs when given */
+    int max_input_given;
     const char *out, *in;
 } options;
 
@@ -84,6 +85,9 @@ static void usage(FILE *f)
           "                    the profile must not have points with x < 0\n"
           "  --select IDS      SVG only: comma-separated element ids (default: all)\n"
           "  --max-points N    cap on the dense points of one curve (default 4194304)\n"
+          "  --max-input-bytes N   input size cap (default 256 MiB, SVG 64 MiB, or the\n"
+          "                        environment variable CONICA_MAX_INPUT_BYTES)\n"
+          CONICA_SVG_CLI_LIMITS_HELP
           "  --force           write even if validation fails (warnings instead of errors)\n"
           "  --stats           figures on stderr\n"
           "  -o FILE           output (default stdout; written via a temporary file)\n"
@@ -108,10 +112,12 @@ static int parse_args(int argc, char **argv, options *o, int *exit_now)
     o->height = 10;
     o->angle = 360;
     o->max_points = CONICA_SCAD_DEFAULT_MAX_DENSE;
+    o->limits = conica_svg_limits_defaults();
     *exit_now = 0;
     for (int i = 1; i < argc; i++) {
         const char *a = argv[i];
         const char *next = i + 1 < argc ? argv[i + 1] : NULL;
+        int lr;
 #define NEED_ARG()                                                                         \
     do {                                                                                   \
         if (!next)                                                                         \
@@ -138,11 +144,12 @@ static int parse_args(int argc, char **argv, options *o, int *exit_now)
                 return cli_usage_error(PROG, "--tolerance needs a number > 0, not '%s'", next);
         } else if (strcmp(a, "--module") == 0) {
             NEED_ARG();
-            if (!conica_scad_valid_name(next))
+            const char *why = conica_scad_name_problem(next);
+            if (why)
                 return cli_usage_error(PROG,
-                                       "--module '%s' is not an OpenSCAD identifier "
+                                       "--module '%.80s' is %s; use a name like 'profile' "
                                        "([A-Za-z_][A-Za-z0-9_]*, at most %d characters)",
-                                       next, CONICA_SCAD_MAX_MODULE_NAME);
+                                       next, why, CONICA_SCAD_MAX_MODULE_NAME);
             o->module = next;
         } else if (strcmp(a, "--units") == 0) {
             NEED_ARG();
@@ -178,6 +185,11 @@ static int parse_args(int argc, char **argv, options *o, int *exit_now)
                 return cli_usage_error(PROG, "--max-points needs an integer in 16..%zu",
                                        (size_t)CONICA_SCAD_MAX_POINTS);
             o->max_points = (size_t)l;
+        } else if ((lr = conica_svg__cli_limit(PROG, a, next, &o->limits)) != 0) {
+            if (lr < 0)
+                return CLI_EXIT_USAGE;
+            o->max_input_given |= strcmp(a, "--max-input-bytes") == 0;
+            i++;
         } else if (strcmp(a, "--flatten-only") == 0) {
             o->flatten_only = 1;
         } else if (strcmp(a, "--force") == 0) {
@@ -229,6 +241,20 @@ static int ends_with(const char *s, const char *suffix)
     return 1;
 }
 
+/* Does the word at buf[i..len) equal w (followed by a blank or the end)? */
+static int word_is(const char *buf, size_t len, size_t i, const char *w)
+{
+    size_t m = strlen(w);
+    if (len - i < m || memcmp(buf + i, w, m) != 0)
+        return 0;
+    return i + m == len || buf[i + m] == ' ' || buf[i + m] == '\t' || buf[i + m] == '\r' ||
+           buf[i + m] == '\n';
+}
+
+/* The kind of input: by extension, else (stdin, other names) by content:
+ * the first thing that is not blank or a `#`/`%` comment line is `<` (SVG),
+ * a spline keyword (degree, knots, c, w: the .spl format) or anything else
+ * (a point file, whose reader names what it does not understand). */
 static kind detect(const char *path, const char *buf, size_t len)
 {
     if (ends_with(path, ".svg"))
@@ -238,11 +264,22 @@ static kind detect(const char *path, const char *buf, size_t len)
     if (ends_with(path, ".txt") || ends_with(path, ".obj"))
         return IN_POINTS;
     size_t i = 0;
-    while (i < len && (buf[i] == ' ' || buf[i] == '\t' || buf[i] == '\r' || buf[i] == '\n'))
-        i++;
+    if (len >= 3 && memcmp(buf, "\xEF\xBB\xBF", 3) == 0) /* UTF-8 byte order mark */
+        i = 3;
+    for (;;) {
+        while (i < len && (buf[i] == ' ' || buf[i] == '\t' || buf[i] == '\r' || buf[i] == '\n'))
+            i++;
+        if (i < len && (buf[i] == '#' || buf[i] == '%')) {
+            while (i < len && buf[i] != '\n')
+                i++;
+            continue;
+        }
+        break;
+    }
     if (i < len && buf[i] == '<')
         return IN_SVG;
-    if (len - i >= 6 && memcmp(buf + i, "degree", 6) == 0)
+    if (i < len && (word_is(buf, len, i, "degree") || word_is(buf, len, i, "knots") ||
+                    word_is(buf, len, i, "c") || word_is(buf, len, i, "w")))
         return IN_SPLINE;
     return IN_POINTS;
 }
@@ -265,6 +302,27 @@ static int status_error(const char *file, const conica_status *st)
 }
 
 /* ------------------------------------------------------------ point-normal */
+
+/* The engine names a bad point by its index in st->offset with a message
+ * starting "point"/"normal" (libcore/src/subdiv.c): report it at the line
+ * of that point in the file, as `conica subdivide` does. */
+static int point_error(const char *file, const char *buf, size_t len, const conica_status *st)
+{
+    size_t line = 0;
+    if (st->code == CONICA_ERR_DEGENERATE || st->code == CONICA_ERR_NONFINITE) {
+        if (strncmp(st->message, "point", 5) == 0)
+            line = conica_curve_line_of_point(buf, len, st->offset, 0);
+        else if (strncmp(st->message, "normal", 6) == 0)
+            line = conica_curve_line_of_point(buf, len, st->offset, 1);
+    }
+    if (line > 0) {
+        char where[1024];
+        snprintf(where, sizeof where, "%s:%zu", file, line);
+        return cli_error(PROG, where, "%s",
+                         st->message[0] ? st->message : conica_strerror(st->code));
+    }
+    return status_error(file, st);
+}
 
 static int load_points(const options *o, const char *name, const char *buf, size_t len,
                        conica_scad_profile *prof, stats *sx)
@@ -318,7 +376,7 @@ static int load_points(const options *o, const char *name, const char *buf, size
     conica_curve_free(&in);
     conica_curve_free(&sub);
     if (rc != CONICA_OK)
-        return status_error(name, &st);
+        return point_error(name, buf, len, &st);
     return 0;
 }
 
@@ -446,35 +504,43 @@ static int load_svg(const options *o, const char *name, const char *buf, size_t 
     size_t nids = 0;
     int result = 0;
 
-    if (conica_svg_doc_load(buf, len, NULL, &doc, &st) != CONICA_OK)
+    if (conica_svg_doc_load(buf, len, &o->limits, &doc, &st) != CONICA_OK)
         return status_error(name, &st);
     if (conica_svg_doc_viewport(doc, &vp, &st) != CONICA_OK) {
         conica_svg_doc_free(doc);
         return status_error(name, &st);
     }
-    /* Output units per user unit, from mm per user unit (the viewBox and
-     * width/height); without an absolute size a user unit is a CSS px. */
-    double mmx = vp.mm_per_unit_x, mmy = vp.mm_per_unit_y;
-    if (!(isfinite(mmx) && mmx > 0) || !(isfinite(mmy) && mmy > 0)) {
-        cli_warning(PROG, name, "the document's size is relative or missing: 1 user unit = 1 px");
-        mmx = mmy = MM_PER_INCH / PX_PER_INCH;
+    /* Output units per user unit: the root's width (height) in the output
+     * unit over the viewBox width (height); without a viewBox a user unit
+     * is a CSS px. Converted in one step (conica_svg_convert_length), so a
+     * px document written in px keeps its numbers exactly. */
+    const char *unit = o->unit == U_PX ? "px" : o->unit == U_IN ? "in" : "mm";
+    double sxu, syu;
+    if (vp.has_viewbox) {
+        sxu = vp.has_width ? conica_svg_convert_length(vp.width, vp.width_unit, unit) / vp.viewbox[2]
+                           : NAN;
+        syu = vp.has_height
+                  ? conica_svg_convert_length(vp.height, vp.height_unit, unit) / vp.viewbox[3]
+                  : NAN;
+    } else {
+        sxu = syu = conica_svg_convert_length(1.0, "px", unit);
     }
-    double per_mm = o->unit == U_PX ? PX_PER_INCH / MM_PER_INCH
-                    : o->unit == U_IN ? 1.0 / MM_PER_INCH
-                                      : 1.0;
-    double sxu = mmx * per_mm, syu = mmy * per_mm;
+    if (!(isfinite(sxu) && sxu > 0) || !(isfinite(syu) && syu > 0)) {
+        cli_warning(PROG, name, "the document's size is relative or missing: 1 user unit = 1 px");
+        sxu = syu = conica_svg_convert_length(1.0, "px", unit);
+    }
     /* y flipped about the viewBox (or the height): the drawing keeps its
      * place in the first quadrant, y up as in OpenSCAD. */
     double x0 = vp.has_viewbox ? vp.viewbox[0] : 0;
-    double ytop = vp.has_viewbox ? vp.viewbox[1] + vp.viewbox[3]
-                  : vp.has_height && isfinite(vp.height_mm) ? vp.height_mm / mmy
-                                                            : 0;
+    double hpx = vp.has_height ? conica_svg_convert_length(vp.height, vp.height_unit, "px") : NAN;
+    double ytop = vp.has_viewbox ? vp.viewbox[1] + vp.viewbox[3] : isfinite(hpx) ? hpx : 0;
     double tol_user = o->tolerance / fmax(sxu, syu);
 
     conica_svg_settings set = conica_svg_defaults();
     set.convert_shapes = 1;
     set.warn = svg_warn;
     set.warn_ctx = (void *)name;
+    set.limits = o->limits;
     set.limits.max_points = o->max_points * 16;
     if (o->flatten_only) {
         set.mode = CONICA_SVG_FLATTEN;
@@ -627,7 +693,8 @@ int main(int argc, char **argv)
     if ((rc = parse_args(argc, argv, &o, &exit_now)) != 0 || exit_now)
         return rc;
     clock_gettime(CLOCK_MONOTONIC, &t0);
-    if (cli_read_file(PROG, o.in, cli_max_input(PROG), &buf, &len) != 0)
+    if (cli_read_file(PROG, o.in, o.max_input_given ? o.limits.max_bytes : cli_max_input(PROG),
+                      &buf, &len) != 0)
         return CLI_EXIT_ERROR;
     name = strcmp(o.in, "-") == 0 ? "<stdin>" : o.in;
     kind k = detect(o.in, buf, len);
@@ -645,7 +712,6 @@ int main(int argc, char **argv)
         rc = load_spline(&o, name, buf, len, &prof, &sx);
     else
         rc = load_points(&o, name, buf, len, &prof, &sx);
-    free(buf);
     if (rc != 0)
         goto fail;
 
@@ -654,7 +720,15 @@ int main(int argc, char **argv)
         const conica_scad_group *g = viol.problem != CONICA_SCAD_OK
                                          ? &prof.groups[prof.contours[viol.contour_a].group]
                                          : NULL;
-        if (g && g->line)
+        /* with --flatten-only a point file's contour is its points, in order */
+        size_t pline = k == IN_POINTS && o.flatten_only &&
+                               (viol.problem == CONICA_SCAD_DUPLICATE_POINT ||
+                                viol.problem == CONICA_SCAD_NEGATIVE_X)
+                           ? conica_curve_line_of_point(buf, len, viol.segment_a, 0)
+                           : 0;
+        if (pline)
+            snprintf(where, sizeof where, "%s:%zu", name, pline);
+        else if (g && g->line)
             snprintf(where, sizeof where, "%s:%zu", name, g->line);
         else
             snprintf(where, sizeof where, "%s", name);
@@ -720,8 +794,10 @@ int main(int argc, char **argv)
     }
     conica_scad_layout_free(&lay);
     conica_scad_profile_free(&prof);
+    free(buf);
     return CLI_EXIT_OK;
 fail:
+    free(buf);
     conica_scad_layout_free(&lay);
     conica_scad_profile_free(&prof);
     return CLI_EXIT_ERROR;

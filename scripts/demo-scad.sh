@@ -44,6 +44,30 @@ if grep -q 'WARNING:' "$out/openscad-model.log"; then
 fi
 echo "  $out/model.scad (use <profile.scad> plus a boss) -> $out/model.stl"
 
+# The `use <profile.scad>` example of README.md ("Using the profile in a
+# model"), checked by OpenSCAD: it must evaluate without a warning.
+cat >"$out/use-example.scad" <<'EOF'
+use <profile.scad>
+bracket_extruded(height=5);                    // the plate
+translate([40, 30, 0]) difference() {          // a boss around the bore
+    cylinder(r=12, h=9, $fn=96);
+    translate([0, 0, -1]) cylinder(r=8, h=11, $fn=96);
+}
+linear_extrude(2, scale=0.9) bracket();        // or any 2D operation on bracket()
+translate([0, 80, 0]) rotate([90, 0, 0])       // revolved about the y axis (all x >= 0);
+    rotate_extrude(angle=90, $fn=90) bracket(); // $fn only sets the revolution's segments
+echo(len(bracket_points()));                   // the data is there for your own code
+EOF
+openscad -o "$out/use-example.csg" "$out/use-example.scad" >"$out/openscad-use.log" 2>&1 || {
+    cat "$out/openscad-use.log"
+    exit 1
+}
+if grep -q 'WARNING:' "$out/openscad-use.log"; then
+    cat "$out/openscad-use.log"
+    exit 1
+fi
+echo "  $out/use-example.scad (README's use <profile.scad> example) evaluates: $(grep '^ECHO' "$out/openscad-use.log")"
+
 # Shaded isometric view of the STL (flat shading, painter's algorithm).
 "$PY" - "$out/model.stl" "$out/model-view.svg" <<'EOF'
 import math, struct, sys

@@ -35,6 +35,7 @@
 #define CONICA_SVG_H
 
 #include <stddef.h>
+#include <stdio.h>
 
 #include "conica/common.h"
 
@@ -151,7 +152,11 @@ typedef struct conica_svg_doc conica_svg_doc;
  * @brief Parse an SVG document from memory, safely: no network
  *        (XML_PARSE_NONET), no external DTD, no entity substitution, no
  *        XInclude, libxml2's own size limits kept (no XML_PARSE_HUGE; the
- *        push parser lets large documents through); an entity declaration
+ *        push parser lets large documents through) unless lim->max_depth
+ *        exceeds libxml2's depth cap of 256 (then XML_PARSE_HUGE, which
+ *        also lifts libxml2's 10 MB cap on one token: the document size
+ *        cap still bounds it); depth and element caps are counted while
+ *        parsing, so the parse stops where one is crossed; an entity declaration
  *        that could expand (external or parameter entity: XXE; text with
  *        references or markup: billion laughs; text over 1 KB) makes the
  *        load fail with CONICA_ERR_UNSUPPORTED, short plain-text entities
@@ -183,6 +188,15 @@ CONICA_API void conica_svg_doc_free(conica_svg_doc *doc);
  */
 CONICA_API conica_code conica_svg_doc_save(const conica_svg_doc *doc, char **buf, size_t *len,
                                            conica_status *st);
+/**
+ * @brief As conica_svg_doc_save(), written to f as it is serialised (no
+ *        copy of the whole document in memory). On failure part of the
+ *        document may have been written: write to a temporary file.
+ * @return CONICA_OK, CONICA_ERR_ARG, CONICA_ERR_IO (a write error)
+ */
+CONICA_API conica_code conica_svg_doc_write(const conica_svg_doc *doc, FILE *f,
+                                            conica_status *st);
+
 /** @brief Free a buffer from conica_svg_doc_save(). Accepts NULL. */
 CONICA_API void conica_svg_buffer_free(char *buf);
 
@@ -203,6 +217,14 @@ typedef struct conica_svg_viewport {
      *  preserveAspectRatio is not applied. */
     double mm_per_unit_x, mm_per_unit_y;
 } conica_svg_viewport;
+
+/**
+ * @brief Convert a length between CSS absolute units ("" and "px", "mm",
+ *        "cm", "in", "pt", "pc", "Q"; 96 px per inch) through one exact
+ *        fraction: the same unit gives v unchanged, px to in is v / 96.
+ * @return the length in `to`, or NaN when either unit is relative or unknown
+ */
+CONICA_API double conica_svg_convert_length(double v, const char *from, const char *to);
 
 /** @brief Read the root element's width/height/viewBox. */
 CONICA_API conica_code conica_svg_doc_viewport(const conica_svg_doc *doc, conica_svg_viewport *out,
@@ -291,8 +313,9 @@ CONICA_API conica_code conica_svg_extract(const conica_svg_doc *doc, const conic
 typedef struct conica_svg_stats {
     size_t elements, subpaths;
     size_t in_vertices, out_points;
-    double io_seconds;        /**< CPU seconds parsing path data and writing attributes */
-    double geometry_seconds;  /**< CPU seconds in subdivision / plotting */
+    double io_seconds;        /**< CPU seconds walking the tree, parsing path data, writing attributes */
+    double geometry_seconds;  /**< CPU seconds from segments to polylines: corners, normals,
+                                   subdivision / plotting */
 } conica_svg_stats;
 
 /**
@@ -301,6 +324,8 @@ typedef struct conica_svg_stats {
  *        when s->convert_shapes) as polyline data with s->precision
  *        significant digits. Nothing else in the document changes. On
  *        failure the document is left unchanged.
+ * @param[out] stats optional counts; when given, the CPU clock is also read
+ *        (twice per processed element) to fill the seconds
  * @return as conica_svg_extract()
  */
 CONICA_API conica_code conica_svg_process(conica_svg_doc *doc, const conica_svg_settings *s,

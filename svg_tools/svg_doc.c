@@ -9,6 +9,7 @@
 #include <string.h>
 
 #include <libxml/parser.h>
+#include <libxml/parserInternals.h>
 #include <libxml/SAX2.h>
 #include <libxml/tree.h>
 #include <libxml/xmlsave.h>
@@ -28,6 +29,10 @@
 #define SVG_MAX_PLAIN_ATTR ((size_t)1 << 16)
 /* Longest XML declaration kept verbatim (longer ones are rewritten by libxml2). */
 #define SVG_MAX_DECL 255
+/* libxml2's caps on one token under XML_PARSE_HUGE (XML_MAX_HUGE_LENGTH in
+ * its parser.c, not in the 2.9 headers); without it XML_MAX_TEXT_LENGTH and
+ * XML_MAX_NAME_LENGTH (parserInternals.h) apply. */
+#define SVG_XML_HUGE_LENGTH 1000000000
 /* Bytes handed to libxml2's push parser at a time. */
 #define SVG_PARSE_CHUNK ((size_t)1 << 16)
 
@@ -65,9 +70,41 @@ conica_svg_settings conica_svg_defaults(void)
 /* ------------------------------------------------------------ load/save */
 
 typedef struct load_state {
-    int refused;
-    char why[160];
+    int refused;               /* an entity declaration was refused */
+    conica_code code;          /* CONICA_ERR_UNSUPPORTED (entity) or CONICA_ERR_LIMIT */
+    size_t line;
+    char why[200];
+    const conica_svg_limits *lim;
+    size_t depth, elements;    /* open elements, elements seen */
+    startElementNsSAX2Func start;
+    endElementNsSAX2Func end;
 } load_state;
+
+/* Stop the parse; line is where the problem is (read before stopping:
+ * xmlStopParser() resets the input). */
+static void refuse(xmlParserCtxtPtr ctxt, load_state *ls, conica_code code, size_t line)
+{
+    ls->refused = 1;
+    ls->code = code;
+    ls->line = line;
+    xmlStopParser(ctxt);
+}
+
+/* Line of the start tag being reported: the parser stands at its end, and
+ * a start tag holds no other '<' (not even in attribute values), so the
+ * newlines back to the last '<' are the tag's own. */
+static size_t start_tag_line(xmlParserCtxtPtr ctxt)
+{
+    size_t line = (size_t)xmlSAX2GetLineNumber(ctxt);
+    const xmlChar *p, *base;
+    if (!ctxt->input || !ctxt->input->cur || !ctxt->input->base)
+        return line;
+    base = ctxt->input->base;
+    for (p = ctxt->input->cur; p > base && p[-1] != '<'; p--)
+        if (p[-1] == '\n' && line > 1)
+            line--;
+    return line;
+}
 
 static void entity_decl(void *ctx, const xmlChar *name, int type, const xmlChar *publicId,
                         const xmlChar *systemId, xmlChar *content)
@@ -75,6 +112,8 @@ static void entity_decl(void *ctx, const xmlChar *name, int type, const xmlChar 
     xmlParserCtxtPtr ctxt = ctx;
     load_state *ls = ctxt->_private;
     const char *why = NULL;
+    if (ls->refused)
+        return;
     if (type != XML_INTERNAL_GENERAL_ENTITY || publicId || systemId)
         why = "external or parameter entity (XXE)";
     else if (!content || strlen((const char *)content) > SVG_MAX_ENTITY_TEXT)
@@ -83,12 +122,50 @@ static void entity_decl(void *ctx, const xmlChar *name, int type, const xmlChar 
              strchr((const char *)content, '<'))
         why = "entity refers to other entities or markup (entity expansion attack)";
     if (why) {
-        ls->refused = 1;
         snprintf(ls->why, sizeof ls->why, "entity '%s' refused: %s", (const char *)name, why);
-        xmlStopParser(ctxt);
+        refuse(ctxt, ls, CONICA_ERR_UNSUPPORTED, (size_t)xmlSAX2GetLineNumber(ctxt));
         return;
     }
     xmlSAX2EntityDecl(ctx, name, type, publicId, systemId, content);
+}
+
+/* Depth and element caps, counted as the parser goes: a document over a
+ * cap stops at the element that crosses it, before the rest is built (so
+ * memory stays proportional to the caps, not to the input). */
+static void start_element(void *ctx, const xmlChar *localname, const xmlChar *prefix,
+                          const xmlChar *URI, int nb_namespaces, const xmlChar **namespaces,
+                          int nb_attributes, int nb_defaulted, const xmlChar **attributes)
+{
+    xmlParserCtxtPtr ctxt = ctx;
+    load_state *ls = ctxt->_private;
+    if (ls->refused)
+        return;
+    ls->depth++;
+    if (++ls->elements > ls->lim->max_elements) {
+        snprintf(ls->why, sizeof ls->why, "more than %zu elements (--max-elements)",
+                 ls->lim->max_elements);
+        refuse(ctxt, ls, CONICA_ERR_LIMIT, start_tag_line(ctxt));
+        return;
+    }
+    if (ls->depth > ls->lim->max_depth) {
+        snprintf(ls->why, sizeof ls->why, "elements nested deeper than %zu (--max-depth)",
+                 ls->lim->max_depth);
+        refuse(ctxt, ls, CONICA_ERR_LIMIT, start_tag_line(ctxt));
+        return;
+    }
+    ls->start(ctx, localname, prefix, URI, nb_namespaces, namespaces, nb_attributes,
+              nb_defaulted, attributes);
+}
+
+static void end_element(void *ctx, const xmlChar *localname, const xmlChar *prefix,
+                        const xmlChar *URI)
+{
+    xmlParserCtxtPtr ctxt = ctx;
+    load_state *ls = ctxt->_private;
+    if (ls->refused)
+        return;
+    ls->depth--;
+    ls->end(ctx, localname, prefix, URI);
 }
 
 static void trim_newline(char *s)
@@ -126,6 +203,23 @@ static xmlNodePtr next_element(xmlNodePtr n, xmlNodePtr root, size_t *depth)
     }
 }
 
+/* libxml2's message for an error, made to say what was hit where libxml2
+ * only names its internals. */
+static void explain_xml_error(const char *msg, int huge, char *out, size_t cap)
+{
+    if (strstr(msg, "Huge input lookup") || strstr(msg, "AttValue length too long") ||
+        strstr(msg, "huge text node") || strstr(msg, "Text node too long"))
+        snprintf(out, cap,
+                 "XML: an attribute value, text node or comment is longer than libxml2's "
+                 "limit of %d bytes (libxml2: %s)",
+                 huge ? SVG_XML_HUGE_LENGTH : XML_MAX_TEXT_LENGTH, msg);
+    else if (strstr(msg, "Name too long") || strstr(msg, "NCName too long"))
+        snprintf(out, cap, "XML: a name is longer than libxml2's limit of %d bytes (libxml2: %s)",
+                 huge ? SVG_XML_HUGE_LENGTH : XML_MAX_NAME_LENGTH, msg);
+    else
+        snprintf(out, cap, "XML: %s", msg);
+}
+
 conica_code conica_svg_doc_load(const char *buf, size_t len, const conica_svg_limits *lim,
                                 conica_svg_doc **out, conica_status *st)
 {
@@ -134,9 +228,10 @@ conica_code conica_svg_doc_load(const char *buf, size_t len, const conica_svg_li
     xmlDocPtr xml;
     load_state ls;
     conica_svg_doc *doc;
-    xmlNodePtr n, root;
-    size_t depth = 1, count = 0, i;
+    xmlNodePtr root;
+    size_t i;
     int opts = XML_PARSE_NONET | XML_PARSE_NOERROR | XML_PARSE_NOWARNING | XML_PARSE_BIG_LINES;
+    int huge;
 
     if ((!buf && len) || !out)
         return conica__fail(st, CONICA_ERR_ARG, 0, 0, "conica_svg_doc_load: NULL argument");
@@ -148,9 +243,18 @@ conica_code conica_svg_doc_load(const char *buf, size_t len, const conica_svg_li
                                 lim->max_bytes);
     if (len > (size_t)0x7fffffff)
         return conica__fail(st, CONICA_ERR_LIMIT, 0, 0, "document larger than 2 GiB");
+    /* libxml2 refuses nesting deeper than xmlParserMaxDepth (256) unless
+     * XML_PARSE_HUGE, which also lifts its caps on one text node, attribute
+     * value or name (10 MB, 50 kB) to 1 GB. A depth cap above 256 needs it;
+     * what it would let through stays bounded: the document by
+     * lim->max_bytes, depth and elements by our own counts in
+     * start_element(), entities by entity_decl() (none that can expand,
+     * and none substituted), path data by lim->max_path_bytes. */
+    huge = lim->max_depth > (size_t)xmlParserMaxDepth;
+    if (huge)
+        opts |= XML_PARSE_HUGE;
     /* The push parser, fed in chunks: it lets go of consumed input, so
-     * large documents parse without XML_PARSE_HUGE (whose absence keeps
-     * libxml2's own caps on names, text nodes and entity amplification). */
+     * large documents parse without XML_PARSE_HUGE. */
     {
         size_t first = len < 4 ? len : 4, off;
         ctxt = xmlCreatePushParserCtxt(NULL, NULL, buf, (int)first, NULL);
@@ -158,8 +262,13 @@ conica_code conica_svg_doc_load(const char *buf, size_t len, const conica_svg_li
             return conica__fail(st, CONICA_ERR_NOMEM, 0, 0, "out of memory");
         xmlCtxtUseOptions(ctxt, opts);
         memset(&ls, 0, sizeof ls);
+        ls.lim = lim;
         ctxt->_private = &ls;
         ctxt->sax->entityDecl = entity_decl;
+        ls.start = ctxt->sax->startElementNs;
+        ls.end = ctxt->sax->endElementNs;
+        ctxt->sax->startElementNs = start_element;
+        ctxt->sax->endElementNs = end_element;
         for (off = first; !ls.refused;) {
             size_t k = len - off < SVG_PARSE_CHUNK ? len - off : SVG_PARSE_CHUNK;
             int last = off + k == len;
@@ -171,20 +280,42 @@ conica_code conica_svg_doc_load(const char *buf, size_t len, const conica_svg_li
         ctxt->myDoc = NULL;
     }
     if (ls.refused) {
-        size_t line = (size_t)xmlSAX2GetLineNumber(ctxt);
         xmlFreeDoc(xml);
         xmlFreeParserCtxt(ctxt);
-        return conica__fail(st, CONICA_ERR_UNSUPPORTED, line, 0, "%s", ls.why);
+        return conica__fail(st, ls.code, ls.line, 0, "%s", ls.why);
     }
     if (!xml || !ctxt->wellFormed) {
         const xmlError *e = xmlCtxtGetLastError(ctxt);
-        char msg[200];
+        char msg[200], text[400];
         size_t line = e ? (size_t)(e->line > 0 ? e->line : 0) : 0;
+        int no_root = !xml || !xmlDocGetRootElement(xml);
         snprintf(msg, sizeof msg, "%s", e && e->message ? e->message : "not well-formed XML");
         trim_newline(msg);
+        if (no_root) {
+            /* libxml2 says "Extra content at the end of the document" for
+             * an empty file and "Document is empty" for text: say what is
+             * wrong for an SVG reader */
+            size_t k = len >= 3 && (unsigned char)buf[0] == 0xEF &&
+                               (unsigned char)buf[1] == 0xBB && (unsigned char)buf[2] == 0xBF
+                           ? 3
+                           : 0;
+            while (k < len && (buf[k] == ' ' || buf[k] == '\t' || buf[k] == '\r' ||
+                               buf[k] == '\n'))
+                k++;
+            if (k == len)
+                snprintf(text, sizeof text, "XML: empty document: no <svg> element");
+            else if (buf[k] != '<')
+                snprintf(text, sizeof text,
+                         "XML: %s: the file does not start with '<', it is not XML "
+                         "(no <svg> element)", msg);
+            else
+                snprintf(text, sizeof text, "XML: no <svg> element (%s)", msg);
+        } else {
+            explain_xml_error(msg, huge, text, sizeof text);
+        }
         xmlFreeDoc(xml);
         xmlFreeParserCtxt(ctxt);
-        return conica__fail(st, CONICA_ERR_PARSE, line, 0, "XML: %s", msg);
+        return conica__fail(st, CONICA_ERR_PARSE, line, 0, "%s", text);
     }
     xmlFreeParserCtxt(ctxt);
     root = xmlDocGetRootElement(xml);
@@ -192,23 +323,6 @@ conica_code conica_svg_doc_load(const char *buf, size_t len, const conica_svg_li
         size_t line = root ? (size_t)xmlGetLineNo(root) : 1;
         xmlFreeDoc(xml);
         return conica__fail(st, CONICA_ERR_PARSE, line, 0, "the root element is not <svg>");
-    }
-    /* Caps on nesting and element count (walk without recursion). */
-    n = root;
-    while (n) {
-        if (++count > lim->max_elements) {
-            size_t line = (size_t)xmlGetLineNo(n);
-            xmlFreeDoc(xml);
-            return conica__fail(st, CONICA_ERR_LIMIT, line, 0,
-                                    "more than %zu elements (--max-elements)", lim->max_elements);
-        }
-        if (depth > lim->max_depth) {
-            size_t line = (size_t)xmlGetLineNo(n);
-            xmlFreeDoc(xml);
-            return conica__fail(st, CONICA_ERR_LIMIT, line, 0,
-                                    "elements nested deeper than %zu (--max-depth)", lim->max_depth);
-        }
-        n = next_element(n, root, &depth);
     }
     doc = malloc(sizeof *doc);
     if (!doc) {
@@ -244,61 +358,116 @@ void conica_svg_doc_free(conica_svg_doc *doc)
     free(doc);
 }
 
+/* Where the serialiser writes: straight into our buffer (no intermediate
+ * xmlBuffer and no copy afterwards). While `skip_decl`, libxml2's own XML
+ * declaration is dropped up to its "?>": the input's is already there. */
+typedef struct save_sink {
+    conica_svg__buf b; /* into memory, or */
+    FILE *f;           /* into a file */
+    int failed;        /* out of memory or a write error */
+    int skip_decl;
+    char last;     /* previous byte while skipping ("?>" may straddle two writes) */
+    char last_out; /* last byte written (the file ends with a newline) */
+} save_sink;
+
+static void sink_put(save_sink *k, const char *data, size_t n)
+{
+    if (!n || k->failed)
+        return;
+    if (k->f) {
+        if (fwrite(data, 1, n, k->f) != n)
+            k->failed = 1;
+    } else {
+        conica_svg__buf_put(&k->b, data, n);
+        k->failed = k->b.oom;
+    }
+    k->last_out = data[n - 1];
+}
+
+static int save_write(void *ctx, const char *data, int len)
+{
+    save_sink *k = ctx;
+    size_t i = 0, n = len > 0 ? (size_t)len : 0;
+    while (k->skip_decl && i < n) {
+        char c = data[i++];
+        if (k->last == '?' && c == '>')
+            k->skip_decl = 0;
+        k->last = c;
+    }
+    sink_put(k, data + i, n - i);
+    return k->failed ? -1 : len;
+}
+
+static int save_close(void *ctx)
+{
+    (void)ctx;
+    return 0;
+}
+
+/* Serialise into k (memory or file): the input's declaration, the tree,
+ * a final newline. */
+static conica_code save_to(const conica_svg_doc *doc, save_sink *k, conica_status *st)
+{
+    xmlSaveCtxtPtr sc;
+    int opts = doc->decl[0] ? 0 : XML_SAVE_NO_DECL;
+    long r;
+    /* the input's declaration verbatim in place of libxml2's */
+    sink_put(k, doc->decl, strlen(doc->decl));
+    k->skip_decl = doc->decl[0] != '\0';
+    /* no declared encoding means UTF-8: keep non-ASCII text as it was
+     * instead of turning it into character references */
+    sc = xmlSaveToIO(save_write, save_close, k,
+                     doc->xml->encoding ? (const char *)doc->xml->encoding : "UTF-8", opts);
+    if (!sc)
+        return conica__fail(st, CONICA_ERR_IO, 0, 0, "cannot serialise the document");
+    r = xmlSaveDoc(sc, doc->xml);
+    if (xmlSaveClose(sc) < 0 || r < 0 || k->failed) {
+        if (k->f && k->failed)
+            return conica__fail(st, CONICA_ERR_IO, 0, 0, "write error");
+        if (k->failed)
+            return conica__fail(st, CONICA_ERR_NOMEM, 0, 0, "out of memory");
+        return conica__fail(st, CONICA_ERR_IO, 0, 0, "cannot serialise the document");
+    }
+    /* end the file with a newline, as nearly every input does */
+    if (k->last_out != '\n')
+        sink_put(k, "\n", 1);
+    if (k->failed)
+        return conica__fail(st, k->f ? CONICA_ERR_IO : CONICA_ERR_NOMEM, 0, 0,
+                            k->f ? "write error" : "out of memory");
+    return CONICA_OK;
+}
+
 conica_code conica_svg_doc_save(const conica_svg_doc *doc, char **buf, size_t *len,
                                 conica_status *st)
 {
-    xmlBufferPtr xb;
-    xmlSaveCtxtPtr sc;
-    char *s;
-    size_t n;
-    size_t dl;
-    int opts = doc && doc->decl[0] ? 0 : XML_SAVE_NO_DECL;
+    save_sink k;
+    conica_code rc;
     if (!doc || !buf || !len)
         return conica__fail(st, CONICA_ERR_ARG, 0, 0, "conica_svg_doc_save: NULL argument");
-    xb = xmlBufferCreate();
-    if (!xb)
-        return conica__fail(st, CONICA_ERR_NOMEM, 0, 0, "out of memory");
-    /* no declared encoding means UTF-8: keep non-ASCII text as it was
-     * instead of turning it into character references */
-    sc = xmlSaveToBuffer(xb, doc->xml->encoding ? (const char *)doc->xml->encoding : "UTF-8",
-                         opts);
-    if (!sc) {
-        xmlBufferFree(xb);
-        return conica__fail(st, CONICA_ERR_IO, 0, 0, "cannot serialise the document");
+    memset(&k, 0, sizeof k);
+    rc = save_to(doc, &k, st);
+    if (rc != CONICA_OK) {
+        free(k.b.s);
+        return rc;
     }
-    if (xmlSaveDoc(sc, doc->xml) < 0) {
-        xmlSaveClose(sc);
-        xmlBufferFree(xb);
-        return conica__fail(st, CONICA_ERR_IO, 0, 0, "cannot serialise the document");
-    }
-    xmlSaveClose(sc);
-    {
-        /* replace libxml2's declaration line by the input's */
-        const char *body = (const char *)xmlBufferContent(xb);
-        size_t blen = (size_t)xmlBufferLength(xb), skip = 0;
-        dl = strlen(doc->decl);
-        if (dl && blen >= 5 && memcmp(body, "<?xml", 5) == 0) {
-            const char *e = strstr(body, "?>");
-            skip = e ? (size_t)(e + 2 - body) : 0;
-        } else {
-            dl = 0;
-        }
-        n = dl + blen - skip;
-        s = malloc(n + 2);
-        if (!s) {
-            xmlBufferFree(xb);
+    if (!k.b.s) { /* nothing was written: an empty string */
+        conica_svg__buf_put(&k.b, "", 0);
+        if (k.b.oom)
             return conica__fail(st, CONICA_ERR_NOMEM, 0, 0, "out of memory");
-        }
-        memcpy(s, doc->decl, dl);
-        memcpy(s + dl, body + skip, blen - skip);
     }
-    if (n && s[n - 1] != '\n') /* end the file with a newline, as nearly every input does */
-        s[n++] = '\n';
-    s[n] = '\0';
-    xmlBufferFree(xb);
-    *buf = s;
-    *len = n;
+    *buf = k.b.s;
+    *len = k.b.n;
     return CONICA_OK;
+}
+
+conica_code conica_svg_doc_write(const conica_svg_doc *doc, FILE *f, conica_status *st)
+{
+    save_sink k;
+    if (!doc || !f)
+        return conica__fail(st, CONICA_ERR_ARG, 0, 0, "conica_svg_doc_write: NULL argument");
+    memset(&k, 0, sizeof k);
+    k.f = f;
+    return save_to(doc, &k, st);
 }
 
 void conica_svg_buffer_free(char *buf)
@@ -338,6 +507,28 @@ static char *get_attr_cap(xmlNodePtr n, const char *name, size_t cap, int *too_l
     return (char *)xmlNodeListGetString(n->doc, a->children, 1);
 }
 
+/* As get_attr_cap(), without a copy in the common case of a value that
+ * is one text node (no entity reference): *owned is then NULL and the
+ * result points into the tree; otherwise *owned is the result (free it
+ * with xmlFree()). */
+static const char *get_attr_view(xmlNodePtr n, const char *name, size_t cap, int *too_long,
+                                 char **owned)
+{
+    xmlAttrPtr a = xmlHasNsProp(n, BAD_CAST name, NULL);
+    *owned = NULL;
+    *too_long = 0;
+    if (a && a->type == XML_ATTRIBUTE_NODE && a->children && !a->children->next &&
+        a->children->type == XML_TEXT_NODE && a->children->content) {
+        if (strlen((const char *)a->children->content) > cap) {
+            *too_long = 1;
+            return NULL;
+        }
+        return (const char *)a->children->content;
+    }
+    *owned = get_attr_cap(n, name, cap, too_long);
+    return *owned;
+}
+
 static char *get_attr(xmlNodePtr n, const char *name)
 {
     return get_attr_cap(n, name, SVG_MAX_PLAIN_ATTR, NULL);
@@ -370,23 +561,61 @@ static int parse_length(const char *s, double *v, char unit[4])
     return *s == '\0';
 }
 
+/* CSS absolute units as exact fractions of a millimetre (CSS Values 4,
+ * section 6.2: 1in = 2.54cm = 25.4mm = 96px = 72pt = 6pc, 1Q = 0.25mm). */
+typedef struct css_unit {
+    const char *name;
+    long num, den; /* 1 unit = num/den mm */
+} css_unit;
+
+static const css_unit *find_unit(const char *u)
+{
+    static const css_unit units[] = {
+        {"", 254, 960},  {"px", 254, 960}, {"mm", 1, 1},    {"cm", 10, 1},
+        {"in", 254, 10}, {"pt", 254, 720}, {"pc", 254, 60}, {"Q", 1, 4},
+    };
+    size_t i;
+    for (i = 0; u && i < sizeof units / sizeof units[0]; i++)
+        if (!strcmp(u, units[i].name))
+            return &units[i];
+    return NULL;
+}
+
+static long gcd_long(long a, long b)
+{
+    while (b) {
+        long t = a % b;
+        a = b;
+        b = t;
+    }
+    return a;
+}
+
+double conica_svg_convert_length(double v, const char *from, const char *to)
+{
+    const css_unit *f = find_unit(from), *t = find_unit(to);
+    long num, den, g;
+    if (!f || !t)
+        return NAN;
+    /* one exact fraction, reduced: the same unit (px and "") is the
+     * identity, px -> in is v / 96, with at most two roundings otherwise */
+    num = f->num * t->den;
+    den = f->den * t->num;
+    g = gcd_long(num, den);
+    num /= g;
+    den /= g;
+    if (num == den)
+        return v;
+    if (num == 1)
+        return v / (double)den;
+    if (den == 1)
+        return v * (double)num;
+    return v * (double)num / (double)den;
+}
+
 static double unit_to_mm(double v, const char *u)
 {
-    if (!*u || !strcmp(u, "px"))
-        return v * 25.4 / 96.0;
-    if (!strcmp(u, "mm"))
-        return v;
-    if (!strcmp(u, "cm"))
-        return 10.0 * v;
-    if (!strcmp(u, "in"))
-        return 25.4 * v;
-    if (!strcmp(u, "pt"))
-        return v * 25.4 / 72.0;
-    if (!strcmp(u, "pc"))
-        return v * 25.4 / 6.0;
-    if (!strcmp(u, "Q"))
-        return 0.25 * v;
-    return NAN;
+    return conica_svg_convert_length(v, u, "mm");
 }
 
 conica_code conica_svg_doc_viewport(const conica_svg_doc *doc, conica_svg_viewport *out,
@@ -668,18 +897,95 @@ typedef struct item {
     int kind;   /* 0 path, 1 polygon, 2 polyline, 3 shape converted to a path */
 } item;
 
+/* The --select list, sorted for binary search, with a flag per entry set
+ * when some element of the document carries that id. */
+typedef struct selection {
+    const char **ids; /* sorted, NULL entries dropped */
+    unsigned char *found;
+    size_t n;
+} selection;
+
+static int cmp_id(const void *a, const void *b)
+{
+    return strcmp(*(const char *const *)a, *(const char *const *)b);
+}
+
+/* 0 on success, -1 out of memory. An empty selection (s->select NULL)
+ * selects everything. */
+static int selection_init(selection *sel, const conica_svg_settings *s)
+{
+    size_t i;
+    memset(sel, 0, sizeof *sel);
+    if (!s->select || !s->nselect)
+        return 0;
+    sel->ids = malloc(s->nselect * sizeof *sel->ids);
+    sel->found = calloc(s->nselect, 1);
+    if (!sel->ids || !sel->found) {
+        free(sel->ids);
+        free(sel->found);
+        memset(sel, 0, sizeof *sel);
+        return -1;
+    }
+    for (i = 0; i < s->nselect; i++)
+        if (s->select[i])
+            sel->ids[sel->n++] = s->select[i];
+    qsort(sel->ids, sel->n, sizeof *sel->ids, cmp_id);
+    return 0;
+}
+
+static void selection_free(selection *sel)
+{
+    free(sel->ids);
+    free(sel->found);
+}
+
+/* Index of id in the sorted list, or -1. */
+static long selection_find(const selection *sel, const char *id)
+{
+    size_t lo = 0, hi = sel->n;
+    while (lo < hi) {
+        size_t mid = lo + (hi - lo) / 2;
+        int c = strcmp(id, sel->ids[mid]);
+        if (c == 0)
+            return (long)mid;
+        if (c < 0)
+            hi = mid;
+        else
+            lo = mid + 1;
+    }
+    return -1;
+}
+
+/* Marks the id of element n as present in the document. */
+static void selection_mark(selection *sel, xmlNodePtr n)
+{
+    char *id;
+    long k;
+    if (!sel->n)
+        return;
+    id = get_attr(n, "id");
+    k = id ? selection_find(sel, id) : -1;
+    if (k >= 0) {
+        /* equal ids in the list share one flag: mark the whole run */
+        size_t a = (size_t)k, b = (size_t)k;
+        while (a > 0 && !strcmp(sel->ids[a - 1], id))
+            a--;
+        while (b + 1 < sel->n && !strcmp(sel->ids[b + 1], id))
+            b++;
+        memset(sel->found + a, 1, b - a + 1);
+    }
+    xmlFree(id);
+}
+
 /* Selected: the element's id or the id of an ancestor (a group or layer)
  * is in the list. */
-static int selected(const conica_svg_settings *s, xmlNodePtr n)
+static int selected(const conica_svg_settings *s, const selection *sel, xmlNodePtr n)
 {
     if (!s->select)
         return 1;
     for (; n && n->type == XML_ELEMENT_NODE; n = n->parent) {
-        size_t i;
-        int hit = 0;
         char *id = get_attr(n, "id");
-        for (i = 0; id && i < s->nselect && !hit; i++)
-            hit = s->select[i] && !strcmp(s->select[i], id);
+        int hit = id && selection_find(sel, id) >= 0;
         xmlFree(id);
         if (hit)
             return 1;
@@ -737,7 +1043,8 @@ static int element_path(const conica_svg_settings *s, xmlNodePtr n, int kind, co
     *rc = CONICA_OK;
     if (kind == 0) {
         int too_long;
-        char *d = get_attr_cap(n, "d", s->limits.max_path_bytes, &too_long);
+        char *owned;
+        const char *d = get_attr_view(n, "d", s->limits.max_path_bytes, &too_long, &owned);
         size_t len;
         if (too_long) {
             *rc = conica__fail(st, CONICA_ERR_LIMIT, line, 0,
@@ -748,8 +1055,8 @@ static int element_path(const conica_svg_settings *s, xmlNodePtr n, int kind, co
         if (!d)
             return 0;
         len = strlen(d);
-        *rc = conica_svg_path_parse(d, len, 0, p, st);
-        xmlFree(d);
+        *rc = conica_svg__path_parse_into(d, len, 0, p, st);
+        xmlFree(owned);
         if (*rc != CONICA_OK) {
             if (st)
                 st->line = line;
@@ -762,7 +1069,8 @@ static int element_path(const conica_svg_settings *s, xmlNodePtr n, int kind, co
     }
     if (kind == 1 || kind == 2) {
         int too_long;
-        char *a = get_attr_cap(n, "points", s->limits.max_path_bytes, &too_long);
+        char *owned;
+        const char *a = get_attr_view(n, "points", s->limits.max_path_bytes, &too_long, &owned);
         double *xy = NULL;
         size_t np = 0, bad = 0, len, i;
         pbuild b;
@@ -776,7 +1084,7 @@ static int element_path(const conica_svg_settings *s, xmlNodePtr n, int kind, co
             return 0;
         len = strlen(a);
         *rc = conica_svg_points_parse(a, len, 0, &xy, &np, &bad, st);
-        xmlFree(a);
+        xmlFree(owned);
         if (*rc != CONICA_OK)
             return 0;
         if (bad != (size_t)-1)
@@ -814,18 +1122,28 @@ static int element_path(const conica_svg_settings *s, xmlNodePtr n, int kind, co
 }
 
 /* Walk the selected elements, turning each into polylines in *shapes and
- * remembering the node in *items (parallel to shapes->elements). */
+ * remembering the node in *items (parallel to shapes->elements). With
+ * `timing`, stats->io_seconds gets the walk and the path-data parsing and
+ * stats->geometry_seconds the segments-to-polylines step (corners,
+ * normals, subdivision or plotting), read from the CPU clock twice per
+ * processed element: that clock is a system call (about 1.4 us here),
+ * too slow to read per subpath or per curve. */
 static conica_code collect(const conica_svg_doc *doc, const conica_svg_settings *s,
                            conica_svg_shapes *shapes, item **items, conica_svg_stats *stats,
-                           conica_status *st)
+                           int timing, conica_status *st)
 {
     xmlNodePtr root = xmlDocGetRootElement(doc->xml), n = root;
     size_t budget = s->limits.max_points, cap = 0, depth = 1;
+    double mark = timing ? conica_svg__now() : 0.0;
     conica_code rc = CONICA_OK;
     conica_svg_path p;
+    selection sel;
     conica_svg_path_init(&p);
     *items = NULL;
+    if (selection_init(&sel, s) != 0)
+        return conica__fail(st, CONICA_ERR_NOMEM, 0, 0, "out of memory");
     while (n && rc == CONICA_OK) {
+        selection_mark(&sel, n);
         if (is_svg_element(n)) {
             const char *tag = (const char *)n->name;
             int kind = -1;
@@ -838,9 +1156,8 @@ static conica_code collect(const conica_svg_doc *doc, const conica_svg_settings 
             else if (s->convert_shapes && (!strcmp(tag, "rect") || !strcmp(tag, "circle") ||
                                            !strcmp(tag, "ellipse") || !strcmp(tag, "line")))
                 kind = 3;
-            if (kind >= 0 && selected(s, n)) {
+            if (kind >= 0 && selected(s, &sel, n)) {
                 char what[96];
-                double t0 = conica_svg__now(), geo = 0.0;
                 describe(n, what, sizeof what);
                 p.n = 0;
                 p.has_error = 0;
@@ -872,21 +1189,44 @@ static conica_code collect(const conica_svg_doc *doc, const conica_svg_settings 
                     (*items)[idx].node = n;
                     (*items)[idx].kind = kind;
                     shapes->nelements++;
+                    if (timing) {
+                        double t = conica_svg__now();
+                        stats->io_seconds += t - mark;
+                        mark = t;
+                    }
                     rc = conica_svg__path_polylines(&p, s, what, el->line, idx, kind == 1, &budget,
-                                                    &stats->in_vertices, &geo, shapes, st);
+                                                    &stats->in_vertices, shapes, st);
+                    if (timing) {
+                        double t = conica_svg__now();
+                        stats->geometry_seconds += t - mark;
+                        mark = t;
+                    }
                     if (rc != CONICA_OK && st)
                         st->line = el->line;
                     el->nsubpaths = shapes->nsubpaths - first;
                     stats->elements++;
                     stats->subpaths += el->nsubpaths;
                 }
-                stats->geometry_seconds += geo;
-                stats->io_seconds += conica_svg__now() - t0 - geo;
             }
         }
         n = next_element(n, root, &depth);
     }
+    /* an id that names no element is most likely a typo: say so (the run
+     * itself succeeds, as a selection that matches nothing did before) */
+    if (rc == CONICA_OK) {
+        size_t i;
+        for (i = 0; i < s->nselect && sel.n; i++) {
+            long k = s->select[i] ? selection_find(&sel, s->select[i]) : -1;
+            if (k >= 0 && !sel.found[k]) {
+                warn(s, 0, "--select: no element has id '%.200s'", s->select[i]);
+                sel.found[k] = 1; /* once per id, in the order given */
+            }
+        }
+    }
+    selection_free(&sel);
     conica_svg_path_free(&p);
+    if (timing)
+        stats->io_seconds += conica_svg__now() - mark;
     {
         size_t i;
         stats->out_points = 0;
@@ -931,7 +1271,7 @@ conica_code conica_svg_extract(const conica_svg_doc *doc, const conica_svg_setti
     memset(&stats, 0, sizeof stats);
     rc = conica_svg_doc_viewport(doc, &sh.viewport, st);
     if (rc == CONICA_OK)
-        rc = collect(doc, s, &sh, &items, &stats, st);
+        rc = collect(doc, s, &sh, &items, &stats, 0, st);
     free(items);
     if (rc != CONICA_OK) {
         conica_svg_shapes_free(&sh);
@@ -963,15 +1303,44 @@ static char *format_points(const conica_svg_subpath *sp, size_t nsp, int precisi
     return b.s;
 }
 
+/* A text node whose content is `text`, taken over when libxml2 frees with
+ * free() (its default: no copy of what may be 100 MB), else copied (text is
+ * then freed here). NULL when out of memory (text freed). */
+static xmlNodePtr text_node(xmlDocPtr doc, char *text)
+{
+    xmlNodePtr t;
+    if (xmlFree != (xmlFreeFunc)free) {
+        t = xmlNewDocText(doc, BAD_CAST text);
+        free(text);
+        return t;
+    }
+    t = xmlNewDocText(doc, NULL);
+    if (!t) {
+        free(text);
+        return NULL;
+    }
+    t->content = BAD_CAST text;
+    return t;
+}
+
+/* The element's own attribute `name` (not a default declared in a DTD,
+ * which xmlHasNsProp() also returns), or NULL. */
+static xmlAttrPtr own_attr(xmlNodePtr n, const char *name)
+{
+    xmlAttrPtr a = xmlHasNsProp(n, BAD_CAST name, NULL);
+    return a && a->type == XML_ATTRIBUTE_NODE ? a : NULL;
+}
+
 conica_code conica_svg_process(conica_svg_doc *doc, const conica_svg_settings *s,
                                conica_svg_stats *stats, conica_status *st)
 {
     conica_svg_shapes sh;
     conica_svg_stats local;
     item *items = NULL;
-    char **text = NULL;
+    xmlNodePtr *texts = NULL; /* the new attribute values, one text node per element */
+    xmlAttrPtr *fresh = NULL; /* new attributes (a shape's d, a missing d/points) */
     conica_code rc;
-    size_t i;
+    size_t i, k;
     double t0;
     if (!doc || !s)
         return conica__fail(st, CONICA_ERR_ARG, 0, 0, "conica_svg_process: NULL argument");
@@ -979,52 +1348,88 @@ conica_code conica_svg_process(conica_svg_doc *doc, const conica_svg_settings *s
         return rc;
     conica_svg_shapes_init(&sh);
     memset(&local, 0, sizeof local);
-    rc = collect(doc, s, &sh, &items, &local, st);
-    t0 = conica_svg__now();
-    /* Format everything first: the document changes only when all succeeded. */
+    rc = collect(doc, s, &sh, &items, &local, stats != NULL, st);
+    t0 = stats ? conica_svg__now() : 0.0;
+    /* Everything that allocates comes first: the document changes only when
+     * all of it succeeded. */
     if (rc == CONICA_OK && sh.nelements) {
-        text = calloc(sh.nelements, sizeof *text);
-        if (!text)
+        texts = calloc(sh.nelements, sizeof *texts);
+        fresh = calloc(sh.nelements, sizeof *fresh);
+        if (!texts || !fresh)
             rc = conica__fail(st, CONICA_ERR_NOMEM, 0, 0, "out of memory");
     }
     for (i = 0; rc == CONICA_OK && i < sh.nelements; i++) {
         const conica_svg_element *el = &sh.elements[i];
-        const conica_svg_subpath *sp = sh.subpaths + el->first_subpath;
+        conica_svg_subpath *sp = sh.subpaths + el->first_subpath;
+        const char *name = items[i].kind == 0 || items[i].kind == 3 ? "d" : "points";
+        char *text = NULL;
         size_t len;
         if (items[i].kind == 1 || items[i].kind == 2) {
-            text[i] = format_points(sp, el->nsubpaths, s->precision);
-            if (!text[i])
+            text = format_points(sp, el->nsubpaths, s->precision);
+            if (!text)
                 rc = conica__fail(st, CONICA_ERR_NOMEM, 0, 0, "out of memory");
         } else {
-            rc = conica_svg_format_path(sp, el->nsubpaths, s->precision, &text[i], &len, st);
+            rc = conica_svg_format_path(sp, el->nsubpaths, s->precision, &text, &len, st);
         }
-    }
-    if (rc == CONICA_OK) {
-        for (i = 0; i < sh.nelements; i++) {
-            xmlNodePtr n = items[i].node;
-            if (items[i].kind == 3) {
-                static const char *geo[] = {"x", "y", "width", "height", "rx", "ry", "cx",
-                                            "cy", "r", "x1", "y1", "x2", "y2"};
-                size_t k;
-                for (k = 0; k < sizeof geo / sizeof geo[0]; k++) {
-                    xmlAttrPtr a = xmlHasNsProp(n, BAD_CAST geo[k], NULL);
-                    if (a)
-                        xmlRemoveProp(a);
-                }
-                xmlNodeSetName(n, BAD_CAST "path");
-            }
-            if (!xmlSetProp(n, BAD_CAST(items[i].kind == 0 || items[i].kind == 3 ? "d" : "points"),
-                            BAD_CAST text[i])) {
+        /* the polylines are written: let them go now (peak memory) */
+        for (k = 0; k < el->nsubpaths; k++) {
+            free(sp[k].xy);
+            sp[k].xy = NULL;
+        }
+        if (rc != CONICA_OK)
+            break;
+        texts[i] = text_node(doc->xml, text);
+        if (!texts[i]) {
+            rc = conica__fail(st, CONICA_ERR_NOMEM, 0, 0, "out of memory");
+            break;
+        }
+        if (items[i].kind == 3 || !own_attr(items[i].node, name)) {
+            fresh[i] = xmlNewDocProp(doc->xml, BAD_CAST name, NULL);
+            if (!fresh[i]) {
                 rc = conica__fail(st, CONICA_ERR_NOMEM, 0, 0, "out of memory");
                 break;
             }
         }
     }
-    local.io_seconds += conica_svg__now() - t0;
-    if (text)
-        for (i = 0; i < sh.nelements; i++)
-            free(text[i]);
-    free(text);
+    if (rc == CONICA_OK) {
+        for (i = 0; i < sh.nelements; i++) {
+            xmlNodePtr n = items[i].node;
+            xmlAttrPtr a;
+            if (items[i].kind == 3) {
+                static const char *geo[] = {"x", "y", "width", "height", "rx", "ry", "cx",
+                                            "cy", "r", "x1", "y1", "x2", "y2"};
+                for (k = 0; k < sizeof geo / sizeof geo[0]; k++) {
+                    a = xmlHasNsProp(n, BAD_CAST geo[k], NULL);
+                    if (a)
+                        xmlRemoveProp(a);
+                }
+                xmlNodeSetName(n, BAD_CAST "path");
+            }
+            if (fresh[i]) {
+                /* appended as xmlSetProp() does (a shape's stray d goes) */
+                a = (xmlAttrPtr)xmlAddChild(n, (xmlNodePtr)fresh[i]);
+                if (!a)
+                    continue; /* not reached: n is an element (texts[i] freed below) */
+                fresh[i] = NULL;
+            } else {
+                a = own_attr(n, items[i].kind == 0 ? "d" : "points");
+            }
+            /* the value replaced where the attribute stands */
+            xmlFreeNodeList(a->children);
+            a->children = a->last = texts[i];
+            texts[i]->parent = (xmlNodePtr)a;
+            texts[i] = NULL;
+        }
+    }
+    if (stats)
+        local.io_seconds += conica_svg__now() - t0;
+    for (i = 0; texts && i < sh.nelements; i++)
+        xmlFreeNode(texts[i]);
+    for (i = 0; fresh && i < sh.nelements; i++)
+        if (fresh[i])
+            xmlFreeProp(fresh[i]);
+    free(texts);
+    free(fresh);
     free(items);
     conica_svg_shapes_free(&sh);
     if (rc == CONICA_OK && stats)

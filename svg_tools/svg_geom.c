@@ -69,7 +69,6 @@ typedef struct sub {
 typedef struct geom_ctx {
     const conica_svg_settings *s;
     size_t budget;   /* output points left */
-    double geo_seconds;
     const char *what; /* element name for messages */
     size_t line;      /* its XML line (0 unknown) */
     conica_status *st;
@@ -337,8 +336,16 @@ static int split_inflections(sub *b, double corner)
 
 /* ------------------------------------------------------------ output */
 
-static conica_code push_subpath(conica_svg_shapes *out, size_t element, int closed,
-                                const double *xy, size_t n, conica_status *st)
+/* Growable point list. */
+typedef struct pts {
+    double *xy;
+    size_t n, cap;
+} pts;
+
+/* Append a subpath to *out, taking over o's array (o is left empty). A
+ * list more than an eighth larger than its points is trimmed first. */
+static conica_code push_subpath(conica_svg_shapes *out, size_t element, int closed, pts *o,
+                                conica_status *st)
 {
     conica_svg_subpath *sp;
     if ((out->nsubpaths & (out->nsubpaths - 1)) == 0) { /* grow at powers of two */
@@ -348,37 +355,48 @@ static conica_code push_subpath(conica_svg_shapes *out, size_t element, int clos
             return conica__fail(st, CONICA_ERR_NOMEM, 0, 0, "out of memory");
         out->subpaths = t;
     }
+    if (o->n && o->cap - o->n > o->n / 8) {
+        double *t = realloc(o->xy, 2 * o->n * sizeof *t);
+        if (t) {
+            o->xy = t;
+            o->cap = o->n;
+        }
+    }
     sp = &out->subpaths[out->nsubpaths];
     sp->element = element;
     sp->closed = closed;
-    sp->n = n;
-    sp->xy = NULL;
-    if (n) {
-        sp->xy = malloc(2 * n * sizeof *sp->xy);
-        if (!sp->xy)
-            return conica__fail(st, CONICA_ERR_NOMEM, 0, 0, "out of memory");
-        memcpy(sp->xy, xy, 2 * n * sizeof *xy);
-    }
+    sp->n = o->n;
+    sp->xy = o->n ? o->xy : NULL;
+    if (!o->n)
+        free(o->xy);
+    o->xy = NULL;
+    o->n = o->cap = 0;
     out->nsubpaths++;
     return CONICA_OK;
 }
 
-/* Growable point list. */
-typedef struct pts {
-    double *xy;
-    size_t n, cap;
-} pts;
+/* Room for `more` points in *p; 0 when out of memory. */
+static int pts_reserve(pts *p, size_t more)
+{
+    size_t need = p->n + more, cap;
+    double *t;
+    if (need <= p->cap)
+        return 1;
+    cap = p->cap ? 2 * p->cap : 64;
+    while (cap < need)
+        cap *= 2;
+    t = realloc(p->xy, 2 * cap * sizeof *t);
+    if (!t)
+        return 0;
+    p->xy = t;
+    p->cap = cap;
+    return 1;
+}
 
 static int pts_add(pts *p, double x, double y)
 {
-    if (p->n == p->cap) {
-        size_t cap = p->cap ? 2 * p->cap : 64;
-        double *t = realloc(p->xy, 2 * cap * sizeof *t);
-        if (!t)
-            return 0;
-        p->xy = t;
-        p->cap = cap;
-    }
+    if (p->n == p->cap && !pts_reserve(p, 1))
+        return 0;
     p->xy[2 * p->n] = x;
     p->xy[2 * p->n + 1] = y;
     p->n++;
@@ -437,7 +455,6 @@ static conica_code smooth_piece(geom_ctx *g, const double *xy, double *nxy, cons
     conica_status est;
     conica_code rc;
     size_t i, nknown = 0;
-    double t0 = conica_svg__now();
 
     for (i = 0; i < n; i++)
         nknown += known[i] != 0;
@@ -480,7 +497,6 @@ static conica_code smooth_piece(geom_ctx *g, const double *xy, double *nxy, cons
             conica_subdiv_info_free(&info);
         }
     }
-    g->geo_seconds += conica_svg__now() - t0;
     if (rc == CONICA_ERR_NOMEM || rc == CONICA_ERR_LIMIT) {
         conica_curve_free(&in);
         conica_curve_free(&out);
@@ -506,11 +522,20 @@ static conica_code smooth_piece(geom_ctx *g, const double *xy, double *nxy, cons
         conica_curve_free(&out);
         return rc;
     }
-    for (i = skip_first ? 1 : 0; i < out.n; i++)
-        if (!pts_add(o, out.xy[2 * i], out.xy[2 * i + 1])) {
+    if (o->n == 0 && !skip_first && out.n && !o->xy) {
+        /* the usual case, one piece: take the engine's array over */
+        o->xy = out.xy;
+        o->n = o->cap = out.n;
+        out.xy = NULL;
+    } else if (out.n > (size_t)(skip_first != 0)) {
+        size_t from = skip_first ? 1 : 0, m = out.n - from;
+        if (!pts_reserve(o, m)) {
             conica_curve_free(&out);
             return conica__fail(g->st, CONICA_ERR_NOMEM, 0, 0, "out of memory");
         }
+        memcpy(o->xy + 2 * o->n, out.xy + 2 * from, 2 * m * sizeof *o->xy);
+        o->n += m;
+    }
     conica_curve_free(&out);
     return CONICA_OK;
 }
@@ -744,14 +769,11 @@ static conica_code plot_append(geom_ctx *g, const conica_bspline *bs, double ex,
     conica_polyline pl;
     conica_status est;
     conica_code rc;
-    size_t i;
-    double t0 = conica_svg__now();
     ps.method = CONICA_PLOT_GUARANTEED;
     ps.abs_tolerance = g->s->tolerance;
     ps.max_points = g->budget;
     conica_polyline_init(&pl);
     rc = conica_plot(bs, &ps, &pl, NULL, &est);
-    g->geo_seconds += conica_svg__now() - t0;
     if (rc != CONICA_OK) {
         conica_polyline_free(&pl);
         if (rc == CONICA_ERR_LIMIT)
@@ -764,13 +786,16 @@ static conica_code plot_append(geom_ctx *g, const conica_bspline *bs, double ex,
         conica_polyline_free(&pl);
         return rc;
     }
-    for (i = 1; i < pl.n; i++) {
-        /* the curve's end point exactly, whatever the evaluation rounded */
-        double x = i + 1 == pl.n ? ex : pl.xy[2 * i], y = i + 1 == pl.n ? ey : pl.xy[2 * i + 1];
-        if (!pts_add(o, x, y)) {
+    if (pl.n > 1) {
+        if (!pts_reserve(o, pl.n - 1)) {
             conica_polyline_free(&pl);
             return conica__fail(g->st, CONICA_ERR_NOMEM, 0, 0, "out of memory");
         }
+        memcpy(o->xy + 2 * o->n, pl.xy + 2, 2 * (pl.n - 1) * sizeof *o->xy);
+        o->n += pl.n - 1;
+        /* the curve's end point exactly, whatever the evaluation rounded */
+        o->xy[2 * o->n - 2] = ex;
+        o->xy[2 * o->n - 1] = ey;
     }
     conica_polyline_free(&pl);
     return CONICA_OK;
@@ -916,15 +941,14 @@ static conica_code finish_sub(geom_ctx *g, sub *b, size_t element, conica_svg_sh
             rc = take_budget(g, b->nv);
     }
     if (rc == CONICA_OK)
-        rc = push_subpath(out, element, b->closed, o.xy, o.n, g->st);
+        rc = push_subpath(out, element, b->closed, &o, g->st);
     free(o.xy);
     return rc;
 }
 
 conica_code conica_svg__path_polylines(const conica_svg_path *p, const conica_svg_settings *s,
                                        const char *what, size_t line, size_t element,
-                                       int force_closed,
-                                       size_t *budget, size_t *in_vertices, double *geo_seconds,
+                                       int force_closed, size_t *budget, size_t *in_vertices,
                                        conica_svg_shapes *out, conica_status *st)
 {
     geom_ctx g;
@@ -937,7 +961,6 @@ conica_code conica_svg__path_polylines(const conica_svg_path *p, const conica_sv
 
     g.s = s;
     g.budget = *budget;
-    g.geo_seconds = 0.0;
     g.what = what;
     g.line = line;
     g.st = st;
@@ -986,7 +1009,6 @@ conica_code conica_svg__path_polylines(const conica_svg_path *p, const conica_sv
     free(b.xy);
     free(b.e);
     *budget = g.budget;
-    *geo_seconds += g.geo_seconds;
     return rc;
 }
 
@@ -994,7 +1016,6 @@ conica_code conica_svg_path_polylines(const conica_svg_path *p, const conica_svg
                                       conica_svg_shapes *out, conica_status *st)
 {
     size_t budget, inv = 0;
-    double secs = 0.0;
     conica_svg_settings def = conica_svg_defaults();
     if (!p || !out)
         return conica__fail(st, CONICA_ERR_ARG, 0, 0, "conica_svg_path_polylines: NULL argument");
@@ -1003,5 +1024,5 @@ conica_code conica_svg_path_polylines(const conica_svg_path *p, const conica_svg
     if (s->mode == CONICA_SVG_FLATTEN && !(s->tolerance > 0.0))
         return conica__fail(st, CONICA_ERR_ARG, 0, 0, "flattening needs a tolerance > 0");
     budget = s->limits.max_points;
-    return conica_svg__path_polylines(p, s, "path", 0, 0, 0, &budget, &inv, &secs, out, st);
+    return conica_svg__path_polylines(p, s, "path", 0, 0, 0, &budget, &inv, out, st);
 }

@@ -45,13 +45,17 @@ int conica_svg__path_push(conica_svg_path *p, const conica_svg_seg *g);
 /* Polylines of one parsed path per s->mode, appended to *out (element index
  * `element`; `what` and `line` name it in messages; force_closed closes an
  * unterminated last subpath, for polygons). *budget: output points left
- * (decremented); *in_vertices counts input vertices; *geo_seconds adds the
- * time spent in the engine. */
+ * (decremented); *in_vertices counts input vertices. */
 conica_code conica_svg__path_polylines(const conica_svg_path *p, const conica_svg_settings *s,
                                        const char *what, size_t line, size_t element,
                                        int force_closed, size_t *budget, size_t *in_vertices,
-                                       double *geo_seconds, conica_svg_shapes *out,
-                                       conica_status *st);
+                                       conica_svg_shapes *out, conica_status *st);
+
+/* conica_svg_path_parse() into *p, reusing its array (the previous
+ * segments are dropped, also on failure): for callers that parse many
+ * attributes one after another. */
+conica_code conica_svg__path_parse_into(const char *d, size_t len, size_t max_segments,
+                                        conica_svg_path *p, conica_status *st);
 
 /* Seconds of CPU time used by the process (robust on a loaded machine). */
 double conica_svg__now(void);

@@ -8,6 +8,7 @@
 
 #include "cli.h"
 #include "conica_svg.h"
+#include "svg_cli.h"
 
 #define PROG "svgsmooth"
 #define MAX_SELECT 4096 /* ids in one --select list */
@@ -36,9 +37,7 @@ static const char usage_text[] =
     "  --in-place          replace IN (through a temporary file)\n"
     "  -o OUT              output file (default stdout)\n"
     "  --max-input-bytes N   document size cap (default 64 MiB)\n"
-    "  --max-depth N         XML nesting cap (default 256)\n"
-    "  --max-elements N      XML element cap (default 1048576)\n"
-    "  --max-path-bytes N    cap on one d/points attribute (default 8 MiB)\n"
+    CONICA_SVG_CLI_LIMITS_HELP
     "  --max-points N        cap on output points in the document (default 67108864)\n"
     "  --help              this text\n"
     "  --version           the version\n"
@@ -115,8 +114,8 @@ int main(int argc, char **argv)
     conica_status st;
     warn_ctx wc;
     const char *in = NULL, *out_path = NULL, **ids = NULL;
-    char *sel = NULL, *buf = NULL, *res = NULL;
-    size_t len = 0, rlen = 0, nids = 0;
+    char *sel = NULL, *buf = NULL;
+    size_t len = 0, nids = 0;
     int i, have_levels = 0, have_tol = 0, flatten = 0, want_stats = 0, in_place = 0, rc = 1;
     double t_start, t_io = 0.0, t0;
     cli_output out;
@@ -128,6 +127,7 @@ int main(int argc, char **argv)
         const char *v = i + 1 < argc ? argv[i + 1] : NULL;
         long x;
         double d;
+        int lr;
         if (!strcmp(a, "--help") || !strcmp(a, "-h")) {
             fputs(usage_text, stdout);
             free(sel);
@@ -179,16 +179,17 @@ int main(int argc, char **argv)
                 return cli_usage_error(PROG, "-o needs a file name");
             out_path = v;
             i++;
-        } else if (!strcmp(a, "--max-input-bytes") || !strcmp(a, "--max-depth") ||
-                   !strcmp(a, "--max-elements") || !strcmp(a, "--max-path-bytes") ||
-                   !strcmp(a, "--max-points")) {
-            size_t *dst = !strcmp(a, "--max-input-bytes") ? &set.limits.max_bytes
-                        : !strcmp(a, "--max-depth")       ? &set.limits.max_depth
-                        : !strcmp(a, "--max-elements")    ? &set.limits.max_elements
-                        : !strcmp(a, "--max-path-bytes")  ? &set.limits.max_path_bytes
-                                                          : &set.limits.max_points;
-            if (size_arg(a, v, dst))
+        } else if ((lr = conica_svg__cli_limit(PROG, a, v, &set.limits)) != 0) {
+            if (lr < 0) {
+                free(sel);
                 return CLI_EXIT_USAGE;
+            }
+            i++;
+        } else if (!strcmp(a, "--max-points")) {
+            if (size_arg(a, v, &set.limits.max_points)) {
+                free(sel);
+                return CLI_EXIT_USAGE;
+            }
             i++;
         } else if (a[0] == '-' && a[1] != '\0') {
             return cli_usage_error(PROG, "unknown option '%s'", a);
@@ -237,20 +238,18 @@ int main(int argc, char **argv)
         goto done;
     }
     t_io += now() - t0;
-    if (conica_svg_process(doc, &set, &stats, &st) != CONICA_OK) {
+    /* the CPU clock is a system call: read it only when asked to report */
+    if (conica_svg_process(doc, &set, want_stats ? &stats : NULL, &st) != CONICA_OK) {
         fail_status(wc.name, &st);
         goto done;
     }
     t0 = now();
-    if (conica_svg_doc_save(doc, &res, &rlen, &st) != CONICA_OK) {
-        fail_status(wc.name, &st);
-        goto done;
-    }
     if (cli_output_open(PROG, out_path, &out))
         goto done;
-    if (fwrite(res, 1, rlen, out.f) != rlen) {
+    /* serialised straight into the (temporary) output file */
+    if (conica_svg_doc_write(doc, out.f, &st) != CONICA_OK) {
         cli_output_abort(&out);
-        cli_error(PROG, out_path ? out_path : "<stdout>", "write failed");
+        cli_error(PROG, out_path ? out_path : "<stdout>", "%s", st.message);
         goto done;
     }
     if (cli_output_commit(PROG, &out))
@@ -264,7 +263,6 @@ int main(int argc, char **argv)
                 now() - t_start, t_io + stats.io_seconds, stats.geometry_seconds);
     rc = 0;
 done:
-    conica_svg_buffer_free(res);
     conica_svg_doc_free(doc);
     free(buf);
     free(ids);

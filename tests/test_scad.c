@@ -154,9 +154,24 @@ TEST_CASE("validation refuses what OpenSCAD would render wrongly", "[scad][valid
     }
     SECTION("zero area")
     {
-        /* folded onto a line: seen as a segment running back over another */
+        /* folded onto a line: zero area, not "intersects itself" */
         double xy[6] = {0, 0, 1, 1, 3, 3};
         REQUIRE_EQ(conica_scad_add_contour(&p, g, xy, 3, NULL), CONICA_OK);
+        CHECK_EQ(conica_scad_validate(&p, 0, &v, &st), CONICA_ERR_DEGENERATE);
+        CHECK_EQ(v.problem, CONICA_SCAD_ZERO_AREA);
+        CHECK(strstr(st.message, "zero area") != NULL);
+    }
+    SECTION("collinear beyond the first two points, in any order")
+    {
+        double xy[10] = {2, 2, 3, 3, 0, 0, 5, 5, 1, 1};
+        REQUIRE_EQ(conica_scad_add_contour(&p, g, xy, 5, NULL), CONICA_OK);
+        CHECK_EQ(conica_scad_validate(&p, 0, &v, &st), CONICA_ERR_DEGENERATE);
+        CHECK_EQ(v.problem, CONICA_SCAD_ZERO_AREA);
+    }
+    SECTION("a spike folding back in a contour with area still intersects itself")
+    {
+        double xy[10] = {0, 0, 4, 0, 4, 4, 4, 6, 4, 2};
+        REQUIRE_EQ(conica_scad_add_contour(&p, g, xy, 5, NULL), CONICA_OK);
         CHECK_EQ(conica_scad_validate(&p, 0, &v, &st), CONICA_ERR_DEGENERATE);
         CHECK_EQ(v.problem, CONICA_SCAD_SELF_INTERSECTION);
     }
@@ -368,6 +383,29 @@ TEST_CASE("the writer emits points, paths and modules", "[scad][write]")
     free(text);
     CHECK_EQ(conica_scad_valid_name("_ok9"), 1);
     CHECK_EQ(conica_scad_valid_name("no-dash"), 0);
+    /* OpenSCAD's keywords are no identifiers: `module for()` does not parse */
+    static const char *const reserved[] = {"for", "module", "function", "if", "else", "let",
+                                           "each", "true", "false", "undef", "include",
+                                           "use", "assert", "echo"};
+    for (size_t i = 0; i < sizeof reserved / sizeof reserved[0]; i++) {
+        INFO("%s", reserved[i]);
+        CHECK_EQ(conica_scad_valid_name(reserved[i]), 0);
+        CHECK(strstr(conica_scad_name_problem(reserved[i]), "reserved word") != NULL);
+    }
+    /* built-ins the file calls would be replaced by the module itself */
+    CHECK_EQ(conica_scad_valid_name("polygon"), 0);
+    CHECK_EQ(conica_scad_valid_name("linear_extrude"), 0);
+    CHECK_EQ(conica_scad_valid_name("rotate_extrude"), 0);
+    /* ...but words that merely contain them are fine */
+    CHECK_EQ(conica_scad_valid_name("format"), 1);
+    CHECK_EQ(conica_scad_valid_name("For"), 1);
+    CHECK(conica_scad_name_problem("for_1") == NULL);
+    o.module = "for";
+    f = open_memstream(&text, &len);
+    CHECK_EQ(conica_scad_write(f, &p, &l, &o, &st), CONICA_ERR_ARG);
+    fclose(f);
+    free(text);
+    CHECK(strstr(st.message, "reserved word") != NULL);
     conica_scad_layout_free(&l);
     conica_scad_profile_free(&p);
 }

@@ -647,10 +647,29 @@ TEST_CASE("hostile XML is refused", "[svg][doc][security]")
         for (i = 0; i < depth; i++)
             n += (size_t)sprintf(t + n, "</g>");
         sprintf(t + n, "</svg>");
-        CHECK(try_load(t, NULL, &st) != CONICA_OK); /* libxml2's own cap or ours */
+        CHECK(try_load(t, NULL, &st) == CONICA_ERR_LIMIT); /* our count answers first */
+        CHECK(strstr(st.message, "nested deeper than 256 (--max-depth)") != NULL);
+        /* a cap above libxml2's 256 is honoured (XML_PARSE_HUGE), ours still holds */
         lim.max_depth = 1000;
-        CHECK(try_load(t, &lim, &st) != CONICA_OK); /* XML_PARSE_HUGE stays off */
+        CHECK(try_load(t, &lim, &st) == CONICA_OK);
+        lim.max_depth = 301; /* svg + 300 g: depth 301 */
+        CHECK(try_load(t, &lim, &st) == CONICA_OK);
+        lim.max_depth = 300;
+        CHECK(try_load(t, &lim, &st) == CONICA_ERR_LIMIT);
+        CHECK(strstr(st.message, "nested deeper than 300 (--max-depth)") != NULL);
         free(t);
+    }
+    SECTION("empty and non-XML documents say so")
+    {
+        CHECK(try_load("", NULL, &st) == CONICA_ERR_PARSE);
+        CHECK(strstr(st.message, "empty document: no <svg> element") != NULL);
+        CHECK(try_load(" \n\t\n", NULL, &st) == CONICA_ERR_PARSE);
+        CHECK(strstr(st.message, "empty document: no <svg> element") != NULL);
+        CHECK(try_load("<?xml version=\"1.0\"?>\n<!-- nothing -->\n", NULL, &st) ==
+              CONICA_ERR_PARSE);
+        CHECK(strstr(st.message, "no <svg> element") != NULL);
+        CHECK(try_load("hello world\n", NULL, &st) == CONICA_ERR_PARSE);
+        CHECK(strstr(st.message, "not XML") != NULL);
     }
     SECTION("depth and element caps are ours to set")
     {
@@ -682,8 +701,10 @@ TEST_CASE("hostile XML is refused", "[svg][doc][security]")
         }
         strcpy(t + i, "\"/></svg>");
         lim.max_bytes = big + 1000;
-        /* libxml2 caps attribute values at 10 MB without XML_PARSE_HUGE */
-        CHECK(try_load(t, &lim, &st) != CONICA_OK);
+        /* libxml2 caps attribute values at 10 MB without XML_PARSE_HUGE;
+         * the message names the limit */
+        CHECK(try_load(t, &lim, &st) == CONICA_ERR_PARSE);
+        CHECK(strstr(st.message, "longer than libxml2's limit of 10000000 bytes") != NULL);
         free(t);
     }
     SECTION("a path data cap with a clear message")
@@ -834,4 +855,68 @@ TEST_CASE("bad path data: warning with the element and byte, valid prefix kept",
     CHECK(strstr(out, "<path d=\"X\"/>") != NULL);
     free(out);
     conica_svg_doc_free(doc);
+}
+
+/* Collects warning texts, one a line. */
+typedef struct warn_log {
+    char text[1024];
+    size_t count;
+} warn_log;
+
+static void log_warning(void *ctx, size_t line, const char *msg)
+{
+    warn_log *w = ctx;
+    size_t n = strlen(w->text);
+    (void)line;
+    snprintf(w->text + n, sizeof w->text - n, "%s\n", msg);
+    w->count++;
+}
+
+TEST_CASE("--select ids that name no element are warned about", "[svg][doc]")
+{
+    const char *t = "<svg xmlns=\"http://www.w3.org/2000/svg\"><g id=\"g\">"
+                    "<path id=\"a\" d=\"M0 0L1 0L1 1Z\"/></g><text id=\"label\">x</text></svg>";
+    const char *ids[5] = {"nosuch", "a", "label", "nosuch", "zz"};
+    conica_svg_settings s = conica_svg_defaults();
+    conica_svg_shapes sh;
+    warn_log w;
+    memset(&w, 0, sizeof w);
+    s.warn = log_warning;
+    s.warn_ctx = &w;
+    s.select = ids;
+    s.nselect = 5;
+    s.mode = CONICA_SVG_KEEP;
+    extract(t, &s, &sh);
+    CHECK_EQ_U(sh.nelements, 1);
+    INFO("%s", w.text);
+    /* once per missing id, in the order given; an id on a non-shape element is found */
+    CHECK_EQ_U(w.count, 2);
+    CHECK_STR_EQ(w.text, "--select: no element has id 'nosuch'\n"
+                         "--select: no element has id 'zz'\n");
+    conica_svg_shapes_free(&sh);
+    /* every id found: no warning */
+    memset(&w, 0, sizeof w);
+    s.nselect = 2;
+    s.select = ids + 1;
+    extract(t, &s, &sh);
+    CHECK_EQ_U(w.count, 0);
+    conica_svg_shapes_free(&sh);
+}
+
+TEST_CASE("lengths convert between CSS units exactly where they can", "[svg][doc]")
+{
+    CHECK(conica_svg_convert_length(100.0, "px", "px") == 100.0);
+    CHECK(conica_svg_convert_length(100.0, "", "px") == 100.0);
+    CHECK(conica_svg_convert_length(0.1, "mm", "mm") == 0.1);
+    CHECK(conica_svg_convert_length(96.0, "px", "in") == 1.0);
+    CHECK(conica_svg_convert_length(3.0, "cm", "mm") == 30.0);
+    CHECK(conica_svg_convert_length(72.0, "pt", "px") == 96.0);
+    CHECK_NEAR(conica_svg_convert_length(96.0, "px", "mm"), 25.4, 1e-14);
+    CHECK_NEAR(conica_svg_convert_length(1.0, "in", "mm"), 25.4, 1e-14);
+    CHECK_NEAR(conica_svg_convert_length(4.0, "Q", "pc"), 6.0 / 25.4, 1e-15);
+    /* px -> mm -> px is not the identity in floating point; one step is */
+    CHECK(conica_svg_convert_length(100.0, "px", "px") ==
+          conica_svg_convert_length(conica_svg_convert_length(100.0, "px", "px"), "px", "px"));
+    CHECK(isnan(conica_svg_convert_length(1.0, "%", "mm")));
+    CHECK(isnan(conica_svg_convert_length(1.0, "mm", "em")));
 }

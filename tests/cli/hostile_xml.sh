@@ -96,7 +96,7 @@ begin_case "huge attribute value (12 MB id): refused by the parser's own limit"
     head -c 12000000 /dev/zero | tr '\0' 'a'
     printf '" d="M0 0L10 0L10 10Z"/></svg>\n'
 } >"$tmp/hugeattr.svg"
-both_refuse "$tmp/hugeattr.svg" "XML: "
+both_refuse "$tmp/hugeattr.svg" "XML: an attribute value, text node or comment is longer than libxml2's limit of 10000000 bytes"
 
 begin_case "huge path data (12 MB d): refused"
 {
@@ -114,7 +114,18 @@ for depth in 300 100000; do
         printf "%s", tri
         for (i = 0; i < d; i++) printf "</g>"
         printf "</svg>\n" }' >"$tmp/deep$depth.svg"
-    both_refuse "$tmp/deep$depth.svg" "depth|deeper than"
+    both_refuse "$tmp/deep$depth.svg" "deep$depth.svg:1: elements nested deeper than 256 \(--max-depth\)"
+done
+# A cap above libxml2's 256 is honoured (XML_PARSE_HUGE), and ours still holds.
+for tool in "$svgsmooth" "$scad"; do
+    name=$(basename "$tool")
+    check "$name --max-depth 1000 reads 300 levels" "$tool" --max-depth 1000 -o "$tmp/o.out" "$tmp/deep300.svg"
+    check_true "$name wrote its output" test -s "$tmp/o.out"
+    rm -f "$tmp/o.out"
+    check_exit 1 "$name --max-depth 50000 still refuses 100000 levels" \
+        "$tool" --max-depth 50000 -o "$tmp/o.out" "$tmp/deep100000.svg"
+    check_grep "^$name: error: .*deep100000.svg:1: elements nested deeper than 50000 \(--max-depth\)" "$err"
+    check_true "$name wrote nothing" test ! -e "$tmp/o.out"
 done
 
 begin_case "unterminated document and binary garbage"

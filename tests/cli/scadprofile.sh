@@ -81,6 +81,26 @@ check "--version names the tool" sh -c "'$bin' --version | grep -q '^scadprofile
 check "--levels with --tolerance is a usage error" fails_with 2 "exclude" "$bin" --levels 3 --tolerance 1 "$tmp/ellipse.txt"
 check "unknown option" fails_with 2 "unknown option" "$bin" --frobnicate "$tmp/ellipse.txt"
 check "bad module name" fails_with 2 "identifier" "$bin" --module 9lives "$tmp/ellipse.txt"
+# OpenSCAD keywords would make a file OpenSCAD cannot parse; the built-ins the
+# file calls would be replaced by the module itself
+for word in for module function if else let each true false undef include use assert echo; do
+    check "--module $word is a usage error" fails_with 2 "'$word' is an OpenSCAD reserved word" \
+        "$bin" --module "$word" -o "$tmp/kw.scad" "$tmp/ellipse.txt"
+done
+check "nothing written for a reserved word" test ! -e "$tmp/kw.scad"
+check "--module polygon is a usage error" fails_with 2 "built-in module" "$bin" --module polygon "$tmp/ellipse.txt"
+check "a name containing a keyword is fine" "$bin" --levels 1 --module for_each -o "$tmp/kw.scad" "$tmp/ellipse.txt"
+
+begin_case "stdin is identified by its content"
+check "a spline file on stdin (comment line first) is read as a spline" \
+    sh -c "'$bin' --tolerance 0.01 - < examples/nurbs-circle.spl > '$tmp/stdin-spl.scad'"
+check_grep '^// source: - \(spline\)$' "$tmp/stdin-spl.scad" "header names the spline reader"
+check "the same from the named file" "$bin" --tolerance 0.01 -o "$tmp/file-spl.scad" examples/nurbs-circle.spl
+check_true "same points either way" test "$(grep -c '^  \[' "$tmp/stdin-spl.scad")" -eq "$(grep -c '^  \[' "$tmp/file-spl.scad")"
+check "an SVG on stdin" sh -c "'$bin' --flatten-only - < '$tmp/plate.svg' > '$tmp/stdin-svg.scad'"
+check_grep '^// source: - \(SVG\)$' "$tmp/stdin-svg.scad"
+check "a point file on stdin" sh -c "'$bin' --levels 2 - < '$tmp/ellipse.txt' > '$tmp/stdin-pts.scad'"
+check_grep '^// source: - \(point-normal\)$' "$tmp/stdin-pts.scad"
 
 begin_case "errors name the file and line; nothing is written"
 printf 'v 0 0\nv 1 0\nv 1 x\n' >"$tmp/bad.txt"
@@ -96,6 +116,15 @@ check "nothing written" test ! -e "$tmp/axis.scad"
 check "--force writes it with a warning" fails_with 0 "warning:.*x < 0" \
     "$bin" --levels 2 --rotate-extrude --force -o "$tmp/axis.scad" "$tmp/ellipse.txt"
 check "forced file exists" test -s "$tmp/axis.scad"
+printf 'v 0 0\nv 1 1\nv 3 3\n' >"$tmp/collinear.txt"
+check "collinear points: zero area, not a self-intersection" fails_with 1 \
+    "contour 1 (subpath 1 of 'collinear.txt') has zero area" "$bin" --flatten-only "$tmp/collinear.txt"
+check_no_grep 'intersects' "$tmp/fw.err" "no self-intersection claimed"
+printf '# a square with a repeated corner\nv 0 0\nv 1 0\n\nv 1 0\nv 0 1\n' >"$tmp/dup.txt"
+check "duplicate point names its line (subdivision)" fails_with 1 "$tmp/dup.txt:3: points 1 and 2 coincide" \
+    "$bin" --levels 2 "$tmp/dup.txt"
+check "duplicate point names its line (validation)" fails_with 1 "$tmp/dup.txt:3: .*points 2 and 3 are equal" \
+    "$bin" --flatten-only "$tmp/dup.txt"
 
 begin_case "tolerance: near-minimal points for a circle r=50"
 for tol in 0.1 0.01 0.001; do
@@ -157,6 +186,10 @@ print(len(pts), "points, worst distance", worst)
 sys.exit(0 if len(pts) == 8 * 256 and worst <= 1e-9 * a else 1)
 '
 check "OpenSCAD renders it to SVG without warnings" openscad_ok "$tmp/ell.svg" "$tmp/ell.scad"
+check "scadprofile --extrude for an OFF export" "$bin" --levels 4 --extrude 3 --module offtest -o "$tmp/off.scad" "$tmp/ellipse.txt"
+check "OpenSCAD exports it to OFF without warnings" openscad_ok "$tmp/off.off" "$tmp/off.scad"
+check_true "the OFF file starts with its header and counts" \
+    sh -c "head -n 1 '$tmp/off.off' | grep -q -E '^OFF( [0-9]+){3}\$'"
 check "exported vertices on the ellipse to 6 digits, area within 1e-5 of pi a b" py '
 import math, re, sys
 a, b = 30.0, 20.0
@@ -273,5 +306,40 @@ sys.exit(0 if abs(max(xs) - 60 / 25.4) <= 1e-12 else 1)
 '
 
 check "unknown id selects nothing" fails_with 1 "no closed subpath" "$bin" --select nope "$tmp/plate.svg"
+check_grep "warning: $tmp/plate.svg: --select: no element has id 'nope'" "$tmp/fw.err" "the unknown id is named"
+
+begin_case "--units px on a px document keeps the numbers exactly"
+cat >"$tmp/px.svg" <<'EOF'
+<svg xmlns="http://www.w3.org/2000/svg" width="100px" height="60px" viewBox="0 0 100 60">
+  <path id="r" d="M0 0H100V60H0Z"/>
+</svg>
+EOF
+printf '<svg xmlns="http://www.w3.org/2000/svg" width="100" height="60"><path d="M0 0H100V60H0Z"/></svg>\n' >"$tmp/px-noviewbox.svg"
+for f in px px-noviewbox; do
+    check "$f: --units px --levels 0" "$bin" --units px --levels 0 -o "$tmp/$f.scad" "$tmp/$f.svg"
+    check_grep '^  \[100,60\]' "$tmp/$f.scad" "$f: corner (100, 60) exactly"
+    check_no_grep '0000000' "$tmp/$f.scad" "$f: no rounding residue in the numbers"
+done
+check "--units in: 96 px = 1 in exactly" "$bin" --units in --levels 0 -o "$tmp/px-in.scad" "$tmp/px-noviewbox.svg"
+check_grep '^  \[0,0\.625\]' "$tmp/px-in.scad" "60 px = 0.625 in"
+
+begin_case "XML limits: --max-depth, --max-elements, --max-path-bytes, --max-input-bytes"
+check "the plate passes the defaults" "$bin" --flatten-only -o "$tmp/lim.scad" "$tmp/plate.svg"
+rm -f "$tmp/lim.scad"
+check "--max-depth 1" fails_with 1 "plate.svg:2: elements nested deeper than 1 (--max-depth)" \
+    "$bin" --max-depth 1 -o "$tmp/lim.scad" "$tmp/plate.svg"
+check "--max-elements 1" fails_with 1 "plate.svg:2: more than 1 elements (--max-elements)" \
+    "$bin" --max-elements 1 -o "$tmp/lim.scad" "$tmp/plate.svg"
+check "--max-path-bytes 20" fails_with 1 "path 'plate': path data exceeds the limit of 20 bytes (--max-path-bytes)" \
+    "$bin" --max-path-bytes 20 -o "$tmp/lim.scad" "$tmp/plate.svg"
+check "--max-input-bytes 100 (SVG)" fails_with 1 "input larger than the limit of 100 bytes" \
+    "$bin" --max-input-bytes 100 -o "$tmp/lim.scad" "$tmp/plate.svg"
+check "--max-input-bytes 100 (point file)" fails_with 1 "input larger than the limit of 100 bytes" \
+    "$bin" --max-input-bytes 100 -o "$tmp/lim.scad" "$tmp/ellipse.txt"
+check "--max-input-bytes overrides CONICA_MAX_INPUT_BYTES" \
+    env CONICA_MAX_INPUT_BYTES=10 "$bin" --max-input-bytes 100000 --levels 1 -o "$tmp/lim2.scad" "$tmp/ellipse.txt"
+check "nothing written by the refused runs" test ! -e "$tmp/lim.scad"
+check "a bad value is a usage error" fails_with 2 "--max-depth needs a whole number" "$bin" --max-depth 0 "$tmp/plate.svg"
+check "--help lists the limit flags" sh -c "'$bin' --help | grep -c -E '^ +--max-(depth|elements|path-bytes|input-bytes) ' | grep -qx 4"
 
 finish
