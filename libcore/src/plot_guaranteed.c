@@ -89,6 +89,8 @@
  * bracket. */
 #define G_K_MIN 1.5
 #define G_K_MAX 6.0
+/* Least D (fraction of tol) the bracket model works with. */
+#define G_DEV_FLOOR 1e-3
 /* Up to this degree the tight (halves) certificate also steers growth. */
 #define G_REFINE_MAX_P 8
 /* When the hull bound misses tol by at most this factor (the hull of a
@@ -348,7 +350,7 @@ static double bern_eval(const double *s, int p, double u)
  * 4(k^2 + k s1 + s1^2) is never negative; both roots are evaluated,
  * clamped to [0, 1] (a root outside, infinite or NaN when k = 0 gives
  * an end, where the cubic vanishes, or 1/2 for k = 0 and s1 != 0). */
-static double cubic_max(double s1, double s2)
+static inline double cubic_max(double s1, double s2)
 {
     double k = s2 - s1, A = -3.0 * k, Bq = 2.0 * (k - s1);
     double sq = sqrt(4.0 * (k * k + k * s1 + s1 * s1));
@@ -565,7 +567,11 @@ static conica_code too_many(const conica_plot_settings *set, conica_plot_stats *
 static double secant(double hp, double dp, double hf, double df, double tol)
 {
     double h;
-    if (dp > 0 && df > dp && hf > hp) {
+    /* a straight passing chord (dp = 0 up to rounding) counts as
+     * G_DEV_FLOOR tol, so the step does not jump between this model and
+     * bisection on rounding noise */
+    dp = dp > G_DEV_FLOOR * tol ? dp : G_DEV_FLOOR * tol;
+    if (df > dp && hf > hp) {
         double k = log(df / dp) / log(hf / hp);
         k = k < G_K_MIN ? G_K_MIN : (k > G_K_MAX ? G_K_MAX : k);
         h = hp * pow(G_TARGET * tol / dp, 1.0 / k);
@@ -828,10 +834,547 @@ static conica_code push_param(double **params, size_t *np, size_t *cap, double u
     return CONICA_OK;
 }
 
-conica_code conica__guaranteed_piece(const conica_bspline *g, double tol,
-                                     const conica_plot_settings *set, int first_is_join,
-                                     conica__out *o, double **params, size_t *np,
-                                     conica_plot_stats *stats, conica_status *st)
+/* ------------------------------------------------------------------
+ * Planar polynomial cubics (p = 3, d = 2, no weights: the thesis's test
+ * curves, SVG and OpenSCAD Bézier paths). The same march and the same
+ * certificate as above, specialised: every array lives on the stack (no
+ * allocation per call), a Bézier polygon is 8 interleaved doubles, and an
+ * interval's Bézier form comes from blossoming (6 convex combinations
+ * instead of two triangular algorithms). */
+
+#define C3 8 /* doubles of a planar cubic Bézier polygon */
+/* Step model for the next chord of a cubic: D(h) ~ K h^2 with K
+ * extrapolated linearly from the previous chord's mean K_p = D / h^2
+ * (about the value at its middle) and the value at its end K_s, from the
+ * quadratic model of the remainder R at its start: the chord of the
+ * sub-arc [0, lam] deviates by about |3dR0 x 3d2R0| lam^2 / (4 |3dR0|)
+ * (dR0 = R1 - R0, d2R0 = R2 - 2 R1 + R0; exact for a parabola).
+ * K = G_EXTRAP K_s + (1 - G_EXTRAP) K_p, at least K_s / 2. */
+#define G_EXTRAP 2.0
+
+typedef struct c3m {
+    const double *T, *d; /* knots, control points (x y interleaved) */
+    size_t n;            /* control points */
+    double tol, tol_eff, flops;
+    /* current interval [ba, bb] = [t_mu, t_mu+1], its Bézier form B, the
+     * remainder R on [ua, bb]; trial halves Lt / Rt, best certified
+     * trial's halves Lb / Rb (pointers swap, no copies) */
+    size_t mu;
+    double ba, bb, ua, inv; /* inv = 1 / (bb - ua) */
+    double B[C3];
+    double buf[5][C3];
+    double *R, *Lt, *Rt, *Lb, *Rb;
+    /* chain for chords across knots: element k >= 1 is the Bézier form of
+     * interval cmu[k] in C[k] (element 0 is the current interval) */
+    double C[G_CHAIN_MAX][C3];
+    size_t cmu[G_CHAIN_MAX], nc; /* elements 1..nc loaded */
+} c3m;
+
+/* Bézier polygon P of knot interval mu (t_mu < t_mu+1) of the planar cubic:
+ * the blossoms f(a,a,a), f(a,a,b), f(a,b,b), f(b,b,b), a = t_mu,
+ * b = t_mu+1, i.e. a and b inserted three times each (Lemma 1.18): the
+ * first level of the triangular algorithm (eq. (1.11)) at a and at b
+ * gives f(a,a,b) = E_a[mu-1] and f(a,b,b) = E_b[mu-1] directly (the
+ * later levels' weights are 0 or 1 there), and one more convex
+ * combination each gives the ends. Every weight lies in [0, 1] (each
+ * denominator spans [t_mu, t_mu+1]). */
+static void c3_form(const double *T, const double *d, size_t mu, double *P)
+{
+    double a = T[mu], b = T[mu + 1];
+    const double *d0 = d + 2 * (mu - 3), *d1 = d0 + 2, *d2 = d0 + 4, *d3 = d0 + 6;
+    double al0 = (a - T[mu - 2]) / (T[mu + 1] - T[mu - 2]);
+    double al1 = (a - T[mu - 1]) / (T[mu + 2] - T[mu - 1]);
+    double be1 = (b - T[mu - 1]) / (T[mu + 2] - T[mu - 1]);
+    double be2 = (b - T[mu]) / (T[mu + 3] - T[mu]);
+    double g0 = (a - T[mu - 1]) / (T[mu + 1] - T[mu - 1]);
+    double g3 = (b - T[mu]) / (T[mu + 2] - T[mu]);
+    for (int c = 0; c < 2; c++) {
+        double ea0 = d0[c] + al0 * (d1[c] - d0[c]), ea1 = d1[c] + al1 * (d2[c] - d1[c]);
+        double eb1 = d1[c] + be1 * (d2[c] - d1[c]), eb2 = d2[c] + be2 * (d3[c] - d2[c]);
+        P[c] = ea0 + g0 * (ea1 - ea0);
+        P[2 + c] = ea1;
+        P[4 + c] = eb1;
+        P[6 + c] = eb1 + g3 * (eb2 - eb1);
+    }
+}
+
+/* Hull bound of step 2 for the chord of the cubic sub-arc L (a control
+ * point projects beyond the chord's ends), refined on the halves near tol
+ * as bez_cert does. */
+static double c3_hull(c3m *m, const double *L)
+{
+    chord c;
+    chord_init(&c, L, L + 6, 2);
+    double d2 = chord_d2(&c, L + 2), e = chord_d2(&c, L + 4);
+    d2 = e > d2 ? e : d2;
+    double D = sqrt(d2);
+    m->flops += 2.0 * 18.0 + 6.0;
+    if (D > m->tol_eff ? D <= G_REFINE_RATIO * m->tol_eff : D >= G_GROW_BELOW * m->tol) {
+        double l[C3], r[C3];
+        casteljau(L, 3, 2, 0.5, l, r);
+        d2 = 0.0;
+        for (int i = 1; i < 4; i++) {
+            e = chord_d2(&c, l + 2 * i);
+            d2 = e > d2 ? e : d2;
+        }
+        for (int i = 1; i < 3; i++) {
+            e = chord_d2(&c, r + 2 * i);
+            d2 = e > d2 ? e : d2;
+        }
+        double D2 = sqrt(d2);
+        D = D2 < D ? D2 : D;
+        m->flops += 36.0 + 5.0 * 18.0;
+    }
+    return D;
+}
+
+/* Certified bound D for the chord of the single cubic sub-arc L (step 2)
+ * when both inner control points project onto the chord: the signed-
+ * distance form g(u) = 3u(1-u)((1-u) s1 + u s2) / |c| is bounded above by
+ * its two halves' Bernstein coefficients (split at 1/2: s1/2,
+ * (2 s1 + s2)/4, 3 (s1 + s2)/8, (s1 + 2 s2)/4, s2/2; at most 1.125 times
+ * the true maximum) and below by its values at 1/3, 1/2, 2/3; only when
+ * tol lies between the two is the exact extremum (cubic_max, a square
+ * root and divisions on the critical path) computed. The value returned
+ * is a valid bound when it passes (the upper bound, or the exact value)
+ * and a value above tol_eff when it fails. Otherwise the hull bound. */
+static double c3_cert1(c3m *m, const double *L)
+{
+    double ax = L[0], ay = L[1];
+    double cx = L[6] - ax, cy = L[7] - ay, c2 = cx * cx + cy * cy;
+    double e1x = L[2] - ax, e1y = L[3] - ay, e2x = L[4] - ax, e2y = L[5] - ay;
+    double t1 = e1x * cx + e1y * cy, t2 = e2x * cx + e2y * cy;
+    m->flops += 17.0;
+    if (c2 > 0 && t1 >= 0 && t1 <= c2 && t2 >= 0 && t2 <= c2) {
+        double s1 = e1x * cy - e1y * cx, s2 = e2x * cy - e2y * cx;
+        double inv = 1.0 / sqrt(c2); /* in parallel with the bounds */
+        double a1 = fabs(s1), a2 = fabs(s2);
+        double mid = fabs(s1 + s2), q1 = fabs(s1 + s1 + s2), q2 = fabs(s1 + s2 + s2);
+        double up = 0.5 * (a1 > a2 ? a1 : a2), uq = 0.25 * (q1 > q2 ? q1 : q2);
+        double lo = (1.0 / 4.5) * (q1 > q2 ? q1 : q2); /* |g(1/3)|, |g(2/3)| */
+        up = up > uq ? up : uq;
+        up = up > 0.375 * mid ? up : 0.375 * mid;
+        lo = lo > 0.375 * mid ? lo : 0.375 * mid;
+        double Du = up * inv, Dl = lo * inv;
+        m->flops += 6.0 + 20.0 + 4.0;
+        if (Du <= m->tol_eff || Dl > m->tol_eff)
+            return Du <= m->tol_eff ? Du : Dl;
+        /* tol_eff itself (a valid bound) on a pass and Dl's least value
+         * on a failure keep the value continuous in the data, so rounding
+         * cannot swing the step model by the bounds' gap */
+        m->flops += 32.0;
+        return cubic_max(s1, s2) * inv <= m->tol_eff ? m->tol_eff : nextafter(m->tol_eff, INFINITY);
+    }
+    return c3_hull(m, L);
+}
+
+/* Certified bound for the chord from the first point of arcs[0] to the
+ * last of arcs[k-1], consecutive cubic sub-arcs across knots (as
+ * chain_cert: the curve lies in the union of their hulls; when every
+ * control point projects onto the chord, the exact extremum of each
+ * sub-arc's signed-distance form). */
+static double c3_cert_chain(c3m *m, const double *const *arcs, size_t k)
+{
+    const double *A = arcs[0], *E = arcs[k - 1] + 6;
+    double ax = A[0], ay = A[1], cx = E[0] - ax, cy = E[1] - ay, c2 = cx * cx + cy * cy;
+    double D = 0.0, s[4];
+    int inside = c2 > 0;
+    for (size_t j = 0; j < k && inside; j++) {
+        const double *P = arcs[j];
+        s[0] = s[3] = 0.0;
+        for (int i = j == 0 ? 1 : 0; i <= (j + 1 == k ? 2 : 3); i++) {
+            double ex = P[2 * i] - ax, ey = P[2 * i + 1] - ay, t = ex * cx + ey * cy;
+            if (t < 0 || t > c2) {
+                inside = 0;
+                break;
+            }
+            s[i] = ex * cy - ey * cx;
+        }
+        if (inside) {
+            double e = bern_max(s, 3);
+            D = e > D ? e : D;
+        }
+    }
+    m->flops += 10.0 + (double)(4 * k) * 10.0 + 30.0 * (double)k;
+    if (inside)
+        return D / sqrt(c2);
+    chord c;
+    chord_init(&c, A, E, 2);
+    double d2 = 0.0;
+    for (size_t j = 0; j < k; j++)
+        for (int i = 0; i < 4; i++) {
+            double e = chord_d2(&c, arcs[j] + 2 * i);
+            d2 = e > d2 ? e : d2;
+        }
+    m->flops += (double)(4 * k) * 18.0;
+    return sqrt(d2);
+}
+
+static size_t c3_next_span(const c3m *m, size_t mu)
+{
+    while (mu + 1 < m->n && !(m->T[mu] < m->T[mu + 1]))
+        mu++;
+    return mu;
+}
+
+/* Make interval mu current, the remainder being the whole interval. Its
+ * Bézier form is chain element k when 1 <= k <= nc (the elements after
+ * it move down to 1, 2, ...), else computed (the chain is then empty). */
+static void c3_enter(c3m *m, size_t mu, size_t k)
+{
+    if (k >= 1 && k <= m->nc) {
+        memcpy(m->B, m->C[k], sizeof m->B);
+        memmove(m->C[1], m->C[k + 1], (m->nc - k) * sizeof m->C[0]);
+        memmove(m->cmu + 1, m->cmu + k + 1, (m->nc - k) * sizeof m->cmu[0]);
+        m->nc -= k;
+    } else {
+        c3_form(m->T, m->d, mu, m->B);
+        m->flops += 6.0 * 3.0 + 12.0 * 3.0;
+        m->nc = 0;
+    }
+    memcpy(m->R, m->B, sizeof m->B);
+    m->mu = mu;
+    m->ba = m->T[mu];
+    m->bb = m->T[mu + 1];
+    m->ua = m->ba;
+    m->inv = 1.0 / (m->bb - m->ba);
+}
+
+/* bez_search on the current interval of a cubic. */
+static conica_code c3_search(c3m *m, double *hs, double span_all, double min_step,
+                             const conica_plot_settings *set, conica_plot_stats *stats,
+                             double *xo, double *devo, conica_status *st)
+{
+    double ua = m->ua, bb = m->bb, tol = m->tol;
+    int have = 0, have_fail = 0, grows = 0, tries = 0;
+    double best_dev = 0, best_x = bb, fail_x = bb, fail_dev = 0;
+    for (;;) {
+        double x = ua + *hs;
+        if (!(x < bb) || bb - x < G_SNAP * span_all)
+            x = bb;
+        conica_code rc = too_many(set, stats, st);
+        if (rc != CONICA_OK)
+            return rc;
+        tries++;
+        double dev;
+        if (x == bb) {
+            dev = c3_cert1(m, m->R);
+        } else {
+            casteljau(m->R, 3, 2, (x - ua) * m->inv, m->Lt, m->Rt);
+            m->flops += 38.0;
+            dev = c3_cert1(m, m->Lt);
+        }
+        if (dev <= m->tol_eff) {
+            have = 1;
+            best_dev = dev;
+            best_x = x;
+            if (x < bb) {
+                swap_ptr(&m->Lt, &m->Lb);
+                swap_ptr(&m->Rt, &m->Rb);
+            }
+            if (x >= bb || dev >= G_GOOD * tol)
+                break;
+        } else {
+            have_fail = 1;
+            fail_x = x;
+            fail_dev = dev;
+        }
+        double hp = best_x - ua, hf = fail_x - ua;
+        if (have && have_fail) {
+            if (tries >= G_MAX_TRIES || hf - hp < G_BRACKET * hp)
+                break;
+            *hs = secant(hp, best_dev, hf, fail_dev, tol);
+        } else if (have) {
+            if (grows++ >= G_MAX_GROW)
+                break;
+            double f = dev > 0 ? sqrt(G_TARGET * tol / dev) : 4.0;
+            f = f < 1.15 ? 1.15 : (f > 4.0 ? 4.0 : f);
+            *hs = hp * f;
+        } else {
+            double f = sqrt(G_TARGET * tol / dev);
+            f = f < 0.1 ? 0.1 : (f > 0.8 ? 0.8 : f);
+            *hs = hf * f;
+            if (*hs < min_step)
+                return conica__fail(st, CONICA_ERR_NUMERIC, 0, 0,
+                                    "cannot certify tolerance %.3g near parameter %.17g", tol,
+                                    ua);
+        }
+    }
+    *xo = best_x;
+    *devo = best_dev;
+    return CONICA_OK;
+}
+
+/* Load the Bézier form of the interval after the last chain element as
+ * a new element. 0 when the chain is full or the piece ends there. */
+static int c3_chain_grow(c3m *m)
+{
+    size_t nc = m->nc, prev = nc == 0 ? m->mu : m->cmu[nc];
+    if (nc + 1 >= G_CHAIN_MAX || m->T[prev + 1] >= m->T[m->n])
+        return 0;
+    size_t mu = c3_next_span(m, prev + 1);
+    c3_form(m->T, m->d, mu, m->C[nc + 1]);
+    m->flops += 6.0 * 3.0 + 12.0 * 3.0;
+    m->cmu[nc + 1] = mu;
+    m->nc = nc + 1;
+    return 1;
+}
+
+/* cross_search for a cubic, in two modes. dev0 >= 0: the chord to the
+ * interval's end bb is certified with dev0, the first trial follows from
+ * it. dev0 < 0 ("direct"): nothing is certified yet, the first trial is
+ * ua + hs0 beyond bb, and a failure ends the search (the caller then
+ * searches inside the interval). *xf / *df: a known failing chord end
+ * (*xf <= ua: none) on entry, the last failing one on return. */
+static conica_code c3_cross(c3m *m, double dev0, double hs0, double b_end, double span_all,
+                            const conica_plot_settings *set, conica_plot_stats *stats, int *found,
+                            double *xo, double *devo, size_t *jo, double *xf, double *df,
+                            conica_status *st)
+{
+    double ua = m->ua, bb = m->bb, tol = m->tol;
+    const double *arcs[G_CHAIN_MAX + 1];
+    int direct = dev0 < 0;
+    double best_x = bb, best_dev = dev0, fail_x = b_end, fail_dev = 0;
+    int have_fail = *xf > ua, grows = 0, tries = 0;
+    if (have_fail) {
+        fail_x = *xf;
+        fail_dev = *df;
+    }
+    double hs = hs0;
+    if (!direct) {
+        double f = dev0 > 0 ? sqrt(G_TARGET * tol / dev0) : 4.0;
+        f = f < 1.15 ? 1.15 : (f > 4.0 ? 4.0 : f);
+        hs = (bb - ua) * f;
+        if (have_fail)
+            hs = secant(bb - ua, dev0, fail_x - ua, fail_dev, tol);
+    }
+    *found = 0;
+    arcs[0] = m->R;
+    for (size_t k = 1; k <= m->nc; k++)
+        arcs[k] = m->C[k];
+    for (;;) {
+        double x = ua + hs;
+        while (m->nc == 0 || x > m->T[m->cmu[m->nc] + 1]) {
+            if (!c3_chain_grow(m))
+                break;
+            arcs[m->nc] = m->C[m->nc];
+        }
+        if (m->nc == 0)
+            break;
+        double end = m->T[m->cmu[m->nc] + 1];
+        if (!(x < end) || end - x < G_SNAP * span_all)
+            x = end;
+        if (!(x < b_end) || b_end - x < G_SNAP * span_all)
+            x = b_end;
+        if (x <= best_x || (have_fail && x >= fail_x))
+            break;
+        conica_code rc = too_many(set, stats, st);
+        if (rc != CONICA_OK)
+            return rc;
+        tries++;
+        size_t j = 1;
+        while (x > m->T[m->cmu[j] + 1])
+            j++;
+        double t0 = m->T[m->cmu[j]], t1 = m->T[m->cmu[j] + 1];
+        double dev;
+        if (x >= t1) {
+            dev = c3_cert_chain(m, arcs, j + 1);
+        } else {
+            casteljau(m->C[j], 3, 2, (x - t0) / (t1 - t0), m->Lt, m->Rt);
+            m->flops += 39.0;
+            const double *keep = arcs[j];
+            arcs[j] = m->Lt;
+            dev = c3_cert_chain(m, arcs, j + 1);
+            arcs[j] = keep;
+        }
+        if (dev <= m->tol_eff) {
+            *found = 1;
+            best_dev = dev;
+            best_x = x;
+            *jo = j;
+            if (x < t1) {
+                swap_ptr(&m->Lt, &m->Lb);
+                swap_ptr(&m->Rt, &m->Rb);
+            } else {
+                memcpy(m->Lb, m->C[j], sizeof m->B);
+            }
+            if (x >= b_end || dev >= G_GOOD * tol)
+                break;
+        } else {
+            have_fail = 1;
+            fail_x = x;
+            fail_dev = dev;
+            if (!*found && direct)
+                break;
+        }
+        if (tries >= G_CROSS_TRIES)
+            break;
+        double hp = best_x - ua, hf = fail_x - ua;
+        if (have_fail) {
+            if (hf - hp < G_BRACKET * hp)
+                break;
+            hs = secant(hp, best_dev, hf, fail_dev, tol);
+        } else {
+            if (grows++ >= G_MAX_GROW)
+                break;
+            double g = dev > 0 ? sqrt(G_TARGET * tol / dev) : 4.0;
+            g = g < 1.15 ? 1.15 : (g > 4.0 ? 4.0 : g);
+            hs = hp * g;
+        }
+    }
+    if (have_fail) {
+        *xf = fail_x;
+        *df = fail_dev;
+    }
+    *xo = best_x;
+    *devo = best_dev;
+    return CONICA_OK;
+}
+
+/* The march of conica__guaranteed_piece for a planar polynomial cubic;
+ * the first point is already out. *maxdev gets the largest certified
+ * bound. A step that would pass the interval's end is first tried as a
+ * chord across the knot (one trial; when it fails the search goes on
+ * inside the interval, bracketed by it). */
+static conica_code c3_march(const conica_bspline *g, double tol, double tol_eff,
+                            const conica_plot_settings *set, conica__out *o, double **params,
+                            size_t *np, size_t *cap, conica_plot_stats *stats, double *maxdev,
+                            conica_status *st)
+{
+    c3m mm, *m = &mm;
+    m->T = g->knots;
+    m->d = g->ctrl;
+    m->n = g->n;
+    m->tol = tol;
+    m->tol_eff = tol_eff;
+    m->flops = 0.0;
+    m->nc = 0;
+    m->R = m->buf[0];
+    m->Lt = m->buf[1];
+    m->Rt = m->buf[2];
+    m->Lb = m->buf[3];
+    m->Rb = m->buf[4];
+    double a = g->knots[3], b = g->knots[g->n], span = b - a, pt[2];
+    double hs = span, min_step = span * 1e-13;
+    size_t splits = 0;
+    conica_code rc = CONICA_OK;
+    c3_enter(m, c3_next_span(m, 3), 0);
+    for (;;) {
+        double x = b, dev = 0.0, xf = m->ua, df = 0.0, step;
+        int found = 0, last = 0;
+        size_t j = 0;
+        if (m->bb < b && m->ua + hs > m->bb + G_SNAP * span) {
+            rc = c3_cross(m, -1.0, hs, b, span, set, stats, &found, &x, &dev, &j, &xf, &df, st);
+            if (rc != CONICA_OK)
+                break;
+            if (!found && xf > m->ua) { /* shrink from the failed trial, D ~ h^2 */
+                double f = sqrt(G_TARGET * tol / df);
+                f = f < 0.1 ? 0.1 : (f > 0.8 ? 0.8 : f);
+                hs = (xf - m->ua) * f;
+            }
+        }
+        if (!found) {
+            rc = c3_search(m, &hs, span, min_step, set, stats, &x, &dev, st);
+            if (rc != CONICA_OK)
+                break;
+        }
+        step = x - m->ua;
+        if (found) { /* a chord across the knot(s), ending in chain element j */
+            memcpy(pt, m->Lb + 6, sizeof pt);
+            size_t muj = m->cmu[j];
+            if (x < m->T[muj + 1]) {
+                c3_enter(m, muj, j);
+                swap_ptr(&m->R, &m->Rb);
+                m->ua = x;
+                m->inv = 1.0 / (m->bb - x);
+                splits = 1;
+            } else if (m->T[muj + 1] >= b) {
+                memcpy(pt, g->ctrl + 2 * (g->n - 1), sizeof pt);
+                last = 1;
+            } else {
+                c3_enter(m, c3_next_span(m, muj + 1), j + 1);
+                splits = 0;
+            }
+        } else if (x < m->bb) { /* inside the interval: the right half goes on */
+            memcpy(pt, m->Lb + 6, sizeof pt);
+            swap_ptr(&m->R, &m->Rb);
+            m->ua = x;
+            m->inv = 1.0 / (m->bb - x);
+            if (++splits >= G_RESET) { /* re-split from the Bézier form */
+                casteljau(m->B, 3, 2, (x - m->ba) / (m->bb - m->ba), m->Lt, m->R);
+                m->flops += 39.0;
+                splits = 0;
+            }
+        } else if (m->bb >= b) { /* the end point of the piece exactly */
+            memcpy(pt, g->ctrl + 2 * (g->n - 1), sizeof pt);
+            last = 1;
+        } else {
+            double x2 = x, dev2 = dev;
+            if (dev < G_CROSS * tol) { /* try a longer chord across the knot */
+                rc = c3_cross(m, dev, 0.0, b, span, set, stats, &found, &x2, &dev2, &j, &xf, &df,
+                              st);
+                if (rc != CONICA_OK)
+                    break;
+            }
+            if (found) {
+                step = x2 - m->ua;
+                x = x2;
+                dev = dev2;
+                memcpy(pt, m->Lb + 6, sizeof pt);
+                size_t muj = m->cmu[j];
+                if (x < m->T[muj + 1]) {
+                    c3_enter(m, muj, j);
+                    swap_ptr(&m->R, &m->Rb);
+                    m->ua = x;
+                    m->inv = 1.0 / (m->bb - x);
+                    splits = 1;
+                } else if (m->T[muj + 1] >= b) {
+                    memcpy(pt, g->ctrl + 2 * (g->n - 1), sizeof pt);
+                    last = 1;
+                } else {
+                    c3_enter(m, c3_next_span(m, muj + 1), j + 1);
+                    splits = 0;
+                }
+            } else { /* the knot itself, exactly as the interval's end */
+                memcpy(pt, m->R + 6, sizeof pt);
+                c3_enter(m, c3_next_span(m, m->mu + 1), 1);
+                splits = 0;
+            }
+        }
+        *maxdev = dev > *maxdev ? dev : *maxdev;
+        rc = conica__out_push(o, pt, x, st);
+        if (rc == CONICA_OK)
+            rc = push_param(params, np, cap, x, st);
+        if (rc != CONICA_OK || last)
+            break;
+        if (m->ua == x && dev > 0) { /* inside an interval: predict, see G_EXTRAP */
+            const double *Q = m->R;
+            double ax = Q[2] - Q[0], ay = Q[3] - Q[1];
+            double bx = Q[4] - 2.0 * Q[2] + Q[0], by = Q[5] - 2.0 * Q[3] + Q[1];
+            double cr = fabs(ax * by - ay * bx), al = sqrt(ax * ax + ay * ay);
+            double Ks = al > 0 ? 0.75 * cr / al * m->inv * m->inv : 0.0;
+            double Ka = G_EXTRAP * Ks + (1.0 - G_EXTRAP) * dev / (step * step);
+            Ka = Ka < 0.5 * Ks ? 0.5 * Ks : Ka;
+            double h2 = Ka > 0 ? sqrt(G_NEXT * tol / Ka) : 2.0 * step;
+            hs = h2 < 0.5 * step ? 0.5 * step : (h2 > 2.0 * step ? 2.0 * step : h2);
+            m->flops += 30.0;
+            continue;
+        }
+        double f = dev > 0 ? sqrt(G_NEXT * tol / dev) : 2.0;
+        f = f < 0.7 ? 0.7 : (f > 2.0 ? 2.0 : f);
+        hs = step * f;
+    }
+    stats->flops += m->flops;
+    return rc;
+}
+
+/* The march of conica__guaranteed_piece for any other spline (degree,
+ * dimension, weights); the first point is already out. *maxdev gets the
+ * largest certified bound. */
+static conica_code general_march(const conica_bspline *g, double tol, double tol_eff,
+                                 const conica_plot_settings *set, conica__out *o,
+                                 double **params, size_t *np, size_t *cap,
+                                 conica_plot_stats *stats, double *maxdev, conica_status *st)
 {
     march *m = malloc(sizeof *m);
     if (!m)
@@ -859,43 +1402,14 @@ conica_code conica__guaranteed_piece(const conica_bspline *g, double tol,
     }
     conica__homog(g, 0, g->n, m->H);
     size_t p = (size_t)m->p, h = (size_t)m->h;
-    double a = g->knots[p], b = g->knots[g->n];
+    double a = g->knots[p], b = g->knots[g->n], pt[3];
     m->ua = a;
     m->mua = p;
-
-    /* rounding margin from the magnitude of the coordinates */
-    double scale = 0.0, pt[3];
-    for (size_t i = 0; i < g->n; i++) {
-        proj(m, m->H + i * h, pt);
-        for (int c = 0; c < m->d; c++)
-            scale = fabs(pt[c]) > scale ? fabs(pt[c]) : scale;
-    }
-    double margin = G_ULPS * (m->h > m->d ? 2.0 : 1.0) * (double)(p + 2) * DBL_EPSILON * scale;
-    double tol_eff = tol - margin;
     m->tol = tol;
     m->tol_eff = tol_eff;
     conica_code rc = CONICA_OK;
-    size_t cap = 0;
-    if (params)
-        *np = 0;
-    if (!(tol_eff > 0.5 * tol)) {
-        rc = conica__fail(st, CONICA_ERR_ARG, 0, 0,
-                          "tolerance %.3g is below the floating-point resolution of "
-                          "coordinates of magnitude %.3g",
-                          tol, scale);
-        goto done;
-    }
-    if (!first_is_join) {
-        proj(m, m->H, pt);
-        rc = conica__out_push(o, pt, a, st);
-    }
-    if (rc == CONICA_OK)
-        rc = push_param(params, np, &cap, a, st);
-    if (rc != CONICA_OK)
-        goto done;
     double hs = b - a; /* first guess: the whole piece */
     double min_step = (b - a) * 1e-13;
-    double maxdev = 0.0;
     size_t splits = 0;
     enter_interval(m, next_span(m, p), 0);
     for (;;) {
@@ -949,24 +1463,61 @@ conica_code conica__guaranteed_piece(const conica_bspline *g, double tol,
                 splits = 0;
             }
         }
-        maxdev = dev > maxdev ? dev : maxdev;
+        *maxdev = dev > *maxdev ? dev : *maxdev;
         rc = conica__out_push(o, pt, x, st);
         if (rc == CONICA_OK)
-            rc = push_param(params, np, &cap, x, st);
+            rc = push_param(params, np, cap, x, st);
         if (rc != CONICA_OK || last)
             break;
         double f = dev > 0 ? sqrt(G_NEXT * tol / dev) : 2.0;
         f = f < 0.7 ? 0.7 : (f > 2.0 ? 2.0 : f);
         hs = step * f;
     }
-    if (rc == CONICA_OK && maxdev + margin > stats->bound)
-        stats->bound = maxdev + margin;
 done:
     stats->flops += m->flops;
     free(m->H);
     free(m->C);
     free(m->cmu);
     free(m);
+    return rc;
+}
+
+conica_code conica__guaranteed_piece(const conica_bspline *g, double tol,
+                                     const conica_plot_settings *set, int first_is_join,
+                                     conica__out *o, double **params, size_t *np,
+                                     conica_plot_stats *stats, conica_status *st)
+{
+    size_t p = (size_t)g->degree, d = (size_t)g->dim;
+    double a = g->knots[p];
+    /* rounding margin from the magnitude of the coordinates */
+    double scale = 0.0;
+    for (size_t i = 0; i < g->n * d; i++)
+        scale = fabs(g->ctrl[i]) > scale ? fabs(g->ctrl[i]) : scale;
+    double margin = G_ULPS * (g->w ? 2.0 : 1.0) * (double)(p + 2) * DBL_EPSILON * scale;
+    double tol_eff = tol - margin, maxdev = 0.0, pt[3];
+    conica_code rc = CONICA_OK;
+    size_t cap = 0;
+    if (params)
+        *np = 0;
+    if (!(tol_eff > 0.5 * tol))
+        return conica__fail(st, CONICA_ERR_ARG, 0, 0,
+                            "tolerance %.3g is below the floating-point resolution of "
+                            "coordinates of magnitude %.3g",
+                            tol, scale);
+    if (!first_is_join) {
+        memcpy(pt, g->ctrl, d * sizeof *pt);
+        rc = conica__out_push(o, pt, a, st);
+    }
+    if (rc == CONICA_OK)
+        rc = push_param(params, np, &cap, a, st);
+    if (rc != CONICA_OK)
+        return rc;
+    if (p == 3 && d == 2 && !g->w)
+        rc = c3_march(g, tol, tol_eff, set, o, params, np, &cap, stats, &maxdev, st);
+    else
+        rc = general_march(g, tol, tol_eff, set, o, params, np, &cap, stats, &maxdev, st);
+    if (rc == CONICA_OK && maxdev + margin > stats->bound)
+        stats->bound = maxdev + margin;
     return rc;
 }
 
