@@ -1,15 +1,42 @@
 #!/bin/sh
-# scripts/memcheck.sh [BUILD] - valgrind memcheck over the command-line tools
-# (make memcheck). A representative set of invocations -- conica
-# subdivide/combs/errors (and plot when the tool has it), svgsmooth and
-# scadprofile on examples/ and generated inputs, success and error paths --
-# each run under
-#     valgrind --error-exitcode=1 --leak-check=full
-# A run passes when the tool's own exit status is the expected one and
-# valgrind's log reports `ERROR SUMMARY: 0 errors` (invalid reads/writes,
-# uninitialised values, definite/possible leaks). Logs: BUILD/memcheck/.
+# scripts/memcheck.sh [BUILD] [SUITE...] - valgrind memcheck over the
+# command-line tools (make memcheck). Two parts:
+#
+# 1. A representative set of invocations -- conica subdivide/combs/errors/
+#    plot, svgsmooth and scadprofile on examples/ and generated inputs,
+#    success and error paths -- each run under
+#        valgrind -q --error-exitcode=99 --leak-check=full
+#                 --errors-for-leak-kinds=definite,possible
+#    Valgrind's exit status 99 is kept apart from the tools' own 1 (error)
+#    and 2 (usage), so a leak or an invalid access on an error path cannot
+#    hide behind an expected exit 1. A run passes when the status is the
+#    expected one (never 99) and the log has no error report.
+# 2. CLI test suites (tests/cli/SUITE.sh; default: MEMCHECK_SUITES below)
+#    with CONICA_WRAP set, so the harness runs every invocation of a tool
+#    in BUILD/bin under the same valgrind command (see tests/cli/harness.sh):
+#    each such run must end without valgrind errors, and the suite's own
+#    assertions must pass as they do without valgrind.
+#
+# Not part of `make test` (valgrind makes the tools 20-50x slower); CI can
+# run a subset: `sh scripts/memcheck.sh build limits` runs part 1 and one
+# suite. MEMCHECK_SUITES=none skips part 2. Logs: BUILD/memcheck/.
 set -u
 build=${1:-build}
+[ $# -gt 0 ] && shift
+# Suites of part 2: every suite of our own binaries that runs in minutes
+# under valgrind (fuzz_smoke runs sanitizer builds; blender, install,
+# runner, cgal_broken test other programs).
+suites=${*:-${MEMCHECK_SUITES:-subdivide combs plot svgsmooth scadprofile limits no_data_lost hostile_xml reliability_table}}
+[ "$suites" = none ] && suites=
+VG="valgrind -q --error-exitcode=99 --leak-check=full --errors-for-leak-kinds=definite,possible"
+# Assertions that fail under valgrind for a documented valgrind limitation,
+# not a memory error: valgrind computes x87 long double in 64-bit double
+# precision (valgrind manual, "Limitations"), so accuracy bounds that rely
+# on the long double steps of the subdivision are looser under it (combs.sh
+# on a circle about (100,-50): E_max 5.2e-14 natively, 1.3e-13 under
+# valgrind). Such a failure is listed, not counted; every other failed
+# assertion of a suite fails memcheck. One description per line.
+VG_NUMERIC="E_max below 1e-13 at every level"
 bin=$build/bin
 logs=$build/memcheck
 mkdir -p "$logs"
@@ -28,10 +55,13 @@ run() {
     shift 2
     i=$((i + 1))
     log=$logs/$(printf '%02d' "$i")-$name.log
-    valgrind -q --error-exitcode=1 --leak-check=full --errors-for-leak-kinds=definite,possible \
-        --log-file="$log" "$@" >"$tmp/out" 2>"$tmp/err" </dev/null
+    $VG --log-file="$log" "$@" >"$tmp/out" 2>"$tmp/err" </dev/null
     st=$?
-    if [ "$st" -eq "$want" ] && ! grep -q -E 'ERROR SUMMARY: [1-9]|definitely lost: [1-9]|Invalid (read|write)|uninitialised' "$log"; then
+    # -q logs nothing but errors: any report (Invalid read/write/free,
+    # uninitialised value, a definitely/possibly lost record, ...) fails.
+    if [ "$st" -eq "$want" ] && [ "$st" -ne 99 ] && ! grep -q -E \
+        'ERROR SUMMARY: [1-9]|(definitely|possibly) lost|Invalid (read|write|free)|uninitialised|Mismatched free|overlap|[Ff]ishy|Syscall param|Conditional jump' \
+        "$log"; then
         pass=$((pass + 1))
         printf 'ok    %-28s exit %s\n' "$name" "$st"
     else
@@ -107,4 +137,40 @@ run 1 scadprofile-empty "$p" "$tmp/empty.txt"
 run 1 scadprofile-unwritable "$p" -o "$tmp/no/such/dir/o.scad" "$ex/ellipse.txt"
 
 echo "memcheck: $pass passed, $fail failed (valgrind logs in $logs)"
-[ "$fail" -eq 0 ]
+
+# Part 2: CLI suites, every tool invocation under valgrind.
+s_runs=0 s_errs=0 s_fail=0 s_n=0
+for suite in $suites; do
+    s_n=$((s_n + 1))
+    slog=$logs/suite-$suite.log
+    CONICA_WRAP="$VG --log-file=@LOG@" sh "tests/cli/$suite.sh" "$build" >"$slog" 2>&1
+    sst=$?
+    w=$(sed -n 's/^wrapped: \([0-9]*\) runs, \([0-9]*\) with errors$/\1 \2/p' "$slog" | tail -n 1)
+    r=${w% *} e=${w#* }
+    summary=$(grep -E '^(All tests passed|test cases:|assertions:)' "$slog" | tr '\n' ' ')
+    if [ -z "$w" ]; then r=0 e=0; fi
+    s_runs=$((s_runs + r))
+    s_errs=$((s_errs + e))
+    # descriptions of the failed assertions: the line after each FAILED:
+    awk '/: FAILED:$/ { getline; sub(/^  /, ""); print }' "$slog" >"$tmp/failed"
+    grep -v -x -F "$VG_NUMERIC" "$tmp/failed" >"$tmp/real" || :
+    nreal=$(grep -c . "$tmp/real")
+    nnum=$(($(grep -c . "$tmp/failed") - nreal))
+    if [ "$e" -ne 0 ] || [ -z "$w" ] || [ "$nreal" -ne 0 ] ||
+        { [ "$sst" -ne 0 ] && [ "$nnum" -eq 0 ]; }; then
+        s_fail=$((s_fail + 1))
+        printf 'FAIL  suite %-20s %s runs under valgrind, %s with errors, exit %s: %s(log %s)\n' \
+            "$suite" "$r" "$e" "$sst" "$summary" "$slog"
+        grep -A 12 'FAILED:' "$slog" | head -n 60 | sed 's/^/      /'
+    else
+        printf 'ok    suite %-20s %s runs under valgrind, 0 with errors: %s\n' "$suite" "$r" "$summary"
+        if [ "$nnum" -ne 0 ]; then
+            printf '      (%s assertion(s) looser under valgrind'"'"'s 64-bit long double, not counted: %s)\n' \
+                "$nnum" "$(tr '\n' ';' <"$tmp/failed")"
+        fi
+    fi
+done
+if [ "$s_n" -gt 0 ]; then
+    echo "memcheck suites: $s_n suites, $s_runs tool runs under valgrind, $s_errs with valgrind errors, $s_fail suites failed"
+fi
+[ "$fail" -eq 0 ] && [ "$s_fail" -eq 0 ]

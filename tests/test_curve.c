@@ -283,6 +283,70 @@ TEST_CASE("parse: NULL arguments", "[curve][parse][errors]")
     CHECK_EQ(conica_curve_parse("v 1 2", 5, NULL, NULL), CONICA_ERR_ARG);
 }
 
+TEST_CASE("parse_ex: the point cap is counted before allocating and names its line",
+          "[curve][parse][limits]")
+{
+    const char *text = "# four points\nv 0 0\nv 1 0\nv 1 1\nv 0 1\nvn 0 -1\nvn 1 0\nvn 0 1\n"
+                       "vn -1 0\n";
+    const char *no_normals = "v 0 0\nv 1 0\nv 1 1\nv 0 1\n";
+    const double old_xy[] = {7, 8};
+    conica_curve c;
+    conica_status st;
+    conica_curve_init(&c);
+    REQUIRE_EQ(conica_curve_set(old_xy, NULL, 1, 0, &c, NULL), CONICA_OK);
+
+    SECTION("one point over the cap: CONICA_ERR_LIMIT on the line past it, output untouched") {
+        CHECK_EQ(conica_curve_parse_ex(text, strlen(text), 3, &c, &st), CONICA_ERR_LIMIT);
+        CHECK_EQ(st.line, 5); /* the fourth `v` line */
+        CHECK(strstr(st.message, "more than 3 points") != NULL);
+        CHECK_EQ_U(c.n, 1);
+        CHECK_EQ(c.xy[0], 7);
+    }
+    SECTION("the normals are capped too") {
+        /* 3 `v` lines pass a cap of 3, the fourth `vn` line does not */
+        const char *t = "v 0 0\nv 1 0\nv 1 1\nvn 0 -1\nvn 1 0\nvn 0 1\nvn 1 1\n";
+        CHECK_EQ(conica_curve_parse_ex(t, strlen(t), 3, &c, &st), CONICA_ERR_LIMIT);
+        CHECK_EQ(st.line, 7);
+        CHECK(strstr(st.message, "more than 3 normals") != NULL);
+        CHECK_EQ_U(c.n, 1);
+    }
+    SECTION("exactly at the cap is accepted") {
+        CHECK_EQ(conica_curve_parse_ex(text, strlen(text), 4, &c, &st), CONICA_OK);
+        CHECK_EQ_U(c.n, 4);
+        REQUIRE(c.nxy != NULL);
+        CHECK_EQ(c.nxy[2], 1);
+        CHECK_EQ(conica_curve_parse_ex(no_normals, strlen(no_normals), 4, &c, &st), CONICA_OK);
+        CHECK_EQ_U(c.n, 4);
+        CHECK(c.nxy == NULL);
+    }
+    SECTION("0 means the default cap; conica_curve_parse is parse_ex with the default") {
+        conica_curve d;
+        conica_curve_init(&d);
+        CHECK_EQ(conica_curve_parse_ex(text, strlen(text), 0, &c, &st), CONICA_OK);
+        CHECK_EQ(conica_curve_parse(text, strlen(text), &d, &st), CONICA_OK);
+        REQUIRE_EQ_U(c.n, d.n);
+        CHECK(memcmp(c.xy, d.xy, 2 * c.n * sizeof *c.xy) == 0);
+        CHECK(memcmp(c.nxy, d.nxy, 2 * c.n * sizeof *c.nxy) == 0);
+        conica_curve_free(&d);
+    }
+    SECTION("a cap above the default is allowed") {
+        CHECK_EQ(conica_curve_parse_ex(text, strlen(text), CONICA_CURVE_MAX_INPUT_POINTS * 4, &c,
+                                       &st),
+                 CONICA_OK);
+        CHECK_EQ_U(c.n, 4);
+    }
+    SECTION("a cap of 1 refuses the second point; errors before the cap keep their own code") {
+        CHECK_EQ(conica_curve_parse_ex(no_normals, strlen(no_normals), 1, &c, &st),
+                 CONICA_ERR_LIMIT);
+        CHECK_EQ(st.line, 2);
+        CHECK_EQ(conica_curve_parse_ex("bogus\nv 0 0\nv 1 1\n", 18, 1, &c, &st),
+                 CONICA_ERR_PARSE);
+        CHECK_EQ(st.line, 1);
+    }
+    CHECK_EQ(conica_curve_parse_ex(NULL, 5, 3, &c, NULL), CONICA_ERR_ARG);
+    conica_curve_free(&c);
+}
+
 static const char *locale_names[] = {"de_DE.UTF-8", "de_DE.utf8", "de_DE", "fr_FR.UTF-8",
                                      "fr_FR.utf8", "ru_RU.UTF-8", NULL};
 

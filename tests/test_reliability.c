@@ -37,6 +37,74 @@ TEST_CASE("spline parser: a huge or fractional degree is an error, not a cast ov
     CHECK_EQ(parse_spline("degree 1\nknots 0 0 1 1\nc 0 0\nc 1 1\n", &st), CONICA_OK);
 }
 
+TEST_CASE("spline parser: caps on control points and degree (parse_ex)", "[reliability][limits]")
+{
+    const char *text = "degree 2\nknots 0 0 0 1 2 3 3 3\nc 0 0\nc 4 0\nc 6 3\nc 3 6\nc 0 3\n";
+    const size_t len = strlen(text);
+    conica_bspline_parse_limits lim = conica_bspline_parse_limits_defaults();
+    conica_bspline s;
+    conica_status st;
+    CHECK_EQ_U(lim.max_ctrl, CONICA_BSPLINE_MAX_CTRL);
+    CHECK_EQ(lim.max_degree, CONICA_BSPLINE_MAX_DEGREE);
+    conica_bspline_init(&s);
+
+    SECTION("five control points against a cap of four: LIMIT on the fifth, output untouched") {
+        lim.max_ctrl = 4;
+        CHECK_EQ(conica_bspline_parse_ex(text, len, &lim, &s, &st), CONICA_ERR_LIMIT);
+        CHECK_EQ(st.line, 7);
+        CHECK(strstr(st.message, "more than 4 control points (max_ctrl)") != NULL);
+        CHECK_EQ_U(s.n, 0);
+        CHECK(s.knots == NULL);
+    }
+    SECTION("at the cap: accepted, same spline as conica_bspline_parse") {
+        conica_bspline d;
+        conica_bspline_init(&d);
+        lim.max_ctrl = 5;
+        lim.max_degree = 2;
+        REQUIRE_EQ(conica_bspline_parse_ex(text, len, &lim, &s, &st), CONICA_OK);
+        REQUIRE_EQ(conica_bspline_parse(text, len, &d, &st), CONICA_OK);
+        REQUIRE_EQ_U(s.n, 5);
+        CHECK_EQ_U(d.n, s.n);
+        CHECK(memcmp(s.knots, d.knots, 8 * sizeof *s.knots) == 0);
+        CHECK(memcmp(s.ctrl, d.ctrl, 10 * sizeof *s.ctrl) == 0);
+        conica_bspline_free(&d);
+    }
+    SECTION("degree over a lowered cap: LIMIT on the degree line") {
+        lim.max_degree = 1;
+        CHECK_EQ(conica_bspline_parse_ex(text, len, &lim, &s, &st), CONICA_ERR_LIMIT);
+        CHECK_EQ(st.line, 1);
+        CHECK(strstr(st.message, "degree 2 exceeds 1 (max_degree)") != NULL);
+        /* a fractional degree is still a syntax error, not "exceeds" */
+        const char *frac = "degree 1.5\nknots 0 0 1 1\nc 0 0\nc 1 1\n";
+        CHECK_EQ(conica_bspline_parse_ex(frac, strlen(frac), &lim, &s, &st), CONICA_ERR_PARSE);
+    }
+    SECTION("knot and weight lines are capped at max_ctrl + max_degree + 1 values") {
+        lim.max_ctrl = 3;
+        lim.max_degree = 2; /* 6 values */
+        const char *many = "degree 2\nknots 0 0 0 1 1 1 2\nc 0 0\n";
+        CHECK_EQ(conica_bspline_parse_ex(many, strlen(many), &lim, &s, &st), CONICA_ERR_LIMIT);
+        CHECK_EQ(st.line, 2);
+        const char *wts = "degree 1\nknots 0 0 1 1\nc 0 0\nc 1 1\nw 1 1 1 1 1 1 1\n";
+        CHECK_EQ(conica_bspline_parse_ex(wts, strlen(wts), &lim, &s, &st), CONICA_ERR_LIMIT);
+        CHECK_EQ(st.line, 5);
+    }
+    SECTION("caps outside their range are CONICA_ERR_ARG; NULL caps are the defaults") {
+        lim.max_ctrl = 0;
+        CHECK_EQ(conica_bspline_parse_ex(text, len, &lim, &s, &st), CONICA_ERR_ARG);
+        lim.max_ctrl = CONICA_BSPLINE_MAX_CTRL + 1;
+        CHECK_EQ(conica_bspline_parse_ex(text, len, &lim, &s, &st), CONICA_ERR_ARG);
+        lim = conica_bspline_parse_limits_defaults();
+        lim.max_degree = CONICA_BSPLINE_MAX_DEGREE + 1;
+        CHECK_EQ(conica_bspline_parse_ex(text, len, &lim, &s, &st), CONICA_ERR_ARG);
+        lim.max_degree = 0;
+        CHECK_EQ(conica_bspline_parse_ex(text, len, &lim, &s, &st), CONICA_ERR_ARG);
+        CHECK_EQ_U(s.n, 0);
+        CHECK_EQ(conica_bspline_parse_ex(text, len, NULL, &s, &st), CONICA_OK);
+        CHECK_EQ_U(s.n, 5);
+    }
+    conica_bspline_free(&s);
+}
+
 TEST_CASE("curve parser: a zero normal is refused with its line", "[reliability][fuzz]")
 {
     const char *text = "v 0 0\nv 1 0\nvn 0 0\nvn 0 1\n";
@@ -123,5 +191,46 @@ TEST_CASE("plot deviation: a polyline reaching infinity does not index the grid 
     double c2p = 0, p2c = 0;
     conica_code rc = conica_plot_deviation(&s, &pl, 8, &c2p, &p2c, &st);
     CHECK((rc == CONICA_OK || rc == CONICA_ERR_NONFINITE || rc == CONICA_ERR_ARG));
+    conica_bspline_free(&s);
+}
+
+TEST_CASE("plot: an evaluation that fails never leaves a point unwritten",
+          "[reliability][fuzz]")
+{
+    /* memcheck (scripts/memcheck.sh): knots near DBL_MAX made
+     * conica_bspline_eval fail inside the Mathematica-style sampler, which
+     * printed the caller's uninitialised buffer with exit 0. Every method
+     * must give an error, or points inside the control points' bounding box
+     * (the convex hull property, Lemma 1.13 of seed 004). */
+    const double knots[] = {0, 0, 0, 1e308, 1.7e308, 1.7e308, 1.7e308};
+    const double ctrl[] = {0, 0, 1, 1, 2, 0, 3, 1};
+    const conica_plot_method methods[] = {
+        CONICA_PLOT_GUARANTEED, CONICA_PLOT_ADAPTIVE, CONICA_PLOT_UNIFORM,
+        CONICA_PLOT_LOCAL_UNIFORM, CONICA_PLOT_CHAIKIN, CONICA_PLOT_LANE_RIESENFELD,
+        CONICA_PLOT_MATHEMATICA};
+    conica_bspline s;
+    conica_status st;
+    conica_bspline_init(&s);
+    REQUIRE_EQ(conica_bspline_set(2, 2, knots, 7, ctrl, 4, NULL, &s, &st), CONICA_OK);
+    for (size_t m = 0; m < sizeof methods / sizeof methods[0]; m++) {
+        conica_plot_settings set = conica_plot_defaults();
+        set.method = methods[m];
+        set.abs_tolerance = 1e-3;
+        conica_polyline pl;
+        conica_polyline_init(&pl);
+        conica_code rc = conica_plot(&s, &set, &pl, NULL, &st);
+        CAPTURE_I((int)m);
+        CAPTURE_I((int)rc);
+        CHECK((rc == CONICA_OK || rc == CONICA_ERR_NUMERIC));
+        if (rc == CONICA_OK) {
+            size_t outside = 0;
+            for (size_t i = 0; i < pl.n; i++) {
+                double x = pl.xy[2 * i], y = pl.xy[2 * i + 1];
+                outside += !(x >= 0 && x <= 3 && y >= 0 && y <= 1);
+            }
+            CHECK_EQ_U(outside, 0);
+        }
+        conica_polyline_free(&pl);
+    }
     conica_bspline_free(&s);
 }

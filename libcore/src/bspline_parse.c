@@ -49,13 +49,38 @@ static int is_space(char c)
     return c == ' ' || c == '\t' || c == '\r' || c == '\v' || c == '\f';
 }
 
-#define MAX_VALUES (CONICA_BSPLINE_MAX_CTRL + CONICA_BSPLINE_MAX_DEGREE + 1)
+conica_bspline_parse_limits conica_bspline_parse_limits_defaults(void)
+{
+    conica_bspline_parse_limits lim;
+    lim.max_ctrl = CONICA_BSPLINE_MAX_CTRL;
+    lim.max_degree = CONICA_BSPLINE_MAX_DEGREE;
+    return lim;
+}
 
 conica_code conica_bspline_parse(const char *buf, size_t len, conica_bspline *out,
                                  conica_status *st)
 {
+    return conica_bspline_parse_ex(buf, len, NULL, out, st);
+}
+
+conica_code conica_bspline_parse_ex(const char *buf, size_t len,
+                                    const conica_bspline_parse_limits *lim, conica_bspline *out,
+                                    conica_status *st)
+{
     if ((!buf && len) || !out)
         return conica__fail(st, CONICA_ERR_ARG, 0, 0, "NULL input or output");
+    const conica_bspline_parse_limits def = conica_bspline_parse_limits_defaults();
+    if (!lim)
+        lim = &def;
+    if (lim->max_ctrl < 1 || lim->max_ctrl > CONICA_BSPLINE_MAX_CTRL || lim->max_degree < 1 ||
+        lim->max_degree > CONICA_BSPLINE_MAX_DEGREE)
+        return conica__fail(st, CONICA_ERR_ARG, 0, 0,
+                            "reader caps out of range: max_ctrl %zu (1..%zu), max_degree %d "
+                            "(1..%d)",
+                            lim->max_ctrl, (size_t)CONICA_BSPLINE_MAX_CTRL, lim->max_degree,
+                            CONICA_BSPLINE_MAX_DEGREE);
+    /* knots and weights: n + p + 1 values at most for a spline within the caps */
+    const size_t max_values = lim->max_ctrl + (size_t)lim->max_degree + 1;
     dvec knots = {0}, ctrl = {0}, wts = {0};
     int degree = -1, dim = 0;
     size_t degree_line = 0, ncpts = 0;
@@ -118,9 +143,10 @@ conica_code conica_bspline_parse(const char *buf, size_t len, conica_bspline *ou
                 i += used;
                 if (kind == K_KNOTS || kind == K_W) {
                     dvec *a = kind == K_KNOTS ? &knots : &wts;
-                    if (a->n >= MAX_VALUES) {
+                    if (a->n >= max_values) {
                         rc = conica__fail(st, CONICA_ERR_LIMIT, line, i,
-                                          "more than %zu values", (size_t)MAX_VALUES);
+                                          "more than %zu values (max_ctrl + max_degree + 1)",
+                                          max_values);
                         break;
                     }
                     if (!dvec_push(a, x, line)) {
@@ -152,9 +178,11 @@ conica_code conica_bspline_parse(const char *buf, size_t len, conica_bspline *ou
                                       "degree needs one positive integer");
                     break;
                 }
-                if (vals[0] > CONICA_BSPLINE_MAX_DEGREE) {
-                    rc = conica__fail(st, CONICA_ERR_LIMIT, line, ks, "degree %.0f exceeds %d",
-                                      vals[0], CONICA_BSPLINE_MAX_DEGREE);
+                if (vals[0] > lim->max_degree) {
+                    rc = conica__fail(st, CONICA_ERR_LIMIT, line, ks, "degree %.0f exceeds %d%s",
+                                      vals[0], lim->max_degree,
+                                      lim->max_degree < CONICA_BSPLINE_MAX_DEGREE
+                                          ? " (max_degree)" : "");
                     break;
                 }
                 degree = (int)vals[0];
@@ -173,10 +201,9 @@ conica_code conica_bspline_parse(const char *buf, size_t len, conica_bspline *ou
                                       dim);
                     break;
                 }
-                if (ncpts >= CONICA_BSPLINE_MAX_CTRL) {
+                if (ncpts >= lim->max_ctrl) {
                     rc = conica__fail(st, CONICA_ERR_LIMIT, line, ks,
-                                      "more than %zu control points",
-                                      (size_t)CONICA_BSPLINE_MAX_CTRL);
+                                      "more than %zu control points (max_ctrl)", lim->max_ctrl);
                     break;
                 }
                 for (int q = 0; q < count && rc == CONICA_OK; q++)

@@ -373,6 +373,12 @@ static conica_code parse_pair(const line_view *ln, const char *p, const char *wh
 
 conica_code conica_curve_parse(const char *buf, size_t len, conica_curve *out, conica_status *st)
 {
+    return conica_curve_parse_ex(buf, len, 0, out, st);
+}
+
+conica_code conica_curve_parse_ex(const char *buf, size_t len, size_t max_points,
+                                  conica_curve *out, conica_status *st)
+{
     line_view ln;
     size_t pos, nv = 0, nvn = 0, iv = 0, ivn = 0, last_vn_line = 0;
     double *xy = NULL, *nxy = NULL;
@@ -380,6 +386,8 @@ conica_code conica_curve_parse(const char *buf, size_t len, conica_curve *out, c
 
     if (!out || (len > 0 && !buf))
         return conica__fail(st, CONICA_ERR_ARG, 0, 0, "conica_curve_parse: NULL argument");
+    if (max_points == 0)
+        max_points = CONICA_CURVE_MAX_INPUT_POINTS;
 
     /* Pass 1: classify every line and count, so that the arrays are
      * allocated once and the point cap is checked before any allocation. */
@@ -391,16 +399,16 @@ conica_code conica_curve_parse(const char *buf, size_t len, conica_curve *out, c
         case LINE_SKIP:
             break;
         case LINE_V:
-            if (++nv > CONICA_CURVE_MAX_INPUT_POINTS)
+            if (++nv > max_points)
                 return conica__fail(st, CONICA_ERR_LIMIT, ln.no, ln.offset,
-                                    "more than %zu points (CONICA_CURVE_MAX_INPUT_POINTS)",
-                                    (size_t)CONICA_CURVE_MAX_INPUT_POINTS);
+                                    "more than %zu points (the reader's max_points)",
+                                    max_points);
             break;
         case LINE_VN:
-            if (++nvn > CONICA_CURVE_MAX_INPUT_POINTS)
+            if (++nvn > max_points)
                 return conica__fail(st, CONICA_ERR_LIMIT, ln.no, ln.offset,
-                                    "more than %zu normals (CONICA_CURVE_MAX_INPUT_POINTS)",
-                                    (size_t)CONICA_CURVE_MAX_INPUT_POINTS);
+                                    "more than %zu normals (the reader's max_points)",
+                                    max_points);
             last_vn_line = ln.no;
             break;
         case LINE_OTHER: {

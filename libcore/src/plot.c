@@ -159,13 +159,19 @@ conica_code conica__out_push(conica__out *o, const double *pt, double t, conica_
 
 void conica__plot_point(const conica_bspline *s, double t, double *out)
 {
+    /* An evaluation that fails (a parameter the knot vector cannot place,
+     * e.g. knots near DBL_MAX whose differences overflow) yields NaN, never
+     * the caller's uninitialised buffer: conica_plot() refuses any
+     * non-finite point with CONICA_ERR_NUMERIC. */
     if (s->dim == 1) {
         double v;
-        conica_bspline_eval(s, t, &v, NULL);
+        if (conica_bspline_eval(s, t, &v, NULL) != CONICA_OK)
+            v = NAN;
         out[0] = t;
         out[1] = v;
-    } else {
-        conica_bspline_eval(s, t, out, NULL);
+    } else if (conica_bspline_eval(s, t, out, NULL) != CONICA_OK) {
+        for (int i = 0; i < s->dim; i++)
+            out[i] = NAN;
     }
 }
 
@@ -418,14 +424,17 @@ conica_code conica_plot(const conica_bspline *s, const conica_plot_settings *set
     conica__pieces_free(&pc);
     if (rc == CONICA_OK) {
         /* A rational spline whose weights underflow (denormal weights, found
-         * by fuzz_plot) evaluates to 0/0: never hand NaN or Inf to a caller
-         * as a result; every method goes through here. */
+         * by fuzz_plot) evaluates to 0/0, and a failed evaluation gives NaN
+         * (conica__plot_point): never hand NaN or Inf to a caller as a
+         * result; every method goes through here. */
         size_t nv = o.pl.n * (size_t)o.pl.dim;
         for (size_t i = 0; i < nv; i++)
             if (!isfinite(o.pl.xy[i])) {
                 rc = conica__fail(st, CONICA_ERR_NUMERIC, 0, i / (size_t)o.pl.dim,
-                                  "point %zu of the plot is not finite (weights too "
-                                  "small or too different to evaluate in double)",
+                                  "point %zu of the plot is not finite: the spline "
+                                  "cannot be evaluated in double there (weights "
+                                  "too small or too different, or knots near the "
+                                  "overflow limit)",
                                   i / (size_t)o.pl.dim);
                 break;
             }

@@ -1,3 +1,6 @@
+/* realpath() is XSI, outside the POSIX base the build asks for. */
+#define _XOPEN_SOURCE 700
+
 #include "cli.h"
 
 #include <errno.h>
@@ -126,38 +129,65 @@ int cli_read_file(const char *prog, const char *path, size_t max_bytes, char **b
 int cli_output_open(const char *prog, const char *path, cli_output *out)
 {
     static const char suffix[] = ".tmpXXXXXX";
-    struct stat sb;
+    struct stat sb, lsb;
+    char *target = NULL;
     size_t plen;
     int fd;
 
     out->f = NULL;
     out->path = NULL;
     out->tmp = NULL;
+    out->mode = 0;
     if (path == NULL || strcmp(path, "-") == 0) {
         out->f = stdout;
         return 0;
     }
-    if (stat(path, &sb) == 0 && !S_ISREG(sb.st_mode)) {
+    if (stat(path, &sb) == 0) {
         if (S_ISDIR(sb.st_mode))
             return cli_error(prog, path, "is a directory");
-        out->f = fopen(path, "wb");
-        if (!out->f)
-            return cli_error(prog, path, "cannot open output: %s", strerror(errno));
-        return 0;
+        if (!S_ISREG(sb.st_mode)) {
+            out->f = fopen(path, "wb");
+            if (!out->f)
+                return cli_error(prog, path, "cannot open output: %s", strerror(errno));
+            return 0;
+        }
+        /* An existing regular file: the replacement gets the permissions
+         * the user chose for it. When the name is a symbolic link (to a
+         * link ...), replace the file the links lead to, not the link; a
+         * link among the directories does not matter to rename(). */
+        out->mode = (unsigned)(sb.st_mode & 0777); /* not set-id bits */
+        if (lstat(path, &lsb) == 0 && S_ISLNK(lsb.st_mode)) {
+            target = realpath(path, NULL);
+            if (!target)
+                return cli_error(prog, path, "cannot resolve the symbolic link: %s",
+                                 strerror(errno));
+        }
+    } else if (lstat(path, &lsb) == 0 && S_ISLNK(lsb.st_mode)) {
+        /* rename() would replace the link itself with a regular file */
+        return cli_error(prog, path, "is a symbolic link to a missing file; "
+                         "not replacing the link");
+    } else {
+        mode_t mask = umask(0);
+        umask(mask);
+        out->mode = (unsigned)(0666 & ~mask);
     }
-    plen = strlen(path);
-    out->path = malloc(plen + 1);
+    if (!target) {
+        target = malloc(strlen(path) + 1);
+        if (!target)
+            return cli_error(prog, path, "out of memory");
+        memcpy(target, path, strlen(path) + 1);
+    }
+    plen = strlen(target);
+    out->path = target;
     out->tmp = malloc(plen + sizeof suffix);
-    if (!out->path || !out->tmp) {
+    if (!out->tmp) {
         free(out->path);
-        free(out->tmp);
-        out->path = out->tmp = NULL;
+        out->path = NULL;
         return cli_error(prog, path, "out of memory");
     }
-    memcpy(out->path, path, plen + 1);
-    memcpy(out->tmp, path, plen);
+    memcpy(out->tmp, target, plen);
     memcpy(out->tmp + plen, suffix, sizeof suffix);
-    /* The temporary lives beside the target so rename() is atomic. */
+    /* The temporary lives beside the (resolved) target so rename() is atomic. */
     fd = mkstemp(out->tmp);
     if (fd < 0) {
         int e = errno;
@@ -204,16 +234,18 @@ int cli_output_commit(const char *prog, cli_output *out)
         failed = 1;
         e = errno;
     }
+    /* mkstemp made the temporary 0600: give it the old file's mode (or a
+     * new file's 0666 & ~umask) before it becomes visible. A file system
+     * without permissions may refuse; the file then stays 0600, the safe
+     * side, so that is not an error. */
+    if (!failed)
+        (void)fchmod(fileno(out->f), (mode_t)out->mode);
     if (fclose(out->f) != 0 && !failed) {
         failed = 1;
         e = errno;
     }
     out->f = NULL;
     if (!failed) {
-        /* Keep the permissions a new file would get, not mkstemp's 0600. */
-        mode_t mask = umask(0);
-        umask(mask);
-        chmod(out->tmp, 0666 & ~mask);
         if (rename(out->tmp, out->path) != 0) {
             failed = 1;
             e = errno;

@@ -44,11 +44,21 @@ int cli_read_file(const char *prog, const char *path, size_t max_bytes, char **b
  * cli_output_commit(). "-" or NULL writes to stdout directly. An existing
  * target that is not a regular file (/dev/null, a FIFO, a terminal) is
  * written in place: renaming over it would replace the device node with a
- * regular file (as root that succeeds). A directory is an error. */
+ * regular file (as root that succeeds). A directory is an error.
+ *
+ * Replacing an existing file keeps what the user set up around it: a
+ * symbolic link is resolved (realpath) so the temporary is created beside
+ * the real file and the rename replaces the real file, leaving the link a
+ * link; the new file gets the old file's permission bits (rwx, not the
+ * set-id bits: a 0600 file stays 0600). A new file gets 0666 & ~umask, as fopen() would give it. A
+ * symbolic link to nothing (dangling) is an error rather than replaced.
+ * Not kept: the owner (only root could), hard links (rename makes a new
+ * inode), extended attributes. */
 typedef struct cli_output {
     FILE *f;          /* where to write */
-    char *path;       /* final path, NULL for stdout */
+    char *path;       /* final path (symlinks resolved), NULL for stdout */
     char *tmp;        /* temporary path, NULL for stdout and devices */
+    unsigned mode;    /* permission bits the committed file gets */
 } cli_output;
 
 /* Returns 0, or 1 after printing an error. */

@@ -8,6 +8,7 @@
 #include <string.h>
 
 #include "cli.h"
+#include "conica/bspline.h"
 #include "conica/plot.h"
 
 #define PROG "conica"
@@ -21,8 +22,9 @@ static void usage(FILE *f)
             "                   [--abs-tolerance E | --tolerance PX [--viewport WxH]]\n"
             "                   [--points N] [--curve-points] [--prephase K]\n"
             "                   [--local-weight length|angle|both] [--angle DEG]\n"
-            "                   [--max-recursion N] [--max-points N] [--stats]\n"
-            "                   [-o OUT] IN.spl\n"
+            "                   [--max-recursion N] [--max-points N] [--max-knots N]\n"
+            "                   [--max-iterations N] [--max-control-points N]\n"
+            "                   [--max-degree N] [--stats] [-o OUT] IN.spl\n"
             "\n"
             "Plot a B-spline function or curve (optionally rational) as a polyline\n"
             "(seed 004: adaptive plotting of splines).\n"
@@ -58,21 +60,38 @@ static void usage(FILE *f)
             "      --points N          uniform / local-uniform / chaikin / lane-riesenfeld:\n"
             "                          number of points (default %zu); mathematica: initial\n"
             "                          points (default 50)\n"
-            "      --max-points N      refuse outputs of more than N points (default %zu)\n"
             "      --stats             print `plot: <points> points, <K> knots inserted,\n"
             "                          <ops> flops, <S> s` on stderr\n"
             "  -o, --output OUT        write to OUT (`-` = stdout) via a temporary file\n"
             "  -h, --help              show this help\n"
             "\n"
+            "limits (the run fails with exit 1 and a message naming the flag when one is\n"
+            "hit; nothing is written):\n"
+            "      --max-points N      refuse outputs of more than N points (default %zu)\n"
+            "      --max-knots N       refuse to insert more than N knots, in all (default\n"
+            "                          %zu); --knot-budget and --prephase must not exceed it\n"
+            "      --max-iterations N  refuse to run more than N plotter iterations / trial\n"
+            "                          steps (default %zu)\n"
+            "      --max-control-points N  refuse input splines with more than N control\n"
+            "                          points (default and maximum %zu)\n"
+            "      --max-degree N      refuse input splines of degree above N (default and\n"
+            "                          maximum %d)\n"
+            "      (the input file size: environment variable CONICA_MAX_INPUT_BYTES,\n"
+            "      default %zu bytes)\n"
+            "\n"
             "exit status: 0 success, 1 error (bad input, I/O; nothing is written),\n"
             "2 usage error.\n",
             (size_t)CONICA_PLOT_DEFAULT_KNOT_BUDGET, CONICA_PLOT_DEFAULT_PIXEL_TOLERANCE,
-            (size_t)CONICA_PLOT_DEFAULT_UNIFORM_POINTS, (size_t)CONICA_PLOT_MAX_POINTS_DEFAULT);
+            (size_t)CONICA_PLOT_DEFAULT_UNIFORM_POINTS, (size_t)CONICA_PLOT_MAX_POINTS_DEFAULT,
+            (size_t)CONICA_PLOT_MAX_KNOTS_DEFAULT, (size_t)CONICA_PLOT_MAX_ITERATIONS_DEFAULT,
+            (size_t)CONICA_BSPLINE_MAX_CTRL, CONICA_BSPLINE_MAX_DEGREE,
+            (size_t)CLI_DEFAULT_MAX_INPUT);
 }
 
 typedef struct options {
     conica_plot_settings set;
-    int stats, have_abs, have_px, have_points;
+    conica_bspline_parse_limits read; /* caps of the .spl reader */
+    int stats, have_abs, have_px, have_points, have_budget;
     const char *in, *out;
 } options;
 
@@ -121,7 +140,8 @@ static int parse_args(int argc, char **argv, options *o)
 {
     int positional_only = 0;
     o->set = conica_plot_defaults();
-    o->stats = o->have_abs = o->have_px = o->have_points = 0;
+    o->read = conica_bspline_parse_limits_defaults();
+    o->stats = o->have_abs = o->have_px = o->have_points = o->have_budget = 0;
     o->in = o->out = NULL;
     for (int i = 1; i < argc; i++) {
         const char *a = argv[i], *v;
@@ -168,13 +188,14 @@ static int parse_args(int argc, char **argv, options *o)
                 NEED(0, "--stop takes movement, threshold or budget");
         } else if (is_opt(a, "--knot-budget")) {
             v = opt_value(argc, argv, &i, a, 13);
-            NEED(v && !cli_parse_int(v, 0, (long)CONICA_PLOT_MAX_KNOTS_DEFAULT, &num),
-                 "--knot-budget needs an integer in 0..%zu", (size_t)CONICA_PLOT_MAX_KNOTS_DEFAULT);
+            NEED(v && !cli_parse_int(v, 0, LONG_MAX, &num),
+                 "--knot-budget needs a whole number of knots");
             o->set.knot_budget = (size_t)num;
+            o->have_budget = 1;
         } else if (is_opt(a, "--prephase")) {
             v = opt_value(argc, argv, &i, a, 10);
-            NEED(v && !cli_parse_int(v, 0, (long)CONICA_PLOT_MAX_KNOTS_DEFAULT, &num),
-                 "--prephase needs an integer in 0..%zu", (size_t)CONICA_PLOT_MAX_KNOTS_DEFAULT);
+            NEED(v && !cli_parse_int(v, 0, LONG_MAX, &num),
+                 "--prephase needs a whole number of knots");
             o->set.prephase_knots = (size_t)num;
         } else if (is_opt(a, "--local-weight")) {
             v = opt_value(argc, argv, &i, a, 14);
@@ -219,6 +240,26 @@ static int parse_args(int argc, char **argv, options *o)
             v = opt_value(argc, argv, &i, a, 12);
             NEED(v && !cli_parse_int(v, 2, LONG_MAX, &num), "--max-points needs an integer >= 2");
             o->set.max_points = (size_t)num;
+        } else if (is_opt(a, "--max-knots")) {
+            v = opt_value(argc, argv, &i, a, 11);
+            NEED(v && !cli_parse_int(v, 0, LONG_MAX, &num), "--max-knots needs an integer >= 0");
+            o->set.max_knots = (size_t)num;
+        } else if (is_opt(a, "--max-iterations")) {
+            v = opt_value(argc, argv, &i, a, 16);
+            NEED(v && !cli_parse_int(v, 1, LONG_MAX, &num),
+                 "--max-iterations needs an integer >= 1");
+            o->set.max_iterations = (size_t)num;
+        } else if (is_opt(a, "--max-control-points")) {
+            v = opt_value(argc, argv, &i, a, 20);
+            NEED(v && !cli_parse_int(v, 1, (long)CONICA_BSPLINE_MAX_CTRL, &num),
+                 "--max-control-points needs an integer in 1..%zu",
+                 (size_t)CONICA_BSPLINE_MAX_CTRL);
+            o->read.max_ctrl = (size_t)num;
+        } else if (is_opt(a, "--max-degree")) {
+            v = opt_value(argc, argv, &i, a, 12);
+            NEED(v && !cli_parse_int(v, 1, CONICA_BSPLINE_MAX_DEGREE, &num),
+                 "--max-degree needs an integer in 1..%d", CONICA_BSPLINE_MAX_DEGREE);
+            o->read.max_degree = (int)num;
         } else if (strncmp(a, "-o", 2) == 0 || is_opt(a, "--output")) {
             size_t nl = a[1] == '-' ? 8 : 2;
             v = opt_value(argc, argv, &i, a, nl);
@@ -236,6 +277,14 @@ static int parse_args(int argc, char **argv, options *o)
     NEED(!o->have_points || o->set.points <= o->set.max_points,
          "--points %zu exceeds --max-points %zu",
          o->set.points, o->set.max_points);
+    /* the adaptive loop's budgets are knots inserted too: a lower
+     * --max-knots lowers the default budget, an explicit one must fit */
+    if (!o->have_budget && o->set.knot_budget > o->set.max_knots)
+        o->set.knot_budget = o->set.max_knots;
+    NEED(o->set.knot_budget <= o->set.max_knots, "--knot-budget %zu exceeds --max-knots %zu",
+         o->set.knot_budget, o->set.max_knots);
+    NEED(o->set.prephase_knots <= o->set.max_knots, "--prephase %zu exceeds --max-knots %zu",
+         o->set.prephase_knots, o->set.max_knots);
     return -1;
 }
 
@@ -256,6 +305,28 @@ static int write_polyline(FILE *f, const conica_polyline *pl)
     return ferror(f) != 0;
 }
 
+/* The flag behind a CONICA_ERR_LIMIT: the library names the settings field
+ * it hit in parentheses ("(max_knots)"); say which flag moves that cap. */
+static const char *limit_hint(const char *msg, const options *o, char *buf, size_t cap)
+{
+    if (strstr(msg, "(max_ctrl)"))
+        snprintf(buf, cap, "; %s --max-control-points N",
+                 o->read.max_ctrl < CONICA_BSPLINE_MAX_CTRL ? "raise the cap with"
+                                                             : "already the largest");
+    else if (strstr(msg, "(max_degree)"))
+        snprintf(buf, cap, "; raise the cap with --max-degree N (at most %d)",
+                 CONICA_BSPLINE_MAX_DEGREE);
+    else if (strstr(msg, "max_points"))
+        snprintf(buf, cap, "; raise the cap with --max-points N");
+    else if (strstr(msg, "max_knots"))
+        snprintf(buf, cap, "; raise the cap with --max-knots N");
+    else if (strstr(msg, "max_iterations"))
+        snprintf(buf, cap, "; raise the cap with --max-iterations N");
+    else
+        buf[0] = '\0';
+    return buf;
+}
+
 /* Called by the dispatcher (conica.c), which declares it from commands.def. */
 int conica_cmd_plot(int argc, char **argv);
 
@@ -274,15 +345,16 @@ int conica_cmd_plot(int argc, char **argv)
     conica_bspline_init(&s);
     conica_status st;
     memset(&st, 0, sizeof st);
-    char where[4096];
-    conica_code code = conica_bspline_parse(buf, len, &s, &st);
+    char where[4096], hint[96];
+    conica_code code = conica_bspline_parse_ex(buf, len, &o.read, &s, &st);
     free(buf);
     if (code != CONICA_OK) {
         if (st.line > 0)
             snprintf(where, sizeof where, "%s:%zu", name, st.line);
         else
             snprintf(where, sizeof where, "%s", name);
-        cli_error(PROG, where, "%s", st.message[0] ? st.message : conica_strerror(code));
+        cli_error(PROG, where, "%s%s", st.message[0] ? st.message : conica_strerror(code),
+                  code == CONICA_ERR_LIMIT ? limit_hint(st.message, &o, hint, sizeof hint) : "");
         return CLI_EXIT_ERROR;
     }
     cli_output co;
@@ -296,7 +368,8 @@ int conica_cmd_plot(int argc, char **argv)
     code = conica_plot(&s, &o.set, &pl, &stats, &st);
     conica_bspline_free(&s);
     if (code != CONICA_OK) {
-        cli_error(PROG, name, "%s", st.message[0] ? st.message : conica_strerror(code));
+        cli_error(PROG, name, "%s%s", st.message[0] ? st.message : conica_strerror(code),
+                  code == CONICA_ERR_LIMIT ? limit_hint(st.message, &o, hint, sizeof hint) : "");
         cli_output_abort(&co);
         return CLI_EXIT_ERROR;
     }

@@ -27,8 +27,9 @@ static void usage(FILE *f)
     fprintf(f,
             "usage: conica subdivide [-k LEVELS] [--open|--closed] [--precise]\n"
             "                        [--estimate-normals] [--normals area|circle]\n"
-            "                        [--reference-compatible] [--max-points N] [--threads N]\n"
-            "                        [--time] [-o OUT] [IN]\n"
+            "                        [--reference-compatible] [--max-points N]\n"
+            "                        [--max-input-points N] [--threads N] [--time]\n"
+            "                        [-o OUT] [IN]\n"
             "\n"
             "Refine a point-normal curve with conic-preserving interpolatory subdivision\n"
             "(seed 000): every level keeps the old points and inserts one point per edge.\n"
@@ -49,6 +50,9 @@ static void usage(FILE *f)
             "      --reference-compatible  fit in absolute coordinates with the SVD, as the\n"
             "                          reference implementation does (for comparisons)\n"
             "      --max-points N      refuse outputs of more than N points (default %zu)\n"
+            "      --max-input-points N  refuse inputs of more than N points (default %zu;\n"
+            "                          the input file size is capped by the environment\n"
+            "                          variable CONICA_MAX_INPUT_BYTES, default %zu bytes)\n"
             "      --threads N         worker threads (results are bit-identical for any N)\n"
             "      --time              print `subdivide: N edge points in S s (U us/point)` on\n"
             "                          stderr: the subdivision alone, best of %d runs\n"
@@ -58,14 +62,14 @@ static void usage(FILE *f)
             "exit status: 0 success, 1 error (bad input, I/O; nothing is written),\n"
             "2 usage error.\n",
             CONICA_SUBDIV_MAX_LEVELS, DEFAULT_LEVELS, (size_t)CONICA_SUBDIV_DEFAULT_MAX_POINTS,
-            TIME_RUNS);
+            (size_t)CONICA_CURVE_MAX_INPUT_POINTS, (size_t)CLI_DEFAULT_MAX_INPUT, TIME_RUNS);
 }
 
 typedef struct options {
     long levels;
     int open, precise, estimate, refcompat, time;
     conica_normal_method method;
-    size_t max_points;
+    size_t max_points, max_input_points;
     int threads;
     const char *in, *out;
 } options;
@@ -91,6 +95,7 @@ static int parse_args(int argc, char **argv, options *o)
     o->open = o->precise = o->estimate = o->refcompat = o->time = 0;
     o->method = CONICA_NORMALS_AREA;
     o->max_points = CONICA_SUBDIV_DEFAULT_MAX_POINTS;
+    o->max_input_points = CONICA_CURVE_MAX_INPUT_POINTS;
     o->threads = 0;
     o->in = NULL;
     o->out = NULL;
@@ -156,6 +161,13 @@ static int parse_args(int argc, char **argv, options *o)
                 return cli_usage_error(USAGE_PROG, "--max-points needs a positive integer%s%s%s",
                                        v ? ", not '" : "", v ? v : "", v ? "'" : "");
             o->max_points = (size_t)num;
+        } else if (strncmp(a, "--max-input-points", 18) == 0 && (a[18] == '\0' || a[18] == '=')) {
+            v = opt_value(argc, argv, &i, a, 18);
+            if (!v || cli_parse_int(v, 1, LONG_MAX, &num))
+                return cli_usage_error(USAGE_PROG,
+                                       "--max-input-points needs a positive integer%s%s%s",
+                                       v ? ", not '" : "", v ? v : "", v ? "'" : "");
+            o->max_input_points = (size_t)num;
         } else if (strncmp(a, "--threads", 9) == 0 && (a[9] == '\0' || a[9] == '=')) {
             v = opt_value(argc, argv, &i, a, 9);
             if (!v || cli_parse_int(v, 1, MAX_THREADS, &num))
@@ -230,7 +242,7 @@ int conica_cmd_subdivide(int argc, char **argv)
     conica_subdiv_info_init(&info);
     memset(&st, 0, sizeof st);
 
-    code = conica_curve_parse(buf, len, &in, &st);
+    code = conica_curve_parse_ex(buf, len, o.max_input_points, &in, &st);
     if (code != CONICA_OK) {
         char where[4096];
         free(buf);
@@ -238,7 +250,8 @@ int conica_cmd_subdivide(int argc, char **argv)
             snprintf(where, sizeof where, "%s:%zu", name, st.line);
         else
             snprintf(where, sizeof where, "%s", name);
-        cli_error(PROG, where, "%s", st.message);
+        cli_error(PROG, where, "%s%s", st.message,
+                  code == CONICA_ERR_LIMIT ? "; raise the cap with --max-input-points N" : "");
         conica_curve_free(&in);
         return CLI_EXIT_ERROR;
     }

@@ -16,6 +16,15 @@
 # 0 passed, 42 something failed, 4 every case skipped, 2 no case ran.
 # A failing check prints the suite, the case, what was expected, the command
 # and the tails of its stdout and stderr.
+#
+# CONICA_WRAP (for `make memcheck`, scripts/memcheck.sh): a command prefix,
+# split into words, put before every command the checks run whose program
+# lies in $build/bin (not before sh, env, cmp, ...). `@LOG@` in it becomes
+# a log file per command. Exit status 99 of a wrapped command means the
+# wrapper found errors (memcheck.sh uses valgrind --error-exitcode=99): that
+# is one more failed assertion, with the log's tail, whatever the check
+# expected. finish then prints `wrapped: N runs, E with errors` before the
+# summary.
 
 build=${1:-build}
 tmp=$(mktemp -d "${TMPDIR:-/tmp}/conica-cli.XXXXXX") || exit 1
@@ -31,6 +40,8 @@ h_cases=0 h_cases_failed=0 h_cases_skipped=0
 h_pass=0 h_fail=0
 h_case="" h_case_failed=0 h_case_skipped=0 h_header=0
 h_cmd=""
+h_wrapped=0 h_wrap_errors=0
+h_wrap_log=$tmp/.wrap.log
 
 h_line() { # character
     printf '%s\n' "$(printf '%79s' '' | tr ' ' "$1")"
@@ -95,9 +106,29 @@ h_fail() { # description detail [show-output]
 h_skipping() { [ "$h_case_skipped" -ne 0 ]; }
 
 # Runs a command with stdin closed; its output lands in $out and $err.
+# Returns the command's exit status.
 h_run() {
     h_cmd=$(printf '%s ' "$@")
+    case "${CONICA_WRAP:-}:$1" in
+        :*) "$@" >"$out" 2>"$err" </dev/null ;;
+        *:"$build"/bin/*) h_run_wrapped "$@" ;;
+        *) "$@" >"$out" 2>"$err" </dev/null ;;
+    esac
+}
+
+h_run_wrapped() {
+    h_wrapped=$((h_wrapped + 1))
+    : >"$h_wrap_log"
+    # shellcheck disable=SC2046 # the prefix is words on purpose
+    set -- $(printf '%s\n' "$CONICA_WRAP" | sed "s|@LOG@|$h_wrap_log|g") "$@"
     "$@" >"$out" 2>"$err" </dev/null
+    h_wst=$?
+    if [ "$h_wst" -eq 99 ]; then
+        h_wrap_errors=$((h_wrap_errors + 1))
+        h_fail "the wrapper (${CONICA_WRAP%% *}) found errors: exit 99" \
+            "$(tail -n 40 "$h_wrap_log" 2>/dev/null)"
+    fi
+    return "$h_wst"
 }
 
 # check DESC CMD...: passes when CMD exits 0.
@@ -184,6 +215,9 @@ skip_case() {
 # finish: summary in Catch2's words; exits 0, 42, 4 or 2.
 finish() {
     h_end_case
+    if [ -n "${CONICA_WRAP:-}" ]; then
+        echo "wrapped: $h_wrapped runs, $h_wrap_errors with errors"
+    fi
     h_asserts=$((h_pass + h_fail))
     h_cpass=$((h_cases - h_cases_failed - h_cases_skipped))
     h_line =

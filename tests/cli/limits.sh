@@ -70,7 +70,7 @@ if ! "$conica" plot --help >/dev/null 2>&1; then
 else
     refused 1 'open\.spl: .*max_points' "$tmp/o.txt" \
         "$conica" plot --abs-tolerance 1e-12 --max-points 100 -o "$tmp/o.txt" "$tmp/open.spl"
-    refused 2 '--knot-budget needs an integer in 0\.\.1000000' "$tmp/o.txt" \
+    refused 2 '--knot-budget 2000000 exceeds --max-knots 1000000' "$tmp/o.txt" \
         "$conica" plot --method adaptive --stop budget --knot-budget 2000000 -o "$tmp/o.txt" "$tmp/open.spl"
     refused 2 '--points 5000000 exceeds --max-points 4000000' "$tmp/o.txt" \
         "$conica" plot --method chaikin --points 5000000 -o "$tmp/o.txt" "$tmp/open.spl"
@@ -87,6 +87,70 @@ else
             test "$st" -eq 1 -o "$st" -eq 2
         check_true "--method $m: nothing written" test ! -e "$tmp/o.txt"
     done
+fi
+
+begin_case "conica plot: knots inserted (--max-knots) and iterations (--max-iterations)"
+if ! "$conica" plot --help >/dev/null 2>&1; then
+    skip_case "this conica has no plot command"
+else
+    check "--help documents --max-knots and --max-iterations" "$conica" plot --help
+    check_grep '--max-knots N .*default' "$out"
+    check_grep '--max-iterations N .*trial' "$out"
+    check_grep '^ +steps \(default 20000000\)' "$out"
+    # pre-phase 5 + loop budget 5 = 10 knots under a cap of 5: the loop hits it
+    refused 1 'open\.spl: more than 5 knots inserted \(max_knots\); raise the cap with --max-knots N' \
+        "$tmp/o.txt" "$conica" plot --method adaptive --stop budget --prephase 5 --knot-budget 5 \
+        --max-knots 5 -o "$tmp/o.txt" "$tmp/open.spl"
+    check "the same run passes with --max-knots 10" "$conica" plot --method adaptive --stop budget \
+        --prephase 5 --knot-budget 5 --max-knots 10 -o "$tmp/o.txt" "$tmp/open.spl"
+    check_true "... and writes the plot" test -s "$tmp/o.txt"
+    check "--stats: between 6 and 10 knots inserted" "$conica" plot --method adaptive --stop budget \
+        --prephase 5 --knot-budget 5 --max-knots 10 --stats -o "$tmp/o.txt" "$tmp/open.spl"
+    check_grep '^plot: [0-9]+ points, ([6-9]|10) knots inserted' "$err"
+    refused 2 '--knot-budget 50 exceeds --max-knots 5' "$tmp/o.txt" \
+        "$conica" plot --method adaptive --knot-budget 50 --max-knots 5 -o "$tmp/o.txt" "$tmp/open.spl"
+    refused 2 '--prephase 6 exceeds --max-knots 5' "$tmp/o.txt" \
+        "$conica" plot --method adaptive --prephase 6 --max-knots 5 -o "$tmp/o.txt" "$tmp/open.spl"
+    refused 2 '--max-knots needs an integer >= 0' "$tmp/o.txt" \
+        "$conica" plot --max-knots -1 -o "$tmp/o.txt" "$tmp/open.spl"
+    check "a lower --max-knots lowers the default knot budget (500) instead of refusing" \
+        "$conica" plot --method adaptive --max-knots 3 --stats -o "$tmp/o.txt" "$tmp/open.spl"
+    check_grep '^plot: [0-9]+ points, [0-3] knots inserted' "$err"
+    refused 1 'open\.spl: guaranteed plot needs more than 5 trial steps \(max_iterations\); raise the cap with --max-iterations N' \
+        "$tmp/o.txt" "$conica" plot --abs-tolerance 1e-9 --max-iterations 5 -o "$tmp/o.txt" "$tmp/open.spl"
+    refused 1 'adaptive loop exceeds 3 iterations \(max_iterations\); raise the cap with --max-iterations N' \
+        "$tmp/o.txt" "$conica" plot --method adaptive --max-iterations 3 -o "$tmp/o.txt" "$tmp/open.spl"
+    refused 2 '--max-iterations needs an integer >= 1' "$tmp/o.txt" \
+        "$conica" plot --max-iterations 0 -o "$tmp/o.txt" "$tmp/open.spl"
+    check "the default caps let the guaranteed plot of 1e-9 through" \
+        "$conica" plot --abs-tolerance 1e-9 -o "$tmp/o.txt" "$tmp/open.spl"
+    refused 1 'raise the cap with --max-points N' "$tmp/o.txt" \
+        "$conica" plot --abs-tolerance 1e-9 --max-points 10 -o "$tmp/o.txt" "$tmp/open.spl"
+fi
+
+begin_case "readers: input points (--max-input-points), spline size (--max-control-points, --max-degree)"
+refused 1 'ellipse\.txt:8: more than 5 points \(the reader.s max_points\); raise the cap with --max-input-points N' \
+    "$tmp/o.txt" "$conica" subdivide -k 1 --max-input-points 5 -o "$tmp/o.txt" "$ex/ellipse.txt"
+check "--max-input-points 12 lets the 12 points of ellipse.txt through" \
+    "$conica" subdivide -k 1 --max-input-points 12 -o "$tmp/o.txt" "$ex/ellipse.txt"
+refused 2 '--max-input-points needs a positive integer' "$tmp/o.txt" \
+    "$conica" subdivide --max-input-points 0 -o "$tmp/o.txt" "$ex/ellipse.txt"
+check "conica subdivide --help documents --max-input-points" "$conica" subdivide --help
+check_grep '--max-input-points N +refuse inputs of more than N points \(default 16777216' "$out"
+if "$conica" plot --help >/dev/null 2>&1; then
+    refused 1 'open\.spl:7: more than 4 control points \(max_ctrl\); raise the cap with --max-control-points N' \
+        "$tmp/o.txt" "$conica" plot --max-control-points 4 -o "$tmp/o.txt" "$tmp/open.spl"
+    check "--max-control-points 5 lets the 5 control points through" \
+        "$conica" plot --max-control-points 5 -o "$tmp/o.txt" "$tmp/open.spl"
+    refused 2 '--max-control-points needs an integer in 1\.\.4194304' "$tmp/o.txt" \
+        "$conica" plot --max-control-points 4194305 -o "$tmp/o.txt" "$tmp/open.spl"
+    refused 1 'open\.spl:1: degree 2 exceeds 1 \(max_degree\); raise the cap with --max-degree N \(at most 50\)' \
+        "$tmp/o.txt" "$conica" plot --max-degree 1 -o "$tmp/o.txt" "$tmp/open.spl"
+    refused 2 '--max-degree needs an integer in 1\.\.50' "$tmp/o.txt" \
+        "$conica" plot --max-degree 51 -o "$tmp/o.txt" "$tmp/open.spl"
+    printf 'degree 51\nknots 0 1\nc 0 0\n' >"$tmp/deg51.spl"
+    refused 1 'deg51\.spl:1: degree 51 exceeds 50$' "$tmp/o.txt" \
+        "$conica" plot -o "$tmp/o.txt" "$tmp/deg51.spl"
 fi
 
 begin_case "XML: document size (--max-input-bytes)"

@@ -7,7 +7,9 @@
 #     final rename fails (the target is a directory);
 #   - an unwritable output location (read-only /proc, a path under a
 #     regular file, a missing directory, chmod 555 when not root) is exit 1;
-#   - a write error (-o /dev/full) is exit 1, not a silent success.
+#   - a write error (-o /dev/full) is exit 1, not a silent success;
+#   - a successful run that replaces an output keeps its mode and a
+#     symbolic link stays a link whose target is updated (attrs below).
 set -u
 . "$(dirname "$0")/harness.sh"
 conica=$build/bin/conica
@@ -110,6 +112,93 @@ full() {
     check_grep 'error' "$err" "$f_name: the write error is reported"
 }
 
+# perms_of FILE: the permission column of `ls -l` (e.g. -rw-r-----).
+perms_of() { ls -ln "$1" | cut -c1-10; }
+
+# same_output A B: equal except for scadprofile's `// command: ...` line,
+# which records the output path.
+same_output() {
+    grep -v '^// command:' "$1" >"$tmp/so-a"
+    grep -v '^// command:' "$2" >"$tmp/so-b"
+    cmp -s "$tmp/so-a" "$tmp/so-b"
+}
+
+# cmd_for OUT: $a_template with @OUT@ replaced by OUT (words split on
+# spaces when used unquoted, as u_template above: no path here has one).
+cmd_for() { printf '%s\n' "$a_template" | sed "s|@OUT@|$1|g"; }
+
+# attrs NAME SEED [inplace]: a successful run of $a_template that replaces
+# an existing output keeps what the user set up around it. SEED is copied
+# to the output first (for --in-place, pass "inplace": the output is the
+# input). Checked:
+#   - the result is what the same run writes over a plain copy (reference);
+#   - modes 0600 and 0640 survive the replacement (not reset to 0644);
+#   - a symbolic link (relative beside its target, and absolute from another
+#     directory) stays a link to the same target; the target gets the new
+#     content and keeps its mode; no temporary is left in either directory;
+#   - a new file gets 0666 & ~umask (umask 027: -rw-r-----), not -o only;
+#   - a dangling link is refused (exit 1) and left as it was.
+attrs() {
+    a_name=$1 a_seed=$2 a_inplace=${3:-}
+    a_dir=$tmp/attrs-$a_name
+    mkdir -p "$a_dir/ref" "$a_dir/mode" "$a_dir/ln" "$a_dir/real" "$a_dir/new" "$a_dir/dangle"
+    cp "$a_seed" "$a_dir/ref/out"
+    check_exit 0 "$a_name: reference run" $(cmd_for "$a_dir/ref/out")
+    check_true "$a_name: the reference differs from the seed" sh -c "! cmp -s '$a_seed' '$a_dir/ref/out'"
+    for a_mode in 600 640; do
+        cp "$a_seed" "$a_dir/mode/out"
+        chmod "$a_mode" "$a_dir/mode/out"
+        a_before=$(perms_of "$a_dir/mode/out")
+        check_exit 0 "$a_name: replacing a $a_mode file succeeds" $(cmd_for "$a_dir/mode/out")
+        check_true "$a_name: mode $a_mode kept ($a_before -> $(perms_of "$a_dir/mode/out"))" \
+            test "$(perms_of "$a_dir/mode/out")" = "$a_before"
+        check_true "$a_name: mode $a_mode: the new content" same_output "$a_dir/mode/out" "$a_dir/ref/out"
+        check_true "$a_name: mode $a_mode: no temporary left" test "$(ls -A "$a_dir/mode")" = out
+        rm -f "$a_dir/mode/out"
+    done
+    for a_kind in relative absolute; do
+        rm -f "$a_dir/real/file" "$a_dir/real/link" "$a_dir/ln/link"
+        cp "$a_seed" "$a_dir/real/file"
+        chmod 640 "$a_dir/real/file"
+        if [ "$a_kind" = relative ]; then
+            a_link=$a_dir/real/link a_target=file a_listing="file link"
+            ln -s file "$a_link"
+        else
+            a_link=$a_dir/ln/link a_target=$a_dir/real/file a_listing=file
+            ln -s "$a_target" "$a_link"
+        fi
+        check_exit 0 "$a_name: writing through a $a_kind symlink succeeds" $(cmd_for "$a_link")
+        check_true "$a_name: the $a_kind symlink is still a symlink" test -L "$a_link"
+        check_true "$a_name: the $a_kind symlink still points to $a_target" \
+            test "$(ls -l "$a_link" | sed 's/.* -> //')" = "$a_target"
+        check_true "$a_name: $a_kind symlink: its target got the new content" \
+            same_output "$a_dir/real/file" "$a_dir/ref/out"
+        check_true "$a_name: $a_kind symlink: the target kept mode 0640" \
+            test "$(perms_of "$a_dir/real/file")" = "-rw-r-----"
+        check_true "$a_name: $a_kind symlink: no temporary beside the target" \
+            test "$(ls -A "$a_dir/real" | tr '\n' ' ')" = "$a_listing "
+        check_true "$a_name: $a_kind symlink: no temporary beside the link" \
+            test "$(ls -A "$(dirname "$a_link")" | grep -c tmp)" -eq 0
+    done
+    if [ -z "$a_inplace" ]; then
+        rm -f "$a_dir/new/out"
+        check_exit 0 "$a_name: a new file under umask 027" \
+            sh -c 'umask 027 && exec "$@"' sh $(cmd_for "$a_dir/new/out")
+        check_true "$a_name: the new file is -rw-r----- (0666 & ~027, not mkstemp's 0600)" \
+            test "$(perms_of "$a_dir/new/out")" = "-rw-r-----"
+    fi
+    rm -f "$a_dir/dangle/out"
+    ln -s "$a_dir/dangle/missing" "$a_dir/dangle/out"
+    check_exit 1 "$a_name: a dangling symlink as output is refused" $(cmd_for "$a_dir/dangle/out")
+    if [ -z "$a_inplace" ]; then
+        check_grep 'symbolic link' "$err" "$a_name: the message says why"
+    else # --in-place reads the input first, which is missing
+        check_grep 'error: .*dangle/out' "$err" "$a_name: the message names the file"
+    fi
+    check_true "$a_name: the dangling link is left as it was, nothing created" \
+        test -L "$a_dir/dangle/out" -a ! -e "$a_dir/dangle/missing" -a "$(ls -A "$a_dir/dangle")" = out
+}
+
 begin_case "conica subdivide"
 keeps subdivide txt "$conica" subdivide -k 2 -o @OUT@ "$tmp/nan.txt"
 u_template="$conica subdivide -k 1 -o @OUT@ $ex/ellipse.txt"
@@ -165,6 +254,27 @@ cp "$ex/letter-R.svg" "$tmp/ip-ok/in.svg"
 check "--in-place on a good input succeeds" "$svgsmooth" --in-place --levels 2 "$tmp/ip-ok/in.svg"
 check_true "--in-place replaced the file" test "$(ls -A "$tmp/ip-ok")" = in.svg
 check_true "--in-place changed the content" sh -c "! cmp -s '$tmp/ip-ok/in.svg' '$ex/letter-R.svg'"
+
+printf 'precious data\nline 2\n' >"$tmp/seed.txt"
+begin_case "replacing an output keeps its mode and symlinks: conica"
+a_template="$conica subdivide -k 1 -o @OUT@ $ex/ellipse.txt"
+attrs subdivide "$tmp/seed.txt"
+a_template="$conica combs -k 1 -o @OUT@ $ex/ellipse.txt"
+attrs combs "$tmp/seed.txt"
+if [ "$has_plot" -eq 1 ]; then
+    a_template="$conica plot -o @OUT@ $tmp/open.spl"
+    attrs plot "$tmp/seed.txt"
+fi
+
+begin_case "replacing an output keeps its mode and symlinks: svgsmooth"
+a_template="$svgsmooth --levels 2 -o @OUT@ $ex/letter-R.svg"
+attrs svgsmooth-o "$tmp/seed.txt"
+a_template="$svgsmooth --levels 2 --in-place @OUT@"
+attrs svgsmooth-in-place "$ex/letter-R.svg" inplace
+
+begin_case "replacing an output keeps its mode and symlinks: scadprofile"
+a_template="$scad -o @OUT@ $ex/ellipse.txt"
+attrs scadprofile "$tmp/seed.txt"
 
 begin_case "scadprofile"
 keeps scadprofile-nan scad "$scad" -o @OUT@ "$tmp/nan.txt"

@@ -113,6 +113,37 @@ CONICA_API conica_code conica_bspline_parse(const char *buf, size_t len,
         conica_bspline *out, conica_status *st);
 
 /**
+ * Caps of the .spl reader (input-controlled sizes); start from
+ * conica_bspline_parse_limits_defaults(). The library's own maxima
+ * (CONICA_BSPLINE_MAX_CTRL, CONICA_BSPLINE_MAX_DEGREE) are hard limits of
+ * conica_bspline_set() and the evaluators, so a cap can only lower them.
+ */
+typedef struct conica_bspline_parse_limits {
+    size_t max_ctrl; /**< control points, 1..CONICA_BSPLINE_MAX_CTRL (default: that) */
+    int max_degree;  /**< degree, 1..CONICA_BSPLINE_MAX_DEGREE (default: that) */
+} conica_bspline_parse_limits;
+
+/** @brief The reader's default caps: the library maxima. */
+CONICA_API conica_bspline_parse_limits conica_bspline_parse_limits_defaults(void);
+
+/**
+ * @brief conica_bspline_parse() with caller-chosen caps.
+ *
+ * A file over a cap fails with CONICA_ERR_LIMIT on the line that passes it
+ * (`more than N control points (max_ctrl)`, `degree D exceeds N
+ * (max_degree)`), before the values past the cap are stored; the `knots`
+ * and `w` lines are capped at max_ctrl + max_degree + 1 values.
+ * @param[in] buf,len text (need not be NUL-terminated, never written)
+ * @param[in] lim     caps; NULL means the defaults
+ * @param[out] out    replaced on success
+ * @param[out] st     line (1-based) and byte offset of the error
+ * @return as conica_bspline_parse, and CONICA_ERR_ARG for a cap outside
+ *         its range
+ */
+CONICA_API conica_code conica_bspline_parse_ex(const char *buf, size_t len,
+        const conica_bspline_parse_limits *lim, conica_bspline *out, conica_status *st);
+
+/**
  * @brief Point (dim values) at parameter t by the triangular algorithm
  *        (eq. (1.10)-(1.11)); t is clamped to the domain [t_p, t_n].
  * @return CONICA_OK, CONICA_ERR_ARG, CONICA_ERR_NONFINITE

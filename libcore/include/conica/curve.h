@@ -83,6 +83,25 @@ CONICA_API conica_code conica_curve_parse(const char *buf, size_t len, conica_cu
                                           conica_status *st);
 
 /**
+ * @brief conica_curve_parse() with a caller-chosen cap on the points.
+ *
+ * The lines are counted before anything is allocated, so a file over the
+ * cap fails with CONICA_ERR_LIMIT (`more than N points (the reader's
+ * max_points)`, on the first line past it) without allocating; memory is
+ * 16 bytes per point (32 with normals), proportional to the input. The cap may be
+ * raised past the default: the input's length bounds the points anyway
+ * (a `v` line takes at least 5 bytes).
+ * @param[in] buf,len    text, as conica_curve_parse()
+ * @param[in] max_points most `v` lines, and most `vn` lines, accepted;
+ *                       0 means CONICA_CURVE_MAX_INPUT_POINTS
+ * @param[out] out       receives the curve (closed flag set to 1)
+ * @param[out] st        line of the error in st->line
+ * @return as conica_curve_parse()
+ */
+CONICA_API conica_code conica_curve_parse_ex(const char *buf, size_t len, size_t max_points,
+                                             conica_curve *out, conica_status *st);
+
+/**
  * @brief Line of the index-th `v` line (normal == 0) or `vn` line
  *        (normal != 0) of a text that conica_curve_parse() accepted, so
  *        that a later error about point `index` (conica_status::offset of
