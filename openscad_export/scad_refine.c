@@ -45,6 +45,10 @@ conica_code conica_scad_refine(const conica_curve *in, double tol, size_t max_de
                                  "refining needs a closed curve of >= 3 points and a tolerance > 0");
     if (max_dense == 0)
         max_dense = CONICA_SCAD_DEFAULT_MAX_DENSE;
+    /* conica_subdiv_count() does not know the inflection points a
+     * non-convex curve gains, so the subdivision itself holds the budget
+     * (fuzz_scadprofile: 16 points, 2 inflections, 2^14 cap exceeded). */
+    set.max_points = max_dense;
     conica_curve_init(&dense);
     for (level = 1; level <= CONICA_SUBDIV_MAX_LEVELS; level++) {
         size_t count = conica_subdiv_count(in->n, 1, level);
@@ -57,6 +61,14 @@ conica_code conica_scad_refine(const conica_curve *in, double tol, size_t max_de
         }
         set.levels = level;
         rc = conica_subdivide(in, &set, &dense, NULL, st);
+        if (rc == CONICA_ERR_LIMIT) {
+            conica_curve_free(&dense);
+            return conica__fail(st, CONICA_ERR_LIMIT, 0, 0,
+                                "tolerance %g needs more than %zu dense points (level %d with "
+                                "its inflection points, estimated error %g); raise the cap or "
+                                "the tolerance",
+                                tol, max_dense, level, err);
+        }
         if (rc != CONICA_OK) {
             conica_curve_free(&dense);
             return rc;

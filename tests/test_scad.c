@@ -8,6 +8,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "conica/subdiv.h"
 #include "conica_scad.h"
 #include "scad_internal.h"
 
@@ -511,5 +512,56 @@ TEST_CASE("refining exact circle samples to a tolerance", "[scad][refine]")
     double *out = NULL;
     size_t m = 0;
     CHECK_EQ(conica_scad_refine(&in, 1e-9, 1000, &out, &m, NULL, NULL), CONICA_ERR_LIMIT);
+    conica_curve_free(&in);
+}
+
+TEST_CASE("refine: the dense cap holds for curves that gain inflection points",
+          "[scad][refine][limits]")
+{
+    /* fuzz_scadprofile: a non-convex curve gains inflection points, so its
+     * levels hold more points than conica_subdiv_count() says; the cap
+     * max_dense must still bound the dense polyline (or give LIMIT). */
+    const double xy[] = {1.5, 0,  2, 0,    2.5, 0.8,  2.7,  2.5,  1,   3.8, 0,   4,
+                         -1,  3.8, -2.7, 2.5, -2.5, 0.8, -2, 0, -1.5, 0, -1, 0.9,
+                         -0.5, 1.15, 0, 1.2, 0.5, 1.15, 1, 0.9};
+    conica_curve in;
+    conica_curve_init(&in);
+    REQUIRE_EQ(conica_curve_set(xy, NULL, 16, 1, &in, NULL), CONICA_OK);
+    REQUIRE_EQ(conica_curve_estimate_normals(&in, CONICA_NORMALS_AREA, NULL), CONICA_OK);
+    conica_subdiv_settings set = conica_subdiv_defaults();
+    conica_subdiv_info sinfo;
+    conica_subdiv_info_init(&sinfo);
+    conica_curve one;
+    conica_curve_init(&one);
+    set.levels = 1;
+    REQUIRE_EQ(conica_subdivide(&in, &set, &one, &sinfo, NULL), CONICA_OK);
+    REQUIRE(sinfo.inflections > 0); /* else this case tests nothing */
+    conica_curve_free(&one);
+    conica_subdiv_info_free(&sinfo);
+    size_t ok = 0;
+    for (int level = 1; level <= 6; level++) {
+        /* the count without inflection points: too small for this curve */
+        size_t cap = conica_subdiv_count(16, 1, level);
+        for (double tol = 10; tol > 1e-4; tol /= 4) {
+            double *out = NULL;
+            size_t m = 0;
+            conica_scad_refine_info info;
+            memset(&info, 0, sizeof info);
+            conica_status st;
+            conica_code rc = conica_scad_refine(&in, tol, cap, &out, &m, &info, &st);
+            CAPTURE_I(level);
+            CAPTURE_D(tol);
+            CHECK((rc == CONICA_OK || rc == CONICA_ERR_LIMIT));
+            if (rc == CONICA_OK) {
+                ok++;
+                CHECK_LE(info.dense_points, cap);
+                CHECK_LE(m, info.dense_points);
+            } else {
+                CHECK(strstr(st.message, "dense points") != NULL);
+            }
+            free(out);
+        }
+    }
+    CHECK_GT(ok, 0); /* some tolerance was reached within a cap */
     conica_curve_free(&in);
 }
