@@ -137,12 +137,16 @@ conica_code conica_scad_arrange(const conica_scad_profile *p, conica_scad_layout
     }
     /* Parent: the smallest contour containing c's first vertex. Without
      * crossings (validated) any vertex of c is inside or outside another
-     * contour, never on it. */
+     * contour, never on it. A parent is strictly larger in the order
+     * (|area|, then index), so the parent links form a forest even for the
+     * invalid profiles --force arranges (fuzz_scadprofile: two identical
+     * subpaths were each other's parent, and fill_state() looped forever). */
     for (size_t c = 0; c < n; c++) {
         const double *q = p->contours[c].xy;
-        double best = INFINITY;
+        double best = INFINITY, ac = fabs(in[c].area);
         for (size_t d = 0; d < n; d++) {
-            if (d == c || fabs(in[d].area) < fabs(in[c].area) || fabs(in[d].area) >= best)
+            double ad = fabs(in[d].area);
+            if (!(ad > ac || (ad == ac && d < c)) || !(ad < best))
                 continue;
             if (q[0] < in[d].box[0] || q[0] > in[d].box[2] || q[1] < in[d].box[1] ||
                 q[1] > in[d].box[3])

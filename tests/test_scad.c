@@ -253,6 +253,37 @@ static void check_orientation(const conica_scad_profile *p, const conica_scad_la
     }
 }
 
+TEST_CASE("arrange: identical contours (an invalid profile, as --force) terminate",
+          "[scad][arrange][reliability]")
+{
+    /* fuzz_scadprofile: two copies of one subpath were each other's
+     * smallest containing contour, and the fill-state walk up the parent
+     * links never ended (and overflowed its winding counter). */
+    conica_scad_profile p;
+    conica_scad_layout l;
+    conica_scad_profile_init(&p);
+    conica_scad_layout_init(&l);
+    double a[8], b[8], c[8];
+    size_t g = group(&p, "dup", CONICA_SCAD_FILL_EVENODD);
+    square(a, 0, 0, 10, 1);
+    square(b, 0, 0, 10, 1);
+    square(c, 0, 0, 10, 1);
+    conica_scad_add_contour(&p, g, a, 4, NULL);
+    conica_scad_add_contour(&p, g, b, 4, NULL);
+    conica_scad_add_contour(&p, g, c, 4, NULL);
+    CHECK(conica_scad_validate(&p, 0, NULL, NULL) != CONICA_OK); /* they touch */
+    REQUIRE_EQ(conica_scad_arrange(&p, &l, NULL), CONICA_OK);
+    /* no nesting is right for coincident contours; what matters is that
+     * every contour is accounted for and the first one is an outer */
+    CHECK_EQ_U(l.outers + l.holes + l.dropped, 3);
+    CHECK_EQ_U(l.npaths, l.outers + l.holes);
+    CHECK(l.outers >= 1);
+    REQUIRE(l.npaths >= 1);
+    CHECK_EQ_U(l.paths[0].contour, 0);
+    conica_scad_layout_free(&l);
+    conica_scad_profile_free(&p);
+}
+
 TEST_CASE("holes by containment and fill rule", "[scad][arrange]")
 {
     conica_scad_profile p;
