@@ -4,9 +4,9 @@
 #
 #     . "$(dirname "$0")/harness.sh"      # sets $build (from $1) and $tmp
 #     begin_case "subdivide a circle"
-#     check "conica runs" "$build/bin/conica" subdiv "$tmp/in.txt"
+#     check "conica runs" "$build/bin/conica" subdivide "$tmp/in.txt"
 #     check_grep '^x ' "$out"              # $out/$err: the last command's output
-#     check_exit 1 "bad input is an error" "$build/bin/conica" subdiv /nonexistent
+#     check_exit 1 "bad input is an error" "$build/bin/conica" subdivide /nonexistent
 #     skip_case "openscad not installed"   # the rest of this case is ignored
 #     finish                               # summary in Catch2's words, exit code
 #
