@@ -904,6 +904,23 @@ static conica_code push_param(double **params, size_t *np, size_t *cap, double u
  * K = G_EXTRAP K_s + (1 - G_EXTRAP) K_p, at least K_s / 2. */
 #define G_EXTRAP 2.0
 
+/* First trial after a chord of parameter length step certified with dev:
+ * with a curvature estimate Ks at the new start (use_k), the extrapolated
+ * model above, kept within [step / 2, 2 step]; without one, D ~ h^2 from
+ * the chord alone. Shared by both marches. */
+static double next_step(int use_k, double Ks, double dev, double step, double tol)
+{
+    if (use_k) {
+        double Ka = G_EXTRAP * Ks + (1.0 - G_EXTRAP) * dev / (step * step);
+        Ka = Ka < 0.5 * Ks ? 0.5 * Ks : Ka;
+        double h2 = Ka > 0 ? sqrt(G_NEXT * tol / Ka) : 2.0 * step;
+        return h2 < 0.5 * step ? 0.5 * step : (h2 > 2.0 * step ? 2.0 * step : h2);
+    }
+    double f = dev > 0 ? sqrt(G_NEXT * tol / dev) : 2.0;
+    f = f < 0.7 ? 0.7 : (f > 2.0 ? 2.0 : f);
+    return step * f;
+}
+
 typedef struct c3m {
     const double *T, *d; /* knots, control points (x y interleaved) */
     size_t n;            /* control points */
@@ -1283,6 +1300,33 @@ static conica_code c3_cross(c3m *m, double dev0, double hs0, double b_end, doubl
     return CONICA_OK;
 }
 
+/* Take the certified chord [ua, x] that ends in chain element j (an
+ * interval after the current one): its end point goes to pt; then either x
+ * lies inside that interval, whose right part goes on, or x is the piece's
+ * end (returns 1), or x is that interval's end and the next one is entered.
+ * *splits counts the de Casteljau splits since the last exact Bézier form. */
+static int c3_take_chain(c3m *m, const conica_bspline *g, size_t j, double x, double b,
+                         double *pt, size_t *splits)
+{
+    size_t muj = m->cmu[j];
+    memcpy(pt, m->Lb + 6, 2 * sizeof *pt);
+    if (x < m->T[muj + 1]) {
+        c3_enter(m, muj, j);
+        swap_ptr(&m->R, &m->Rb);
+        m->ua = x;
+        m->inv = 1.0 / (m->bb - x);
+        *splits = 1;
+        return 0;
+    }
+    if (m->T[muj + 1] >= b) {
+        memcpy(pt, g->ctrl + 2 * (g->n - 1), 2 * sizeof *pt);
+        return 1;
+    }
+    c3_enter(m, c3_next_span(m, muj + 1), j + 1);
+    *splits = 0;
+    return 0;
+}
+
 /* The march of conica__guaranteed_piece for a planar polynomial cubic;
  * the first point is already out. *maxdev gets the largest certified
  * bound. A step that would pass the interval's end is first tried as a
@@ -1332,21 +1376,7 @@ static conica_code c3_march(const conica_bspline *g, double tol, double tol_eff,
         }
         step = x - m->ua;
         if (found) { /* a chord across the knot(s), ending in chain element j */
-            memcpy(pt, m->Lb + 6, sizeof pt);
-            size_t muj = m->cmu[j];
-            if (x < m->T[muj + 1]) {
-                c3_enter(m, muj, j);
-                swap_ptr(&m->R, &m->Rb);
-                m->ua = x;
-                m->inv = 1.0 / (m->bb - x);
-                splits = 1;
-            } else if (m->T[muj + 1] >= b) {
-                memcpy(pt, g->ctrl + 2 * (g->n - 1), sizeof pt);
-                last = 1;
-            } else {
-                c3_enter(m, c3_next_span(m, muj + 1), j + 1);
-                splits = 0;
-            }
+            last = c3_take_chain(m, g, j, x, b, pt, &splits);
         } else if (x < m->bb) { /* inside the interval: the right half goes on */
             memcpy(pt, m->Lb + 6, sizeof pt);
             swap_ptr(&m->R, &m->Rb);
@@ -1372,21 +1402,7 @@ static conica_code c3_march(const conica_bspline *g, double tol, double tol_eff,
                 step = x2 - m->ua;
                 x = x2;
                 dev = dev2;
-                memcpy(pt, m->Lb + 6, sizeof pt);
-                size_t muj = m->cmu[j];
-                if (x < m->T[muj + 1]) {
-                    c3_enter(m, muj, j);
-                    swap_ptr(&m->R, &m->Rb);
-                    m->ua = x;
-                    m->inv = 1.0 / (m->bb - x);
-                    splits = 1;
-                } else if (m->T[muj + 1] >= b) {
-                    memcpy(pt, g->ctrl + 2 * (g->n - 1), sizeof pt);
-                    last = 1;
-                } else {
-                    c3_enter(m, c3_next_span(m, muj + 1), j + 1);
-                    splits = 0;
-                }
+                last = c3_take_chain(m, g, j, x, b, pt, &splits);
             } else { /* the knot itself, exactly as the interval's end */
                 memcpy(pt, m->R + 6, sizeof pt);
                 c3_enter(m, c3_next_span(m, m->mu + 1), 1);
@@ -1399,22 +1415,17 @@ static conica_code c3_march(const conica_bspline *g, double tol, double tol_eff,
             rc = push_param(params, np, cap, x, st);
         if (rc != CONICA_OK || last)
             break;
-        if (m->ua == x && dev > 0) { /* inside an interval: predict, see G_EXTRAP */
+        double Ks = 0.0;
+        int use_k = m->ua == x && dev > 0; /* inside an interval: see G_EXTRAP */
+        if (use_k) {
             const double *Q = m->R;
             double ax = Q[2] - Q[0], ay = Q[3] - Q[1];
             double bx = Q[4] - 2.0 * Q[2] + Q[0], by = Q[5] - 2.0 * Q[3] + Q[1];
             double cr = fabs(ax * by - ay * bx), al = sqrt(ax * ax + ay * ay);
-            double Ks = al > 0 ? 0.75 * cr / al * m->inv * m->inv : 0.0;
-            double Ka = G_EXTRAP * Ks + (1.0 - G_EXTRAP) * dev / (step * step);
-            Ka = Ka < 0.5 * Ks ? 0.5 * Ks : Ka;
-            double h2 = Ka > 0 ? sqrt(G_NEXT * tol / Ka) : 2.0 * step;
-            hs = h2 < 0.5 * step ? 0.5 * step : (h2 > 2.0 * step ? 2.0 * step : h2);
+            Ks = al > 0 ? 0.75 * cr / al * m->inv * m->inv : 0.0;
             m->flops += 30.0;
-            continue;
         }
-        double f = dev > 0 ? sqrt(G_NEXT * tol / dev) : 2.0;
-        f = f < 0.7 ? 0.7 : (f > 2.0 ? 2.0 : f);
-        hs = step * f;
+        hs = next_step(use_k, Ks, dev, step, tol);
     }
     stats->flops += m->flops;
     return rc;
@@ -1567,19 +1578,10 @@ static conica_code general_march(const conica_bspline *g, double tol, double tol
             hs = b - x;
             continue;
         }
-        if (m->ua == x && dev > 0 && (m->p > 2 || m->h > m->d)) {
-            /* predict, see G_EXTRAP and start_k (a polynomial parabola
-             * has one K per interval: the rule below is exact there) */
-            double Ks = start_k(m);
-            double Ka = G_EXTRAP * Ks + (1.0 - G_EXTRAP) * dev / (step * step);
-            Ka = Ka < 0.5 * Ks ? 0.5 * Ks : Ka;
-            double h2 = Ka > 0 ? sqrt(G_NEXT * tol / Ka) : 2.0 * step;
-            hs = h2 < 0.5 * step ? 0.5 * step : (h2 > 2.0 * step ? 2.0 * step : h2);
-            continue;
-        }
-        double f = dev > 0 ? sqrt(G_NEXT * tol / dev) : 2.0;
-        f = f < 0.7 ? 0.7 : (f > 2.0 ? 2.0 : f);
-        hs = step * f;
+        /* predict, see G_EXTRAP and start_k (a polynomial parabola has one
+         * K per interval: the chord-only rule is exact there) */
+        int use_k = m->ua == x && dev > 0 && (m->p > 2 || m->h > m->d);
+        hs = next_step(use_k, use_k ? start_k(m) : 0.0, dev, step, tol);
     }
 done:
     stats->flops += m->flops;
