@@ -303,18 +303,11 @@ static int status_error(const char *file, const conica_status *st)
 
 /* ------------------------------------------------------------ point-normal */
 
-/* The engine names a bad point by its index in st->offset with a message
- * starting "point"/"normal" (libcore/src/subdiv.c): report it at the line
- * of that point in the file, as `conica subdivide` does. */
+/* Report a subdivision failure at the line of the point it names (see
+ * cli_point_line), as `conica subdivide` does. */
 static int point_error(const char *file, const char *buf, size_t len, const conica_status *st)
 {
-    size_t line = 0;
-    if (st->code == CONICA_ERR_DEGENERATE || st->code == CONICA_ERR_NONFINITE) {
-        if (strncmp(st->message, "point", 5) == 0)
-            line = conica_curve_line_of_point(buf, len, st->offset, 0);
-        else if (strncmp(st->message, "normal", 6) == 0)
-            line = conica_curve_line_of_point(buf, len, st->offset, 1);
-    }
+    size_t line = cli_point_line(buf, len, st->code, st);
     if (line > 0) {
         char where[1024];
         snprintf(where, sizeof where, "%s:%zu", file, line);

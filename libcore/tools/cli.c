@@ -12,6 +12,8 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include "conica/curve.h"
+
 static void vmessage(const char *prog, const char *kind, const char *where,
                      const char *fmt, va_list ap)
 {
@@ -338,5 +340,16 @@ int cli_parse_double(const char *s, double *out)
     if (*end || !isfinite(v))
         return 1;
     *out = v;
+    return 0;
+}
+
+size_t cli_point_line(const char *buf, size_t len, conica_code code, const conica_status *st)
+{
+    if (code != CONICA_ERR_DEGENERATE && code != CONICA_ERR_NONFINITE)
+        return 0;
+    if (strncmp(st->message, "point", 5) == 0)
+        return conica_curve_line_of_point(buf, len, st->offset, 0);
+    if (strncmp(st->message, "normal", 6) == 0)
+        return conica_curve_line_of_point(buf, len, st->offset, 1);
     return 0;
 }

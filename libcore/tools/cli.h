@@ -7,6 +7,8 @@
 #include <stddef.h>
 #include <stdio.h>
 
+#include "conica/common.h"
+
 #if defined(__GNUC__)
 #define CLI_PRINTF(a, b) __attribute__((format(printf, a, b)))
 #else
@@ -32,6 +34,12 @@ int cli_error(const char *prog, const char *where, const char *fmt, ...) CLI_PRI
 void cli_warning(const char *prog, const char *where, const char *fmt, ...) CLI_PRINTF(3, 4);
 /* `prog: usage error: what` plus a hint to --help on stderr. Returns 2. */
 int cli_usage_error(const char *prog, const char *fmt, ...) CLI_PRINTF(2, 3);
+
+/* The line of a point-normal file (buf, len) that a subdivision failure
+ * names: the engine reports a bad point by its index in st->offset with a
+ * message starting "point" or "normal" (libcore/src/subdiv.c). 0 when the
+ * failure names no point. */
+size_t cli_point_line(const char *buf, size_t len, conica_code code, const conica_status *st);
 
 /* Read all of path ("-" or NULL = stdin) into a new NUL-terminated buffer
  * (*len excludes the NUL). Fails with a message (file name included) when

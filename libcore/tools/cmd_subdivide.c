@@ -298,16 +298,8 @@ int conica_cmd_subdivide(int argc, char **argv)
     }
     conica_curve_free(&in);
     if (code != CONICA_OK) {
-        /* The engine reports a bad point by its index in st.offset and a
-         * message starting "point"/"normal" (subdiv.c); name its line. */
         char where[4096];
-        size_t line = 0;
-        if (code == CONICA_ERR_DEGENERATE || code == CONICA_ERR_NONFINITE) {
-            if (strncmp(st.message, "point", 5) == 0)
-                line = conica_curve_line_of_point(buf, len, st.offset, 0);
-            else if (strncmp(st.message, "normal", 6) == 0)
-                line = conica_curve_line_of_point(buf, len, st.offset, 1);
-        }
+        size_t line = cli_point_line(buf, len, code, &st);
         if (line > 0)
             snprintf(where, sizeof where, "%s:%zu", name, line);
         else
