@@ -535,16 +535,18 @@ static int load_svg(const options *o, const char *name, const char *buf, size_t 
     set.warn_ctx = (void *)name;
     set.limits = o->limits;
     set.limits.max_points = o->max_points * 16;
-    if (o->flatten_only) {
-        set.mode = CONICA_SVG_FLATTEN;
-        set.tolerance = tol_user;
-    } else if (o->levels >= 0) {
+    /* SVG fills an open subpath as if closed (as OpenSCAD's import() does) */
+    set.close_open = 1;
+    if (o->levels >= 0) {
         set.mode = CONICA_SVG_SMOOTH;
         set.levels = o->levels;
         set.tolerance = 0;
+        set.fidelity = tol_user;
     } else {
-        set.mode = CONICA_SVG_SMOOTH;
-        set.tolerance = tol_user * DENSE_FRACTION;
+        /* The drawn curves are the ground truth: flattened within the
+         * tolerance of them, straight edges and their ends exact. */
+        set.mode = CONICA_SVG_FLATTEN;
+        set.tolerance = tol_user;
     }
     if (o->select) {
         ids = split_ids(o->select, &nids);
@@ -587,11 +589,6 @@ static int load_svg(const options *o, const char *name, const char *buf, size_t 
             const conica_svg_subpath *sp = &shapes.subpaths[el->first_subpath + k];
             double *xy, *pts = NULL;
             size_t n = sp->n;
-            if (!sp->closed) {
-                cli_warning(PROG, where, "subpath %zu of '%s' is open and is left out", k + 1,
-                            gname);
-                continue;
-            }
             sx->dense_points += n;
             sx->subpaths++;
             xy = malloc(2 * (n ? n : 1) * sizeof *xy);
@@ -604,14 +601,7 @@ static int load_svg(const options *o, const char *name, const char *buf, size_t 
                 xy[2 * i + 1] = (ytop - sp->xy[2 * i + 1]) * syu;
             }
             rc = CONICA_OK;
-            if (!o->flatten_only && o->levels < 0 && n > 3) {
-                rc = conica_scad_thin(xy, n, 1, o->tolerance * (1 - DENSE_FRACTION), &pts, &n,
-                                      &st);
-                if (rc == CONICA_OK) {
-                    free(xy);
-                    xy = pts;
-                }
-            }
+            (void)pts;
             if (rc == CONICA_OK)
                 rc = conica_scad_add_contour(prof, g, xy, n, &st);
             free(xy);

@@ -255,6 +255,18 @@ typedef struct conica_svg_settings {
     double tolerance;       /**< SMOOTH: > 0 refines until a level moves no point more than this;
                                  FLATTEN: maximum distance to the true curve (required > 0) */
     double corner_angle_deg;/**< tangent turn above which a vertex is a corner (default 40; >= 180 disables) */
+    /** SMOOTH: fidelity tolerance, the largest distance (user units) of the
+     *  smoothed curve from the drawn one; 0 (default): 1e-3 of each
+     *  subpath's bounding-box diagonal (conica/path.h). */
+    double fidelity;
+    /** Non-zero: path subpaths made only of straight segments are samples
+     *  of a smooth curve (traced outlines) and are smoothed through; default
+     *  0: straight segments stay straight. polygon and polyline elements
+     *  are always samples. */
+    int lines_as_samples;
+    /** Non-zero: open subpaths are closed with a straight edge, as SVG
+     *  fills them (for tools that need regions). */
+    int close_open;
     int convert_shapes;     /**< non-zero: also rect/circle/ellipse/line (rewritten as paths) */
     const char *const *select; /**< ids of the elements (or of groups: all inside) to process, or NULL for all */
     size_t nselect;

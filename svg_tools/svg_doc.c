@@ -1037,10 +1037,11 @@ static conica_code check_settings(const conica_svg_settings *s, conica_status *s
 
 /* Geometry of one element as segments; 1 got some, 0 nothing to do. */
 static int element_path(const conica_svg_settings *s, xmlNodePtr n, int kind, const char *what,
-                        conica_svg_path *p, conica_code *rc, conica_status *st)
+                        conica_svg_path *p, double *precision, conica_code *rc, conica_status *st)
 {
     size_t line = (size_t)xmlGetLineNo(n);
     *rc = CONICA_OK;
+    *precision = 0.0;
     if (kind == 0) {
         int too_long;
         char *owned;
@@ -1056,6 +1057,7 @@ static int element_path(const conica_svg_settings *s, xmlNodePtr n, int kind, co
             return 0;
         len = strlen(d);
         *rc = conica_svg__path_parse_into(d, len, 0, p, st);
+        *precision = conica_svg__text_precision(d, len);
         xmlFree(owned);
         if (*rc != CONICA_OK) {
             if (st)
@@ -1084,6 +1086,7 @@ static int element_path(const conica_svg_settings *s, xmlNodePtr n, int kind, co
             return 0;
         len = strlen(a);
         *rc = conica_svg_points_parse(a, len, 0, &xy, &np, &bad, st);
+        *precision = conica_svg__text_precision(a, len);
         xmlFree(owned);
         if (*rc != CONICA_OK)
             return 0;
@@ -1158,10 +1161,11 @@ static conica_code collect(const conica_svg_doc *doc, const conica_svg_settings 
                 kind = 3;
             if (kind >= 0 && selected(s, &sel, n)) {
                 char what[96];
+                double prec;
                 describe(n, what, sizeof what);
                 p.n = 0;
                 p.has_error = 0;
-                if (element_path(s, n, kind, what, &p, &rc, st)) {
+                if (element_path(s, n, kind, what, &p, &prec, &rc, st)) {
                     conica_svg_element *el;
                     size_t first = shapes->nsubpaths, idx = shapes->nelements;
                     if (idx == cap) {
@@ -1194,7 +1198,7 @@ static conica_code collect(const conica_svg_doc *doc, const conica_svg_settings 
                         stats->io_seconds += t - mark;
                         mark = t;
                     }
-                    rc = conica_svg__path_polylines(&p, s, what, el->line, idx, kind == 1, &budget,
+                    rc = conica_svg__path_polylines(&p, s, what, el->line, idx, kind, prec, &budget,
                                                     &stats->in_vertices, shapes, st);
                     if (timing) {
                         double t = conica_svg__now();

@@ -43,13 +43,19 @@ void conica_svg__seg_eval(const conica_svg_seg *seg, double t, double p[2], doub
 int conica_svg__path_push(conica_svg_path *p, const conica_svg_seg *g);
 
 /* Polylines of one parsed path per s->mode, appended to *out (element index
- * `element`; `what` and `line` name it in messages; force_closed closes an
- * unterminated last subpath, for polygons). *budget: output points left
- * (decremented); *in_vertices counts input vertices. */
+ * `element`; `what` and `line` name it in messages; kind: 0 path, 1
+ * polygon (closed samples), 2 polyline (open samples), 3 shape converted to
+ * a path; precision: half a unit in the last digit of the numbers as
+ * written). *budget: output points left (decremented); *in_vertices counts
+ * input vertices. */
 conica_code conica_svg__path_polylines(const conica_svg_path *p, const conica_svg_settings *s,
-                                       const char *what, size_t line, size_t element,
-                                       int force_closed, size_t *budget, size_t *in_vertices,
+                                       const char *what, size_t line, size_t element, int kind,
+                                       double precision, size_t *budget, size_t *in_vertices,
                                        conica_svg_shapes *out, conica_status *st);
+
+/* Half a unit in the last digit of the numbers in text[0..len) (the most
+ * decimals any of them has), or 0 when there is none. */
+double conica_svg__text_precision(const char *text, size_t len);
 
 /* conica_svg_path_parse() into *p, reusing its array (the previous
  * segments are dropped, also on failure): for callers that parse many

@@ -17,6 +17,9 @@
  * tests, Eigen's isZero() precision 1e-15 for an all-zero conic). */
 #define CONICA__REF_A_EPS 1e-40
 #define CONICA__REF_EPS 1e-40
+/* A neighbour within this many times settings.noise of an edge line (three
+ * rounded points: the distance moves by up to about 3 noise) is on no side. */
+#define CONICA__NOISE_SIDE 4.0
 #define CONICA__REF_ZERO 1e-15
 /* Fast path: an end normal whose component along the chord (the sine of
  * the angle between tangent and chord) is below this makes the pencil
@@ -309,6 +312,7 @@ static conica_code subdivide_any(const double *xyd, const double *nd, const long
         in.nl = estimate ? NULL : nl;
         in.n = n;
         in.closed = closed != 0;
+        in.noise = s.noise;
         code = run_l(&in, &s, &rx, &rn, &res->n, &res->infl, &res->ninfl, &stats, st);
         if (code == CONICA_OK && !want_long) {
             size_t i;
@@ -353,6 +357,7 @@ static conica_code subdivide_any(const double *xyd, const double *nd, const long
         in.nl = NULL;
         in.n = n;
         in.closed = closed != 0;
+        in.noise = s.noise;
         code = run_d(&in, &s, &res->xyd, &res->nd, &res->n, &res->infl, &res->ninfl, &stats, st);
     }
     conica_curve_free(&est);

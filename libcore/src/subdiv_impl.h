@@ -1051,6 +1051,7 @@ typedef struct SFX(input) {
     const long double *xyl, *nl;
     size_t n;
     int closed;
+    double noise; /* settings.noise: rounding of the input coordinates */
 } SFX(input);
 
 static void SFX(in_pt)(const SFX(input) *in, size_t k, REAL *x, REAL *y)
@@ -1124,6 +1125,15 @@ static int SFX(needs_infl)(const SFX(input) *in, int ref, size_t i)
                                            (long double)x0 - (long double)x1);
         if (e1 == 0 || e2 == 0)
             return 0;
+        if (in->noise > 0) {
+            /* e1, e2 are |edge| times the distances of the neighbours from
+             * the edge line; a distance the input's rounding can make (each
+             * of the three points moved by up to noise) is no side. */
+            long double lim = (long double)CONICA__NOISE_SIDE * (long double)in->noise *
+                              sqrtl(ex * ex + ey * ey);
+            if (fabsl(e1) <= lim || fabsl(e2) <= lim)
+                return 0;
+        }
         return (e1 > 0) != (e2 > 0);
     }
     if (M(fabs)(d1) <= eps || M(fabs)(d2) <= eps)

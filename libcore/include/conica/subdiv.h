@@ -46,6 +46,11 @@ typedef struct conica_subdiv_settings {
     conica_normal_method normal_method; /**< used when estimating */
     size_t max_points;         /**< output budget, default CONICA_SUBDIV_DEFAULT_MAX_POINTS */
     int threads;               /**< 0/1 = single thread; results are bit-identical for any value */
+    /** Rounding of the input coordinates (absolute, e.g. float32 spacing or
+     *  half a unit of the last digit written); 0 (default): exact. A
+     *  neighbour within a few times this of an edge line is on no side of
+     *  it, so rounding noise makes no inflection points. */
+    double noise;
 } conica_subdiv_settings;
 
 /** What happened during a subdivision (optional output). */

@@ -1,0 +1,1536 @@
+/* The curve front end (conica/path.h): drawn segments to point-normal
+ * samples, smoothed by conic-preserving subdivision (seed 000, Section 1.1)
+ * or flattened by the guaranteed plotter (seed 004), always checked
+ * against the drawn curve itself.
+ *
+ * Smoothing works segment by segment. A curved segment becomes an open
+ * point-normal polygon of exact samples of the segment (its ends, its
+ * inflection points, its middle: seed 000 reproduces a conic from exact
+ * point-normal samples, so a conic segment needs no more). At the ends the
+ * normals come from the join rules: a corner keeps each side's own
+ * tangent, a smooth join (up to the corner angle) gives both sides the mean
+ * tangent, a line next to a curve gives the curve the line's. Segments
+ * that meet share the end point and its normal, so the pieces join with
+ * the tangent they were given. The subdivision of the samples is then
+ * compared with the segment (check_edges: every limit point at a check
+ * level against the segment, every dense point of the segment against the
+ * limit polyline); a sample edge that strays further than the tolerance is
+ * sampled again at its middle, up to PATH_MAX_ROUNDS times, and a segment
+ * that still strays is written flattened (within the tolerance too). */
+#include "conica/path.h"
+
+#include <float.h>
+#include <math.h>
+#include <stdint.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "conica/curve.h"
+#include "conica/plot.h"
+#include "conica/subdiv.h"
+#include "internal.h"
+
+#ifndef M_PI
+#define M_PI 3.14159265358979323846
+#endif
+
+/* A closed subpath whose end is this close to its start (relative to its
+ * extent) ends there: rounding (sin(2 pi)), not a closing edge. */
+#define PATH_MERGE_REL 1e-12
+/* Tangency is judged to PATH_G1_FACTOR times the angle the input's
+ * precision can turn a tangent vector of length l by (precision / l), and
+ * never finer than PATH_G1_MIN radians. */
+#define PATH_G1_FACTOR 2.0
+#define PATH_G1_MIN 1e-9
+#define PATH_G1_MAX (2.0 * M_PI / 180.0)
+/* Straightness is judged to the precision, but never to more than this
+ * fraction of the fidelity tolerance (a straight output must stay within). */
+#define PATH_STRAIGHT_TOL_FRACTION 0.25
+/* A Bézier is straight when its control points lie within the input's
+ * precision (at least this fraction of its chord) of the chord. */
+#define PATH_STRAIGHT_REL 1e-12
+/* Initial samples: sample edges turn by at most this (radians). */
+#define PATH_MAX_EDGE_TURN (0.5 * M_PI)
+/* Inflections: sign changes of the curvature searched on this grid. */
+#define PATH_INFL_GRID 32
+/* Rounds of resampling where the subdivision strays, and samples per
+ * segment at most, before the segment is written flattened instead. */
+#define PATH_MAX_ROUNDS 20
+#define PATH_MAX_SEG_SAMPLES 4096
+/* Check levels: at least PATH_CHECK_MIN_LEVEL, at most PATH_CHECK_MAX_LEVEL,
+ * deep enough that the limit polyline's chords bulge by at most
+ * PATH_CHECK_SAG of the tolerance. */
+#define PATH_CHECK_MIN_LEVEL 4
+#define PATH_CHECK_MAX_LEVEL 9
+#define PATH_CHECK_SAG 0.05
+/* Newton steps when projecting a point onto a segment. */
+#define PATH_NEWTON_STEPS 6
+/* Samples of settings.precision handed to the subdivision as noise. */
+#define PATH_LEVELS_MAX 16
+
+/* ------------------------------------------------------------ storage */
+
+conica_path_settings conica_path_defaults(void)
+{
+    conica_path_settings s;
+    memset(&s, 0, sizeof s);
+    s.rel_tolerance = CONICA_PATH_DEFAULT_REL_TOLERANCE;
+    s.corner_angle = CONICA_PATH_DEFAULT_CORNER_DEG * M_PI / 180.0;
+    s.levels = CONICA_PATH_DEFAULT_LEVELS;
+    s.max_points = CONICA_PATH_DEFAULT_MAX_POINTS;
+    return s;
+}
+
+double conica_path_float32_precision(double max_abs)
+{
+    int e;
+    if (!(max_abs > 0) || !isfinite(max_abs))
+        return 0.0;
+    frexp(max_abs, &e);
+    /* float32 has 24 significant bits: half a unit is 2^(e - 25) */
+    return ldexp(1.0, e - 25);
+}
+
+void conica_path_init(conica_path *p)
+{
+    if (p)
+        memset(p, 0, sizeof *p);
+}
+
+void conica_path_free(conica_path *p)
+{
+    if (!p)
+        return;
+    free(p->sub);
+    free(p->seg);
+    free(p->pt);
+    free(p->smp);
+    free(p->smptag);
+    memset(p, 0, sizeof *p);
+}
+
+/* Room for `more` items of `size` bytes in *arr (count *n, capacity *cap). */
+static int grow(void **arr, size_t *cap, size_t n, size_t more, size_t size)
+{
+    size_t need, c;
+    void *t;
+    if (more > CONICA_PATH_MAX_ITEMS - n)
+        return 0;
+    need = n + more;
+    if (need <= *cap)
+        return 1;
+    c = *cap ? *cap : 16;
+    while (c < need)
+        c *= 2;
+    t = realloc(*arr, c * size);
+    if (!t)
+        return 0;
+    *arr = t;
+    *cap = c;
+    return 1;
+}
+
+static conica_code nomem(conica_status *st, const conica_path *p)
+{
+    if (p->nseg >= CONICA_PATH_MAX_ITEMS || p->npt >= CONICA_PATH_MAX_ITEMS ||
+        p->nsmp >= CONICA_PATH_MAX_ITEMS || p->nsub >= CONICA_PATH_MAX_ITEMS)
+        return conica__fail(st, CONICA_ERR_LIMIT, 0, 0, "path larger than %zu items",
+                            (size_t)CONICA_PATH_MAX_ITEMS);
+    return conica__fail(st, CONICA_ERR_NOMEM, 0, 0, "out of memory");
+}
+
+conica_code conica_path_move_to(conica_path *p, double x, double y, size_t tag,
+                                conica_status *st)
+{
+    (void)tag;
+    if (!p)
+        return conica__fail(st, CONICA_ERR_ARG, 0, 0, "conica_path_move_to: NULL path");
+    if (!isfinite(x) || !isfinite(y))
+        return conica__fail(st, CONICA_ERR_NONFINITE, 0, 0, "point (%g, %g) is not finite", x, y);
+    if (!grow((void **)&p->sub, &p->subcap, p->nsub, 1, sizeof *p->sub))
+        return nomem(st, p);
+    p->sub[p->nsub].kind = CONICA_PATH_DRAWN;
+    p->sub[p->nsub].closed = 0;
+    p->sub[p->nsub].first = p->nseg;
+    p->sub[p->nsub].n = 0;
+    p->sub[p->nsub].x0 = x;
+    p->sub[p->nsub].y0 = y;
+    p->nsub++;
+    p->open = 1;
+    p->cur[0] = p->start[0] = x;
+    p->cur[1] = p->start[1] = y;
+    conica__ok(st);
+    return CONICA_OK;
+}
+
+/* Append a segment of degree d: the current point, then ctrl (d points). */
+static conica_code add_seg(conica_path *p, int d, const double *ctrl, const double *w, size_t tag,
+                           conica_status *st)
+{
+    conica_path_seg *g;
+    double *q;
+    int i, rational = 0, same = 1;
+    if (!p || !ctrl || d < 1 || d > CONICA_PATH_MAX_DEGREE)
+        return conica__fail(st, CONICA_ERR_ARG, 0, 0, "segment of degree %d (1..%d)", d,
+                            CONICA_PATH_MAX_DEGREE);
+    if (!p->open)
+        return conica__fail(st, CONICA_ERR_ARG, 0, 0, "segment without a current point");
+    for (i = 0; i < 2 * d; i++)
+        if (!isfinite(ctrl[i]))
+            return conica__fail(st, CONICA_ERR_NONFINITE, 0, 0,
+                                "control point %d of a segment is not finite", i / 2 + 1);
+    if (w)
+        for (i = 0; i <= d; i++) {
+            if (!(w[i] > 0) || !isfinite(w[i]))
+                return conica__fail(st, CONICA_ERR_ARG, 0, 0,
+                                    "weight %d of a segment is not a positive number", i + 1);
+            if (w[i] != w[0])
+                rational = 1;
+        }
+    for (i = 0; i < d; i++)
+        if (ctrl[2 * i] != p->cur[0] || ctrl[2 * i + 1] != p->cur[1])
+            same = 0;
+    if (same) { /* a segment of one point: nothing drawn */
+        conica__ok(st);
+        return CONICA_OK;
+    }
+    if (!grow((void **)&p->seg, &p->segcap, p->nseg, 1, sizeof *p->seg) ||
+        !grow((void **)&p->pt, &p->ptcap, p->npt, (size_t)d + 1, 3 * sizeof *p->pt))
+        return nomem(st, p);
+    g = &p->seg[p->nseg];
+    g->degree = d;
+    g->rational = rational;
+    g->first = p->npt;
+    g->tag = tag;
+    q = p->pt + 3 * p->npt;
+    q[0] = p->cur[0];
+    q[1] = p->cur[1];
+    q[2] = rational ? w[0] : 1.0;
+    for (i = 1; i <= d; i++) {
+        q[3 * i] = ctrl[2 * (i - 1)];
+        q[3 * i + 1] = ctrl[2 * (i - 1) + 1];
+        q[3 * i + 2] = rational ? w[i] : 1.0;
+    }
+    p->npt += (size_t)d + 1;
+    p->nseg++;
+    p->sub[p->nsub - 1].n++;
+    p->cur[0] = ctrl[2 * d - 2];
+    p->cur[1] = ctrl[2 * d - 1];
+    conica__ok(st);
+    return CONICA_OK;
+}
+
+conica_code conica_path_line_to(conica_path *p, double x, double y, size_t tag,
+                                conica_status *st)
+{
+    double c[2] = {x, y};
+    return add_seg(p, 1, c, NULL, tag, st);
+}
+
+conica_code conica_path_bezier_to(conica_path *p, int degree, const double *ctrl,
+                                  const double *w, size_t tag, conica_status *st)
+{
+    return add_seg(p, degree, ctrl, w, tag, st);
+}
+
+conica_code conica_path_arc_to(conica_path *p, double cx, double cy, double rx, double ry,
+                               double phi, double theta1, double dtheta, double x1, double y1,
+                               size_t tag, conica_status *st)
+{
+    double parts, h, cphi, sphi;
+    size_t m, k;
+    conica_code rc = CONICA_OK;
+    if (!isfinite(cx) || !isfinite(cy) || !isfinite(rx) || !isfinite(ry) || !isfinite(phi) ||
+        !isfinite(theta1) || !isfinite(dtheta) || !isfinite(x1) || !isfinite(y1))
+        return conica__fail(st, CONICA_ERR_NONFINITE, 0, 0, "arc with a value that is not finite");
+    if (fabs(dtheta) > 2 * M_PI * (1 + 1e-12) || !(rx > 0) || !(ry > 0))
+        return conica_path_line_to(p, x1, y1, tag, st);
+    /* Parts of at most 90 degrees (a rational quadratic with weight
+     * cos(half angle) is the exact arc); the slack keeps 90 degrees in one. */
+    parts = ceil(fabs(dtheta) / (0.5 * M_PI) - 1e-9);
+    m = parts < 1 ? 1 : parts > 4 ? 4 : (size_t)parts;
+    h = 0.5 * dtheta / (double)m;
+    cphi = cos(phi);
+    sphi = sin(phi);
+    for (k = 0; k < m && rc == CONICA_OK; k++) {
+        double c[4], w[3], th = theta1 + (double)(2 * k + 1) * h, r = 1.0 / cos(h);
+        double ex = rx * r * cos(th), ey = ry * r * sin(th);
+        c[0] = cx + cphi * ex - sphi * ey;
+        c[1] = cy + sphi * ex + cphi * ey;
+        if (k + 1 == m) {
+            c[2] = x1;
+            c[3] = y1;
+        } else {
+            double te = theta1 + (double)(2 * k + 2) * h;
+            double fx = rx * cos(te), fy = ry * sin(te);
+            c[2] = cx + cphi * fx - sphi * fy;
+            c[3] = cy + sphi * fx + cphi * fy;
+        }
+        w[0] = w[2] = 1.0;
+        w[1] = cos(h);
+        rc = add_seg(p, 2, c, w, tag, st);
+    }
+    return rc;
+}
+
+conica_code conica_path_bspline(conica_path *p, const conica_bspline *bs, size_t tag,
+                                conica_status *st)
+{
+    size_t k, nb;
+    double c[2 * (CONICA_PATH_MAX_DEGREE + 1)], w[CONICA_PATH_MAX_DEGREE + 1];
+    conica_bspline bz;
+    conica_code rc;
+    if (!p || !bs || bs->dim != 2)
+        return conica__fail(st, CONICA_ERR_ARG, 0, 0, "conica_path_bspline: a 2D spline is needed");
+    if (bs->degree > CONICA_PATH_MAX_DEGREE)
+        return conica__fail(st, CONICA_ERR_UNSUPPORTED, 0, 0, "spline of degree %d (at most %d)",
+                            bs->degree, CONICA_PATH_MAX_DEGREE);
+    conica_bspline_init(&bz);
+    if ((rc = conica_bspline_to_bezier(bs, &bz, st)) != CONICA_OK)
+        return rc;
+    nb = conica_bspline_bezier_count(&bz);
+    for (k = 0; k < nb && rc == CONICA_OK; k++) {
+        int d = bz.degree;
+        rc = conica_bspline_bezier_piece(&bz, k, c, bz.w ? w : NULL, NULL, NULL, st);
+        if (rc != CONICA_OK)
+            break;
+        if (k == 0 && (!p->open || p->cur[0] != c[0] || p->cur[1] != c[1]))
+            rc = conica_path_move_to(p, c[0], c[1], tag, st);
+        if (rc == CONICA_OK) {
+            /* pieces share end points exactly */
+            c[0] = p->cur[0];
+            c[1] = p->cur[1];
+            rc = add_seg(p, d, c + 2, bz.w ? w : NULL, tag, st);
+        }
+    }
+    conica_bspline_free(&bz);
+    return rc;
+}
+
+/* Bounding-box diagonal of control points (x, y, w triples) pt[a..b). */
+static double pt_extent(const double *pt, size_t a, size_t b)
+{
+    double lo[2] = {INFINITY, INFINITY}, hi[2] = {-INFINITY, -INFINITY};
+    size_t i;
+    for (i = a; i < b; i++) {
+        int c;
+        for (c = 0; c < 2; c++) {
+            double v = pt[3 * i + (size_t)c];
+            lo[c] = v < lo[c] ? v : lo[c];
+            hi[c] = v > hi[c] ? v : hi[c];
+        }
+    }
+    return b > a ? hypot(hi[0] - lo[0], hi[1] - lo[1]) : 0.0;
+}
+
+conica_code conica_path_close(conica_path *p, conica_status *st)
+{
+    conica_path_subpath *sp;
+    if (!p)
+        return conica__fail(st, CONICA_ERR_ARG, 0, 0, "conica_path_close: NULL path");
+    if (!p->open) {
+        conica__ok(st);
+        return CONICA_OK;
+    }
+    sp = &p->sub[p->nsub - 1];
+    if (sp->n && (p->cur[0] != p->start[0] || p->cur[1] != p->start[1])) {
+        const conica_path_seg *a = &p->seg[sp->first], *z = &p->seg[sp->first + sp->n - 1];
+        double ext = pt_extent(p->pt, a->first, z->first + (size_t)z->degree + 1);
+        if (hypot(p->cur[0] - p->start[0], p->cur[1] - p->start[1]) <= PATH_MERGE_REL * ext) {
+            double *e = p->pt + 3 * (z->first + (size_t)z->degree);
+            e[0] = p->start[0];
+            e[1] = p->start[1];
+            p->cur[0] = p->start[0];
+            p->cur[1] = p->start[1];
+        } else {
+            conica_code rc = conica_path_line_to(p, p->start[0], p->start[1], z->tag, st);
+            if (rc != CONICA_OK)
+                return rc;
+        }
+    }
+    sp->closed = 1;
+    p->open = 0;
+    p->cur[0] = p->start[0];
+    p->cur[1] = p->start[1];
+    conica__ok(st);
+    return CONICA_OK;
+}
+
+conica_code conica_path_samples(conica_path *p, const double *xy, const double *nxy, size_t n,
+                                int closed, size_t first_tag, conica_status *st)
+{
+    size_t i, m = 0;
+    if (!p || (!xy && n))
+        return conica__fail(st, CONICA_ERR_ARG, 0, 0, "conica_path_samples: NULL argument");
+    for (i = 0; i < 2 * n; i++)
+        if (!isfinite(xy[i]) || (nxy && !isfinite(nxy[i])))
+            return conica__fail(st, CONICA_ERR_NONFINITE, 0, i / 2, "sample %zu is not finite",
+                                i / 2 + 1);
+    if (!grow((void **)&p->sub, &p->subcap, p->nsub, 1, sizeof *p->sub) ||
+        !grow((void **)&p->smp, &p->smpcap, p->nsmp, n, 4 * sizeof *p->smp))
+        return nomem(st, p);
+    {
+        size_t cap = p->smpcap;
+        size_t *t = realloc(p->smptag, cap * sizeof *t);
+        if (!t)
+            return nomem(st, p);
+        p->smptag = t;
+    }
+    p->open = 0;
+    for (i = 0; i < n; i++) {
+        double *s = p->smp + 4 * (p->nsmp + m);
+        if (m && s[-4] == xy[2 * i] && s[-3] == xy[2 * i + 1])
+            continue; /* the same point again */
+        s[0] = xy[2 * i];
+        s[1] = xy[2 * i + 1];
+        s[2] = nxy ? nxy[2 * i] : 0.0;
+        s[3] = nxy ? nxy[2 * i + 1] : 0.0;
+        p->smptag[p->nsmp + m] = first_tag + i;
+        m++;
+    }
+    if (closed && m > 1) {
+        const double *a = p->smp + 4 * p->nsmp, *z = p->smp + 4 * (p->nsmp + m - 1);
+        if (a[0] == z[0] && a[1] == z[1])
+            m--;
+    }
+    if (m < 2)
+        return conica__fail(st, CONICA_ERR_DEGENERATE, 0, 0,
+                            "fewer than 2 distinct samples (%zu given)", n);
+    p->sub[p->nsub].kind = CONICA_PATH_SAMPLES;
+    p->sub[p->nsub].closed = closed != 0 && m > 2;
+    p->sub[p->nsub].first = p->nsmp;
+    p->sub[p->nsub].n = m;
+    p->sub[p->nsub].x0 = p->smp[4 * p->nsmp];
+    p->sub[p->nsub].y0 = p->smp[4 * p->nsmp + 1];
+    p->nsub++;
+    p->nsmp += m;
+    conica__ok(st);
+    return CONICA_OK;
+}
+
+/* ------------------------------------------------------------ evaluation */
+
+/* Point c, first and second derivative of a rational Bézier of degree d
+ * with control points q (x, y, w triples) at t: de Casteljau on the
+ * homogeneous points and their hodographs, then the quotient rule. */
+static void bez_eval(const double *q, int d, double t, double c[2], double d1[2], double d2[2])
+{
+    double h[CONICA_PATH_MAX_DEGREE + 1][3];
+    double a[3][3] = {{0}}; /* A, A', A'' (homogeneous) */
+    double u = 1.0 - t, W, W1, W2;
+    int i, k, r;
+    for (i = 0; i <= d; i++) {
+        h[i][0] = q[3 * i] * q[3 * i + 2];
+        h[i][1] = q[3 * i + 1] * q[3 * i + 2];
+        h[i][2] = q[3 * i + 2];
+    }
+    /* de Casteljau down to three points; their differences give the
+     * derivatives (standard identities of the last steps). */
+    for (r = d; r > 2; r--)
+        for (i = 0; i < r; i++)
+            for (k = 0; k < 3; k++)
+                h[i][k] = u * h[i][k] + t * h[i + 1][k];
+    if (d >= 2) {
+        for (k = 0; k < 3; k++) {
+            double b0 = u * h[0][k] + t * h[1][k], b1 = u * h[1][k] + t * h[2][k];
+            a[0][k] = u * b0 + t * b1;
+            a[1][k] = (double)d * (b1 - b0);
+            a[2][k] = (double)d * (double)(d - 1) * (h[2][k] - 2 * h[1][k] + h[0][k]);
+        }
+    } else {
+        for (k = 0; k < 3; k++) {
+            a[0][k] = u * h[0][k] + t * h[1][k];
+            a[1][k] = h[1][k] - h[0][k];
+            a[2][k] = 0;
+        }
+    }
+    W = a[0][2];
+    W1 = a[1][2];
+    W2 = a[2][2];
+    c[0] = a[0][0] / W;
+    c[1] = a[0][1] / W;
+    if (d1 || d2) {
+        double e[2];
+        for (k = 0; k < 2; k++)
+            e[k] = (a[1][k] - W1 * c[k]) / W;
+        if (d1) {
+            d1[0] = e[0];
+            d1[1] = e[1];
+        }
+        if (d2)
+            for (k = 0; k < 2; k++)
+                d2[k] = (a[2][k] - 2 * W1 * e[k] - W2 * c[k]) / W;
+    }
+}
+
+static const double *seg_pts(const conica_path *p, size_t s)
+{
+    return p->pt + 3 * p->seg[s].first;
+}
+
+void conica_path_seg_eval(const conica_path *p, size_t seg, double t, double pt[2], double d1[2])
+{
+    double c[2], d[2];
+    if (!p || seg >= p->nseg)
+        return;
+    bez_eval(seg_pts(p, seg), p->seg[seg].degree, t, c, d, NULL);
+    if (pt) {
+        pt[0] = c[0];
+        pt[1] = c[1];
+    }
+    if (d1) {
+        d1[0] = d[0];
+        d1[1] = d[1];
+    }
+}
+
+static int unit2(double x, double y, double out[2])
+{
+    double h = hypot(x, y);
+    if (!(h > 0) || !isfinite(h))
+        return 0;
+    out[0] = x / h;
+    out[1] = y / h;
+    return 1;
+}
+
+/* Unit tangent at an end of a segment (end 0 or 1) from its control
+ * polygon, skipping control points on the end point; *len gets the length
+ * of the vector it came from (how far rounding can turn it). */
+static void end_tangent(const double *q, int d, int end, double t[2], double *len)
+{
+    int i;
+    t[0] = 1;
+    t[1] = 0;
+    *len = 0;
+    if (end == 0) {
+        for (i = 1; i <= d; i++)
+            if (unit2(q[3 * i] - q[0], q[3 * i + 1] - q[1], t)) {
+                *len = hypot(q[3 * i] - q[0], q[3 * i + 1] - q[1]);
+                return;
+            }
+    } else {
+        const double *e = q + 3 * d;
+        for (i = d - 1; i >= 0; i--)
+            if (unit2(e[0] - q[3 * i], e[1] - q[3 * i + 1], t)) {
+                *len = hypot(e[0] - q[3 * i], e[1] - q[3 * i + 1]);
+                return;
+            }
+    }
+}
+
+/* Unit tangent of a segment at an inner parameter; at a stationary point
+ * (a cusp) the limit from the side of `dir` (+1 after, -1 before). */
+static void inner_tangent(const double *q, int d, double t, int dir, double out[2])
+{
+    double c[2], d1[2], d2[2];
+    bez_eval(q, d, t, c, d1, d2);
+    if (hypot(d1[0], d1[1]) > 1e-9 * (fabs(d2[0]) + fabs(d2[1])) && unit2(d1[0], d1[1], out))
+        return;
+    if (unit2((double)dir * d2[0], (double)dir * d2[1], out))
+        return;
+    out[0] = 1;
+    out[1] = 0;
+}
+
+/* Is the segment straight: every control point within tol of its chord and
+ * between its ends? */
+static int seg_straight(const double *q, int d, double precision)
+{
+    double ex = q[3 * d] - q[0], ey = q[3 * d + 1] - q[1], l = hypot(ex, ey), tol;
+    int i;
+    if (d == 1)
+        return 1;
+    if (!(l > 0))
+        return 0;
+    tol = fmax(precision, PATH_STRAIGHT_REL * l);
+    for (i = 1; i < d; i++) {
+        double px = q[3 * i] - q[0], py = q[3 * i + 1] - q[1];
+        double along = (px * ex + py * ey) / l, off = fabs(px * ey - py * ex) / l;
+        if (off > tol || along < -tol || along > l + tol)
+            return 0;
+    }
+    return 1;
+}
+
+/* Curvature numerator cross(C', C'') (its sign is the turning direction). */
+static double turning(const double *q, int d, double t)
+{
+    double c[2], d1[2], d2[2];
+    bez_eval(q, d, t, c, d1, d2);
+    return d1[0] * d2[1] - d1[1] * d2[0];
+}
+
+/* Parameters in (0, 1) where the segment changes its turning direction
+ * (inflections, and cusps), ascending; at most cap of them. */
+static size_t find_inflections(const double *q, int d, double *out, size_t cap)
+{
+    size_t n = 0, i;
+    double prev, tp = 0.0;
+    if (d < 3 && q[2] == q[5] && q[5] == q[8])
+        return 0; /* a polynomial quadratic (a parabola) turns one way */
+    prev = turning(q, d, 0.0);
+    for (i = 1; i <= PATH_INFL_GRID && n < cap; i++) {
+        double t = (double)i / PATH_INFL_GRID, f = turning(q, d, t);
+        if ((prev < 0 && f > 0) || (prev > 0 && f < 0)) {
+            double lo = tp, hi = t, flo = prev;
+            int k;
+            for (k = 0; k < 60; k++) {
+                double mid = 0.5 * (lo + hi), fm = turning(q, d, mid);
+                if ((fm < 0) == (flo < 0) && fm != 0) {
+                    lo = mid;
+                    flo = fm;
+                } else {
+                    hi = mid;
+                }
+            }
+            if (lo > 1e-9 && hi < 1 - 1e-9)
+                out[n++] = 0.5 * (lo + hi);
+        }
+        if (f != 0) {
+            prev = f;
+            tp = t;
+        }
+    }
+    return n;
+}
+
+/* Angle between unit vectors. */
+static double angle_between(const double a[2], const double b[2])
+{
+    return fabs(atan2(a[0] * b[1] - a[1] * b[0], a[0] * b[0] + a[1] * b[1]));
+}
+
+/* ------------------------------------------------------------ results */
+
+void conica_path_result_init(conica_path_result *r)
+{
+    if (r)
+        memset(r, 0, sizeof *r);
+}
+
+static void line_free(conica_path_polyline *l)
+{
+    free(l->xy);
+    free(l->nxy);
+    free(l->seg);
+    free(l->t);
+    free(l->flags);
+}
+
+void conica_path_result_free(conica_path_result *r)
+{
+    size_t i;
+    if (!r)
+        return;
+    for (i = 0; i < r->n; i++)
+        line_free(&r->lines[i]);
+    free(r->lines);
+    memset(r, 0, sizeof *r);
+}
+
+/* ------------------------------------------------------------ context */
+
+typedef struct ctx {
+    const conica_path *p;
+    conica_path_settings s;
+    conica_path_result *r;
+    conica_status *st;
+    size_t budget;   /* points left */
+    size_t subpath;  /* index of the subpath at work */
+    double tol;      /* its fidelity tolerance */
+    conica_path_polyline *L; /* its polyline */
+    size_t lcap;     /* capacity of L's arrays */
+    /* one segment's samples */
+    double *par, *sxy, *snxy;
+    size_t scap;
+} ctx;
+
+static conica_code fail_nomem(ctx *c)
+{
+    return conica__fail(c->st, CONICA_ERR_NOMEM, 0, c->subpath, "out of memory");
+}
+
+static conica_code take(ctx *c, size_t n)
+{
+    if (n > c->budget)
+        return conica__fail(c->st, CONICA_ERR_LIMIT, 0, c->subpath,
+                            "subpath %zu: the result would exceed the limit of %zu points",
+                            c->subpath + 1, c->s.max_points);
+    c->budget -= n;
+    return CONICA_OK;
+}
+
+/* Append a point to the current polyline (its budget already taken). */
+static int add_pt(ctx *c, const double xy[2], const double nxy[2], size_t seg, double t,
+                  unsigned flags)
+{
+    conica_path_polyline *l = c->L;
+    if (l->n == c->lcap) {
+        size_t cap = c->lcap ? 2 * c->lcap : 16;
+        double *x;
+        size_t *s;
+        unsigned char *f;
+        if (!(x = realloc(l->xy, 2 * cap * sizeof *x)))
+            return 0;
+        l->xy = x;
+        if (!(x = realloc(l->nxy, 2 * cap * sizeof *x)))
+            return 0;
+        l->nxy = x;
+        if (!(x = realloc(l->t, cap * sizeof *x)))
+            return 0;
+        l->t = x;
+        if (!(s = realloc(l->seg, cap * sizeof *s)))
+            return 0;
+        l->seg = s;
+        if (!(f = realloc(l->flags, cap)))
+            return 0;
+        l->flags = f;
+        c->lcap = cap;
+    }
+    l->xy[2 * l->n] = xy[0];
+    l->xy[2 * l->n + 1] = xy[1];
+    l->nxy[2 * l->n] = nxy[0];
+    l->nxy[2 * l->n + 1] = nxy[1];
+    l->seg[l->n] = seg;
+    l->t[l->n] = t;
+    l->flags[l->n] = (unsigned char)flags;
+    l->n++;
+    return 1;
+}
+
+/* Room for n samples of one segment. */
+static int scratch(ctx *c, size_t n)
+{
+    if (n <= c->scap)
+        return 1;
+    {
+        size_t cap = c->scap ? c->scap : 64;
+        double *a;
+        while (cap < n)
+            cap *= 2;
+        if (!(a = realloc(c->par, cap * sizeof *a)))
+            return 0;
+        c->par = a;
+        if (!(a = realloc(c->sxy, 2 * cap * sizeof *a)))
+            return 0;
+        c->sxy = a;
+        if (!(a = realloc(c->snxy, 2 * cap * sizeof *a)))
+            return 0;
+        c->snxy = a;
+        c->scap = cap;
+    }
+    return 1;
+}
+
+static void normal_of(const double t[2], double n[2])
+{
+    /* to the right of the direction of travel, as conica_curve's normals */
+    n[0] = t[1];
+    n[1] = -t[0];
+}
+
+/* ------------------------------------------------------------ joins */
+
+/* What the join rules give at the start of segment j of a subpath. */
+typedef struct join {
+    int corner;
+    double t_prev[2]; /* unit tangent the previous segment ends with */
+    double t_next[2]; /* unit tangent segment j starts with */
+} join;
+
+/* How far a control point may lie off the chord of a straight segment. */
+static double straight_tol(const ctx *c)
+{
+    return fmin(c->s.precision, PATH_STRAIGHT_TOL_FRACTION * c->tol);
+}
+
+/* Unit tangent of segment s at an end, and the length it is known over. */
+static void seg_end_tangent(const ctx *c, size_t s, int end, double t[2], double *len)
+{
+    const double *q = seg_pts(c->p, s);
+    int d = c->p->seg[s].degree;
+    if (seg_straight(q, d, straight_tol(c))) {
+        /* a straight Bézier's tangent is its chord's */
+        *len = hypot(q[3 * d] - q[0], q[3 * d + 1] - q[1]);
+        unit2(q[3 * d] - q[0], q[3 * d + 1] - q[1], t);
+        return;
+    }
+    end_tangent(q, d, end, t, len);
+}
+
+static join join_at(const ctx *c, const conica_path_subpath *sp, size_t j)
+{
+    join J;
+    size_t a, b = sp->first + j;
+    double la, lb, g1;
+    int a_line, b_line;
+    memset(&J, 0, sizeof J);
+    seg_end_tangent(c, b, 0, J.t_next, &lb);
+    if (j == 0 && !sp->closed) {
+        memcpy(J.t_prev, J.t_next, sizeof J.t_next);
+        return J;
+    }
+    a = j == 0 ? sp->first + sp->n - 1 : b - 1;
+    seg_end_tangent(c, a, 1, J.t_prev, &la);
+    a_line = seg_straight(seg_pts(c->p, a), c->p->seg[a].degree, straight_tol(c));
+    b_line = seg_straight(seg_pts(c->p, b), c->p->seg[b].degree, straight_tol(c));
+    /* tangency to the precision the input was written with */
+    g1 = fmax(PATH_G1_MIN, fmin(PATH_G1_MAX, PATH_G1_FACTOR * c->s.precision *
+                                                 (1.0 / fmax(la, DBL_MIN) + 1.0 / fmax(lb, DBL_MIN))));
+    J.corner = angle_between(J.t_prev, J.t_next) > fmax(c->s.corner_angle, g1);
+    if (!J.corner) {
+        double m[2];
+        if (a_line && !b_line)
+            memcpy(J.t_next, J.t_prev, sizeof m); /* lines stay straight: the curve follows */
+        else if (b_line && !a_line)
+            memcpy(J.t_prev, J.t_next, sizeof m);
+        else if (!a_line && !b_line && unit2(J.t_prev[0] + J.t_next[0],
+                                             J.t_prev[1] + J.t_next[1], m)) {
+            memcpy(J.t_prev, m, sizeof m);
+            memcpy(J.t_next, m, sizeof m);
+        }
+    }
+    return J;
+}
+
+/* Normal written at a join vertex: the segment it starts at a corner, the
+ * shared (or mean) tangent elsewhere. */
+static void join_normal(const join *J, double n[2])
+{
+    double m[2];
+    if (J->corner || !unit2(J->t_prev[0] + J->t_next[0], J->t_prev[1] + J->t_next[1], m))
+        normal_of(J->t_next, n);
+    else
+        normal_of(m, n);
+}
+
+/* ------------------------------------------------------------ flattening */
+
+/* Append segment s flattened within the tolerance (its first point is
+ * there already); its end point gets normal nend and the flags. */
+static conica_code flatten_seg(ctx *c, size_t s, const double nend[2], unsigned endflags,
+                               double *bound)
+{
+    const conica_path *p = c->p;
+    const double *q = seg_pts(p, s);
+    int d = p->seg[s].degree, k;
+    conica_bspline bs;
+    conica_plot_settings ps = conica_plot_defaults();
+    conica_plot_stats pst;
+    conica_polyline pl;
+    conica_status est;
+    conica_code rc;
+    double ctrl[2 * (CONICA_PATH_MAX_DEGREE + 1)], w[CONICA_PATH_MAX_DEGREE + 1];
+    size_t i;
+    for (k = 0; k <= d; k++) {
+        ctrl[2 * k] = q[3 * k];
+        ctrl[2 * k + 1] = q[3 * k + 1];
+        w[k] = q[3 * k + 2];
+    }
+    conica_bspline_init(&bs);
+    conica_polyline_init(&pl);
+    memset(&pst, 0, sizeof pst);
+    rc = conica_bspline_from_bezier(d, 2, ctrl, p->seg[s].rational ? w : NULL, &bs, &est);
+    if (rc == CONICA_OK) {
+        ps.method = CONICA_PLOT_GUARANTEED;
+        ps.abs_tolerance = c->tol;
+        ps.max_points = c->budget + 1;
+        rc = conica_plot(&bs, &ps, &pl, &pst, &est);
+    }
+    conica_bspline_free(&bs);
+    if (rc != CONICA_OK) {
+        conica_polyline_free(&pl);
+        if (rc == CONICA_ERR_LIMIT)
+            return take(c, c->budget + 1);
+        return conica__fail(c->st, rc, 0, c->subpath, "subpath %zu: %s", c->subpath + 1,
+                            est.message);
+    }
+    if (pst.bound > *bound)
+        *bound = pst.bound;
+    rc = pl.n > 1 ? take(c, pl.n - 1) : CONICA_OK;
+    for (i = 1; i < pl.n && rc == CONICA_OK; i++) {
+        double t = pl.t ? pl.t[i] : (double)i / (double)(pl.n - 1), tg[2], nn[2], pt[2];
+        if (i + 1 == pl.n) { /* the segment's end point exactly */
+            pt[0] = q[3 * d];
+            pt[1] = q[3 * d + 1];
+            if (!add_pt(c, pt, nend, s, 1.0, endflags))
+                rc = fail_nomem(c);
+            break;
+        }
+        pt[0] = pl.xy[2 * i];
+        pt[1] = pl.xy[2 * i + 1];
+        inner_tangent(q, d, t, 1, tg);
+        normal_of(tg, nn);
+        if (!add_pt(c, pt, nn, s, t, 0))
+            rc = fail_nomem(c);
+    }
+    conica_polyline_free(&pl);
+    return rc;
+}
+
+/* ------------------------------------------------------------ smoothing */
+
+/* Closest point of segment (q, d) to x for t in [lo, hi], from the guess
+ * t0: Newton on |C(t) - x|^2, clamped, keeping the best. */
+static double project(const double *q, int d, const double x[2], double t0, double lo, double hi,
+                      double *dist)
+{
+    double best = t0, bd, t = t0, c[2], d1[2], d2[2];
+    int k;
+    bez_eval(q, d, t, c, d1, d2);
+    bd = hypot(c[0] - x[0], c[1] - x[1]);
+    for (k = 0; k < PATH_NEWTON_STEPS; k++) {
+        double ex = c[0] - x[0], ey = c[1] - x[1];
+        double g = ex * d1[0] + ey * d1[1];
+        double h = d1[0] * d1[0] + d1[1] * d1[1] + ex * d2[0] + ey * d2[1], dd;
+        if (!(h > 0))
+            h = d1[0] * d1[0] + d1[1] * d1[1];
+        if (!(h > 0))
+            break;
+        t -= g / h;
+        t = t < lo ? lo : t > hi ? hi : t;
+        bez_eval(q, d, t, c, d1, d2);
+        dd = hypot(c[0] - x[0], c[1] - x[1]);
+        if (dd < bd) {
+            bd = dd;
+            best = t;
+        }
+    }
+    *dist = bd;
+    return best;
+}
+
+static double seg_dist(const double p[2], const double a[2], const double b[2])
+{
+    double ex = b[0] - a[0], ey = b[1] - a[1], px = p[0] - a[0], py = p[1] - a[1];
+    double l2 = ex * ex + ey * ey, t = l2 > 0 ? (px * ex + py * ey) / l2 : 0;
+    t = t < 0 ? 0 : t > 1 ? 1 : t;
+    return hypot(px - t * ex, py - t * ey);
+}
+
+/* Compare the limit polyline v[0..m] (v[0], v[m] the samples at ta, tb) of
+ * one sample edge with the segment on [ta, tb]: tau[i] gets each point's
+ * parameter (may be NULL); returns the largest distance in either
+ * direction, the chords' own bulge counted against us. */
+static double check_edge(const double *q, int d, double ta, double tb, const double *v, size_t m,
+                         double *tau)
+{
+    size_t M = 2 * m, i, j;
+    double worst = 0, wb = 0, sag = 0, dense[2 * 2 * 1024 + 2], *D = dense, *heap = NULL;
+    if (M + 1 > 2 * 1024 + 1) {
+        heap = malloc(2 * (M + 1) * sizeof *heap);
+        if (!heap)
+            return INFINITY;
+        D = heap;
+    }
+    for (j = 0; j <= M; j++)
+        bez_eval(q, d, ta + (tb - ta) * (double)j / (double)M, D + 2 * j, NULL, NULL);
+    if (tau) {
+        tau[0] = ta;
+        tau[m] = tb;
+    }
+    for (i = 1; i < m; i++) {
+        size_t bj = 0;
+        double bd = INFINITY, dist, t0, lo, hi;
+        for (j = 0; j <= M; j++) {
+            double dd = hypot(D[2 * j] - v[2 * i], D[2 * j + 1] - v[2 * i + 1]);
+            if (dd < bd) {
+                bd = dd;
+                bj = j;
+            }
+        }
+        t0 = ta + (tb - ta) * (double)bj / (double)M;
+        lo = ta + (tb - ta) * (double)(bj ? bj - 1 : 0) / (double)M;
+        hi = ta + (tb - ta) * (double)(bj < M ? bj + 1 : M) / (double)M;
+        t0 = project(q, d, v + 2 * i, t0, lo, hi, &dist);
+        if (tau)
+            tau[i] = t0;
+        if (dist > worst)
+            worst = dist;
+        {
+            double sx = v[2 * i - 2] - 2 * v[2 * i] + v[2 * i + 2];
+            double sy = v[2 * i - 1] - 2 * v[2 * i + 1] + v[2 * i + 3];
+            double sg = 0.125 * hypot(sx, sy);
+            sag = sg > sag ? sg : sag;
+        }
+    }
+    for (j = 0; j <= M; j++) {
+        double bd = INFINITY;
+        for (i = 0; i < m; i++) {
+            double dd = seg_dist(D + 2 * j, v + 2 * i, v + 2 * i + 2);
+            bd = dd < bd ? dd : bd;
+        }
+        wb = bd > wb ? bd : wb;
+    }
+    free(heap);
+    /* distance to a chord over-states the distance to the limit curve by
+     * at most the chord's bulge; the dense points' own bulge is a quarter */
+    wb += 1.6 * sag;
+    return wb > worst ? wb : worst;
+}
+
+/* Levels at which the limit polyline's chords of sample edges (chord len,
+ * turn angle) bulge by at most `limit`: chord * turn / (8 * 4^L). */
+static int levels_for(const double *xy, const double *nxy, size_t n, int closed, double limit,
+                      int lo, int hi)
+{
+    double worst = 0;
+    size_t i, ne = closed ? n : n - 1;
+    int L;
+    for (i = 0; i < ne; i++) {
+        size_t k = (i + 1) % n;
+        double len = hypot(xy[2 * k] - xy[2 * i], xy[2 * k + 1] - xy[2 * i + 1]);
+        double turn = angle_between(nxy + 2 * i, nxy + 2 * k);
+        double b = len * fmax(turn, 1e-3) / 8.0;
+        worst = b > worst ? b : worst;
+    }
+    for (L = lo; L < hi && worst / ldexp(1.0, 2 * L) > limit; L++)
+        ;
+    return L;
+}
+
+/* Subdivide an open or closed point-normal polygon. */
+static conica_code run_subdiv(ctx *c, const double *xy, const double *nxy, size_t n, int closed,
+                              int levels, double noise, conica_curve *out)
+{
+    conica_curve in;
+    conica_subdiv_settings ss = conica_subdiv_defaults();
+    conica_status est;
+    conica_code rc;
+    conica_curve_init(&in);
+    rc = conica_curve_set(xy, nxy, n, closed, &in, &est);
+    if (rc == CONICA_OK && !nxy)
+        rc = conica_curve_estimate_normals(&in, CONICA_NORMALS_CIRCLE, &est);
+    if (rc == CONICA_OK) {
+        ss.levels = levels;
+        ss.noise = noise;
+        ss.max_points = c->budget + 2;
+        rc = conica_subdivide(&in, &ss, out, NULL, &est);
+    }
+    conica_curve_free(&in);
+    if (rc == CONICA_ERR_LIMIT)
+        return take(c, c->budget + 1);
+    if (rc == CONICA_ERR_NOMEM)
+        return fail_nomem(c);
+    if (rc != CONICA_OK && c->st)
+        *c->st = est;
+    return rc;
+}
+
+/* Positions of the samples in a subdivision output (old points are kept
+ * bit for bit, in order): idx[k] for sample k. */
+static int locate(const double *sxy, size_t ns, const conica_curve *o, size_t *idx)
+{
+    size_t k = 0, i;
+    for (i = 0; i < o->n && k < ns; i++)
+        if (o->xy[2 * i] == sxy[2 * k] && o->xy[2 * i + 1] == sxy[2 * k + 1])
+            idx[k++] = i;
+    return k == ns;
+}
+
+/* Append curved segment s smoothed (its first point is there already),
+ * starting with unit tangent tin and ending with tout; its end point gets
+ * normal nend and endflags. */
+static conica_code smooth_seg(ctx *c, size_t s, const double tin[2], const double tout[2],
+                              const double nend[2], unsigned endflags, double *deviation)
+{
+    const conica_path *p = c->p;
+    const double *q = seg_pts(p, s);
+    int d = p->seg[s].degree, ok = 0, round, lev, L;
+    size_t ns = 0, i, k, *idx = NULL;
+    double infl[3 * CONICA_PATH_MAX_DEGREE], worst = 0;
+    conica_curve out, fin;
+    conica_code rc = CONICA_OK;
+    unsigned char *bad = NULL;
+
+    conica_curve_init(&out);
+    conica_curve_init(&fin);
+    if (!scratch(c, 16))
+        return fail_nomem(c);
+    /* Samples: the ends, the inflections, then halving edges that turn by
+     * more than PATH_MAX_EDGE_TURN; at least three (two point-normal pairs
+     * do not fix a conic). */
+    c->par[ns++] = 0.0;
+    {
+        size_t ni = find_inflections(q, d, infl, sizeof infl / sizeof *infl);
+        c->r->inflections += ni;
+        for (i = 0; i < ni; i++)
+            c->par[ns++] = infl[i];
+    }
+    c->par[ns++] = 1.0;
+    for (;;) {
+        size_t add = 0;
+        if (!scratch(c, 2 * ns + 1))
+            return fail_nomem(c);
+        for (i = ns - 1; i > 0; i--) {
+            double a[2], b[2];
+            inner_tangent(q, d, c->par[i - 1], 1, a);
+            inner_tangent(q, d, c->par[i], -1, b);
+            if (i == 1)
+                end_tangent(q, d, 0, a, &worst);
+            if (i == ns - 1)
+                end_tangent(q, d, 1, b, &worst);
+            if ((angle_between(a, b) > PATH_MAX_EDGE_TURN && ns + add < 64) ||
+                (ns + add == 2)) {
+                memmove(c->par + i + 1, c->par + i, (ns + add - i) * sizeof *c->par);
+                c->par[i] = 0.5 * (c->par[i - 1] + c->par[i + 1]);
+                add++;
+            }
+        }
+        ns += add;
+        if (!add)
+            break;
+    }
+    worst = 0;
+    for (round = 0; round <= PATH_MAX_ROUNDS && rc == CONICA_OK; round++) {
+        size_t nbad = 0;
+        if (!scratch(c, 2 * ns + 1)) {
+            rc = fail_nomem(c);
+            break;
+        }
+        free(idx);
+        free(bad);
+        idx = malloc(ns * sizeof *idx);
+        bad = calloc(ns, 1);
+        if (!idx || !bad) {
+            rc = fail_nomem(c);
+            break;
+        }
+        for (i = 0; i < ns; i++) {
+            double pt[2], tg[2];
+            if (i == 0 || i + 1 == ns) {
+                pt[0] = q[i ? 3 * d : 0];
+                pt[1] = q[i ? 3 * d + 1 : 1];
+                memcpy(tg, i ? tout : tin, sizeof tg);
+            } else {
+                bez_eval(q, d, c->par[i], pt, NULL, NULL);
+                inner_tangent(q, d, c->par[i], 1, tg);
+            }
+            c->sxy[2 * i] = pt[0];
+            c->sxy[2 * i + 1] = pt[1];
+            normal_of(tg, c->snxy + 2 * i);
+        }
+        L = levels_for(c->sxy, c->snxy, ns, 0, PATH_CHECK_SAG * c->tol, PATH_CHECK_MIN_LEVEL,
+                       PATH_CHECK_MAX_LEVEL);
+        conica_curve_free(&out);
+        rc = run_subdiv(c, c->sxy, c->snxy, ns, 0, L, 0.0, &out);
+        if (rc == CONICA_ERR_LIMIT || rc == CONICA_ERR_NOMEM)
+            break;
+        if (rc != CONICA_OK || !locate(c->sxy, ns, &out, idx)) {
+            rc = CONICA_OK; /* the samples defeat the subdivision: flatten */
+            break;
+        }
+        worst = 0;
+        for (k = 0; k + 1 < ns; k++) {
+            double e = check_edge(q, d, c->par[k], c->par[k + 1], out.xy + 2 * idx[k],
+                                  idx[k + 1] - idx[k], NULL);
+            if (!(e <= c->tol)) {
+                bad[k] = 1;
+                nbad++;
+            }
+            worst = e > worst ? e : worst;
+        }
+        if (!nbad) {
+            ok = 1;
+            break;
+        }
+        if (ns + nbad > PATH_MAX_SEG_SAMPLES)
+            break;
+        if (!scratch(c, ns + nbad)) {
+            rc = fail_nomem(c);
+            break;
+        }
+        for (k = ns - 1; k-- > 0;)
+            if (bad[k]) {
+                memmove(c->par + k + 2, c->par + k + 1, (ns - k - 1) * sizeof *c->par);
+                c->par[k + 1] = 0.5 * (c->par[k] + c->par[k + 2]);
+                ns++;
+                c->r->refinements++;
+            }
+    }
+    if (rc != CONICA_OK || !ok) {
+        conica_curve_free(&out);
+        free(idx);
+        free(bad);
+        if (rc != CONICA_OK)
+            return rc;
+        c->r->fallbacks++;
+        return flatten_seg(c, s, nend, endflags, deviation);
+    }
+    c->r->samples += ns;
+    if (worst > *deviation)
+        *deviation = worst;
+    /* the output levels */
+    lev = c->s.level_tolerance > 0
+              ? levels_for(c->sxy, c->snxy, ns, 0, c->s.level_tolerance, 0, PATH_LEVELS_MAX)
+              : c->s.levels;
+    if (lev != L) {
+        rc = run_subdiv(c, c->sxy, c->snxy, ns, 0, lev, 0.0, &fin);
+        if (rc == CONICA_OK && !locate(c->sxy, ns, &fin, idx))
+            rc = conica__fail(c->st, CONICA_ERR_NUMERIC, 0, c->subpath,
+                              "subpath %zu: the subdivision lost a sample", c->subpath + 1);
+    } else {
+        fin = out;
+        conica_curve_init(&out);
+    }
+    if (rc == CONICA_OK)
+        rc = take(c, fin.n - 1);
+    for (k = 0; k + 1 < ns && rc == CONICA_OK; k++) {
+        size_t m = idx[k + 1] - idx[k];
+        double tau_stack[1025], *tau = m < 1025 ? tau_stack : malloc((m + 1) * sizeof *tau);
+        if (!tau) {
+            rc = fail_nomem(c);
+            break;
+        }
+        check_edge(q, d, c->par[k], c->par[k + 1], fin.xy + 2 * idx[k], m, tau);
+        for (i = 1; i <= m; i++) {
+            size_t o = idx[k] + i;
+            int last = k + 2 == ns && i == m;
+            if (!add_pt(c, fin.xy + 2 * o, last ? nend : fin.nxy + 2 * o, s, tau[i],
+                        last ? endflags : 0)) {
+                rc = fail_nomem(c);
+                break;
+            }
+        }
+        if (tau != tau_stack)
+            free(tau);
+    }
+    conica_curve_free(&out);
+    conica_curve_free(&fin);
+    free(idx);
+    free(bad);
+    return rc;
+}
+
+/* ------------------------------------------------------------ drivers */
+
+static double seg_extent_all(const conica_path *p, const conica_path_subpath *sp)
+{
+    const conica_path_seg *a = &p->seg[sp->first], *z = &p->seg[sp->first + sp->n - 1];
+    return pt_extent(p->pt, a->first, z->first + (size_t)z->degree + 1);
+}
+
+static conica_code drawn_subpath(ctx *c, const conica_path_subpath *sp, int smooth)
+{
+    const conica_path *p = c->p;
+    size_t j, n = sp->n;
+    join *J;
+    double nrm[2], dev = 0;
+    conica_code rc = CONICA_OK;
+    if (n == 0) { /* a lone move: its point */
+        double pt[2] = {sp->x0, sp->y0}, nn[2] = {0, 0};
+        rc = take(c, 1);
+        if (rc == CONICA_OK && !add_pt(c, pt, nn, 0, 0.0, CONICA_PATH_PT_VERTEX))
+            rc = fail_nomem(c);
+        return rc;
+    }
+    J = malloc(n * sizeof *J);
+    if (!J)
+        return fail_nomem(c);
+    for (j = 0; j < n; j++)
+        J[j] = join_at(c, sp, j);
+    for (j = 0; j < n; j++)
+        c->r->corners += (size_t)J[j].corner;
+    join_normal(&J[0], nrm);
+    rc = take(c, 1);
+    if (rc == CONICA_OK && !add_pt(c, seg_pts(p, sp->first), nrm, sp->first, 0.0,
+                                   CONICA_PATH_PT_VERTEX | (J[0].corner ? CONICA_PATH_PT_CORNER : 0u)))
+        rc = fail_nomem(c);
+    for (j = 0; j < n && rc == CONICA_OK; j++) {
+        size_t s = sp->first + j;
+        const double *q = seg_pts(p, s);
+        int d = p->seg[s].degree;
+        double tout[2], nend[2], len;
+        unsigned fl = CONICA_PATH_PT_VERTEX;
+        if (j + 1 < n || sp->closed) {
+            const join *N = &J[(j + 1) % n];
+            memcpy(tout, N->t_prev, sizeof tout);
+            join_normal(N, nend);
+            if (N->corner)
+                fl |= CONICA_PATH_PT_CORNER;
+        } else {
+            seg_end_tangent(c, s, 1, tout, &len);
+            normal_of(tout, nend);
+        }
+        if (seg_straight(q, d, straight_tol(c))) {
+            double e[2] = {q[3 * d], q[3 * d + 1]};
+            rc = take(c, 1);
+            if (rc == CONICA_OK && !add_pt(c, e, nend, s, 1.0, fl))
+                rc = fail_nomem(c);
+        } else if (smooth) {
+            rc = smooth_seg(c, s, J[j].t_next, tout, nend, fl, &dev);
+        } else {
+            rc = flatten_seg(c, s, nend, fl, &dev);
+        }
+    }
+    free(J);
+    if (rc == CONICA_OK && sp->closed && c->L->n > 1) {
+        c->L->n--; /* the last point is the first */
+        c->budget++;
+    }
+    c->L->deviation = dev;
+    return rc;
+}
+
+/* Do the n points lie on the line through the first and the last (within
+ * the precision, or rounding of their extent)? */
+static int collinear(const double *xy, size_t n, double precision)
+{
+    double ex = xy[2 * n - 2] - xy[0], ey = xy[2 * n - 1] - xy[1], l = hypot(ex, ey), tol;
+    size_t i;
+    if (n <= 2)
+        return 1;
+    if (!(l > 0))
+        return 0;
+    tol = fmax(precision, PATH_STRAIGHT_REL * l);
+    for (i = 1; i + 1 < n; i++)
+        if (fabs((xy[2 * i] - xy[0]) * ey - (xy[2 * i + 1] - xy[1]) * ex) / l > tol)
+            return 0;
+    return 1;
+}
+
+/* Samples: split where the polygon turns by more than the corner angle
+ * (when no normals are given), each piece subdivided as it is. */
+static conica_code samples_subpath(ctx *c, const conica_path_subpath *sp, int smooth)
+{
+    const conica_path *p = c->p;
+    const double *S = p->smp + 4 * sp->first;
+    size_t n = sp->n, i, nc = 0, *cor = NULL, start, done = 0, total;
+    int have_n = 1, closed = sp->closed;
+    double *xy = NULL, *nxy = NULL;
+    conica_code rc = CONICA_OK;
+    for (i = 0; i < n; i++)
+        if (S[4 * i + 2] == 0 && S[4 * i + 3] == 0)
+            have_n = 0;
+    if (!smooth) {
+        rc = take(c, n);
+        for (i = 0; i < n && rc == CONICA_OK; i++) {
+            double nn[2] = {S[4 * i + 2], S[4 * i + 3]};
+            if (!add_pt(c, S + 4 * i, nn, sp->first + i, 0.0, CONICA_PATH_PT_VERTEX))
+                rc = fail_nomem(c);
+        }
+        return rc;
+    }
+    xy = malloc(2 * (n + 1) * sizeof *xy);
+    nxy = malloc(2 * (n + 1) * sizeof *nxy);
+    cor = malloc((n + 1) * sizeof *cor);
+    if (!xy || !nxy || !cor) {
+        rc = fail_nomem(c);
+        goto done;
+    }
+    /* corners of the polygon (the samples' normals, when given, say the
+     * curve is smooth at every sample) */
+    for (i = 0; i < n && !have_n && c->s.corner_angle < M_PI; i++) {
+        double a[2], b[2];
+        size_t pv = (i + n - 1) % n, nx = (i + 1) % n;
+        if (!closed && (i == 0 || i + 1 == n))
+            continue;
+        if (unit2(S[4 * i] - S[4 * pv], S[4 * i + 1] - S[4 * pv + 1], a) &&
+            unit2(S[4 * nx] - S[4 * i], S[4 * nx + 1] - S[4 * i + 1], b) &&
+            angle_between(a, b) > c->s.corner_angle)
+            cor[nc++] = i;
+    }
+    c->r->corners += nc;
+    if (closed && nc == 0) {
+        start = 0;
+        total = n;
+    } else {
+        start = closed ? cor[0] : 0;
+        total = closed ? n : n - 1;
+    }
+    {
+        size_t ci = 0; /* next corner */
+        int first = 1;
+        while (done < total && rc == CONICA_OK) {
+            size_t cnt = 1, k, from;
+            conica_curve o;
+            int piece_closed = closed && nc == 0, lev;
+            /* a piece runs from start to the next corner (or the end) */
+            if (piece_closed) {
+                cnt = n;
+            } else {
+                while (done + cnt <= total) {
+                    size_t v = (start + cnt) % n;
+                    cnt++;
+                    if (done + cnt - 1 == total)
+                        break;
+                    while (ci < nc && cor[ci] < v && closed == 0)
+                        ci++;
+                    {
+                        size_t z;
+                        int isc = 0;
+                        for (z = 0; z < nc; z++)
+                            if (cor[z] == v) {
+                                isc = 1;
+                                break;
+                            }
+                        if (isc)
+                            break;
+                    }
+                }
+            }
+            for (k = 0; k < cnt; k++) {
+                size_t v = (start + k) % n;
+                xy[2 * k] = S[4 * v];
+                xy[2 * k + 1] = S[4 * v + 1];
+                nxy[2 * k] = S[4 * v + 2];
+                nxy[2 * k + 1] = S[4 * v + 3];
+            }
+            conica_curve_init(&o);
+            {
+                conica_curve tmp;
+                conica_curve_init(&tmp);
+                if (!have_n) {
+                    /* estimated here so that the level choice can see them */
+                    if (conica_curve_set(xy, NULL, cnt, piece_closed, &tmp, NULL) == CONICA_OK &&
+                        conica_curve_estimate_normals(&tmp, CONICA_NORMALS_CIRCLE, NULL) ==
+                            CONICA_OK)
+                        memcpy(nxy, tmp.nxy, 2 * cnt * sizeof *nxy);
+                    else
+                        for (k = 0; k < 2 * cnt; k++)
+                            nxy[k] = 0;
+                }
+                conica_curve_free(&tmp);
+            }
+            lev = c->s.level_tolerance > 0
+                      ? levels_for(xy, nxy, cnt, piece_closed, c->s.level_tolerance, 0,
+                                   PATH_LEVELS_MAX)
+                      : c->s.levels;
+            if (!piece_closed && collinear(xy, cnt, c->s.precision))
+                lev = 0; /* a straight run between corners stays as it is */
+            rc = run_subdiv(c, xy, have_n || nxy[0] != 0 || nxy[1] != 0 ? nxy : NULL, cnt,
+                            piece_closed, lev, c->s.precision, &o);
+            if (rc != CONICA_OK) {
+                conica_curve_free(&o);
+                if (rc != CONICA_ERR_LIMIT && rc != CONICA_ERR_NOMEM)
+                    rc = conica__fail(c->st, rc, 0, c->subpath, "subpath %zu: %s",
+                                      c->subpath + 1, c->st ? c->st->message : "subdivision failed");
+                break;
+            }
+            /* map output points to sample edges */
+            from = first ? 0 : 1;
+            rc = take(c, o.n - from);
+            {
+                size_t e = 0, last_i = 0;
+                for (k = 0; k < o.n && rc == CONICA_OK; k++) {
+                    size_t v = (start + e) % n;
+                    unsigned fl = 0;
+                    double t = 0;
+                    if (e < cnt && o.xy[2 * k] == xy[2 * e] && o.xy[2 * k + 1] == xy[2 * e + 1]) {
+                        fl = CONICA_PATH_PT_VERTEX;
+                        last_i = k;
+                        e++;
+                    } else {
+                        v = (start + e - 1) % n;
+                        t = (double)(k - last_i) / ldexp(1.0, lev);
+                        t = t > 1 ? 1 : t;
+                    }
+                    if (fl && !piece_closed && (k == 0 || k + 1 == o.n) && nc)
+                        fl |= CONICA_PATH_PT_CORNER;
+                    if (k < from)
+                        continue;
+                    if (!add_pt(c, o.xy + 2 * k, o.nxy + 2 * k, sp->first + v, t, fl))
+                        rc = fail_nomem(c);
+                }
+            }
+            conica_curve_free(&o);
+            first = 0;
+            done += cnt - 1;
+            if (piece_closed)
+                break;
+            start = (start + cnt - 1) % n;
+        }
+    }
+    if (rc == CONICA_OK && closed && nc > 0 && c->L->n > 1) {
+        /* the last piece ended on the first point */
+        c->L->n--;
+        c->budget++;
+    }
+done:
+    free(xy);
+    free(nxy);
+    free(cor);
+    return rc;
+}
+
+static conica_code run(const conica_path *p, const conica_path_settings *s, int smooth,
+                       conica_path_result *out, conica_status *st)
+{
+    ctx c;
+    conica_path_result r;
+    size_t i;
+    conica_code rc = CONICA_OK;
+    if (!p || !out)
+        return conica__fail(st, CONICA_ERR_ARG, 0, 0, "conica_path: NULL argument");
+    memset(&c, 0, sizeof c);
+    c.s = s ? *s : conica_path_defaults();
+    if (!(c.s.tolerance >= 0) || !isfinite(c.s.tolerance) || !(c.s.rel_tolerance >= 0) ||
+        !isfinite(c.s.rel_tolerance) || (c.s.tolerance == 0 && c.s.rel_tolerance == 0))
+        return conica__fail(st, CONICA_ERR_ARG, 0, 0,
+                            "the fidelity tolerance must be a positive finite number");
+    if (!(c.s.corner_angle >= 0) || !(c.s.precision >= 0) || !isfinite(c.s.precision) ||
+        !(c.s.level_tolerance >= 0) || !isfinite(c.s.level_tolerance))
+        return conica__fail(st, CONICA_ERR_ARG, 0, 0,
+                            "corner angle, precision and level tolerance must be >= 0");
+    if (c.s.levels < 0 || c.s.levels > PATH_LEVELS_MAX)
+        return conica__fail(st, CONICA_ERR_ARG, 0, 0, "levels must be 0..%d", PATH_LEVELS_MAX);
+    conica_path_result_init(&r);
+    if (p->nsub) {
+        r.lines = calloc(p->nsub, sizeof *r.lines);
+        if (!r.lines)
+            return conica__fail(st, CONICA_ERR_NOMEM, 0, 0, "out of memory");
+    }
+    c.p = p;
+    c.r = &r;
+    c.st = st;
+    c.budget = c.s.max_points;
+    for (i = 0; i < p->nsub && rc == CONICA_OK; i++) {
+        const conica_path_subpath *sp = &p->sub[i];
+        double ext;
+        c.subpath = i;
+        c.L = &r.lines[i];
+        c.lcap = 0;
+        r.n = i + 1;
+        c.L->subpath = i;
+        c.L->closed = sp->closed;
+        if (sp->kind == CONICA_PATH_SAMPLES) {
+            c.tol = c.s.tolerance;
+            rc = samples_subpath(&c, sp, smooth);
+        } else {
+            ext = sp->n ? seg_extent_all(p, sp) : 0.0;
+            c.tol = c.s.tolerance > 0 ? c.s.tolerance : c.s.rel_tolerance * ext;
+            if (!(c.tol > 0)) /* a subpath of one point */
+                c.tol = DBL_MIN;
+            c.L->tolerance = c.tol;
+            rc = drawn_subpath(&c, sp, smooth);
+            if (c.L->deviation / c.tol > r.worst_ratio)
+                r.worst_ratio = c.L->deviation / c.tol;
+        }
+        r.points += c.L->n;
+    }
+    free(c.par);
+    free(c.sxy);
+    free(c.snxy);
+    if (rc != CONICA_OK) {
+        conica_path_result_free(&r);
+        return rc;
+    }
+    r.n = p->nsub;
+    conica_path_result_free(out);
+    *out = r;
+    conica__ok(st);
+    return CONICA_OK;
+}
+
+conica_code conica_path_flatten(const conica_path *p, const conica_path_settings *s,
+                                conica_path_result *out, conica_status *st)
+{
+    return run(p, s, 0, out, st);
+}
+
+conica_code conica_path_smooth(const conica_path *p, const conica_path_settings *s,
+                               conica_path_result *out, conica_status *st)
+{
+    return run(p, s, 1, out, st);
+}
