@@ -129,16 +129,30 @@ PC_TEXT := prefix=$(PREFIX)\nlibdir=$${prefix}/lib\nincludedir=$${prefix}/includ
 $(shell mkdir -p $(BUILD) && { printf '$(PC_TEXT)' | cmp -s - $(BUILD)/conica.pc || printf '$(PC_TEXT)' > $(BUILD)/conica.pc; })
 
 # ---------------------------------------------------------------- tests
-$(BUILD)/obj/tests/%.o: CPPFLAGS += -Itests/runner -Ilibcore/src -Ilibcore/tools
+$(BUILD)/obj/tests/%.o: CPPFLAGS += -Itests/runner -Ilibcore/src -Ilibcore/tools -Itests/support
 $(RUNNER_A): $(RUNNER_OBJS)
+	@mkdir -p $(@D)
+	rm -f $@ && ar rcs $@ $^
+
+# Test support every unit test links: glyph outlines of a Debian font through
+# FreeType, and a fidelity checker independent of libcore. Without FreeType
+# the glyph loaders say so and the tests that need them skip.
+FT_FOUND  := $(shell $(PKG_CONFIG) --exists freetype2 2>/dev/null && echo yes)
+FT_CFLAGS := $(if $(FT_FOUND),-DTS_HAVE_FREETYPE $(patsubst -I%,-isystem %,$(shell $(PKG_CONFIG) --cflags freetype2)))
+FT_LIBS   := $(if $(FT_FOUND),$(shell $(PKG_CONFIG) --libs freetype2))
+TS_SRCS := $(wildcard tests/support/*.c)
+TS_OBJS := $(TS_SRCS:%.c=$(BUILD)/obj/%.o)
+TS_A    := $(BUILD)/lib/libconica_testsupport.a
+$(BUILD)/obj/tests/support/%.o: CPPFLAGS += $(FT_CFLAGS)
+$(TS_A): $(TS_OBJS)
 	@mkdir -p $(@D)
 	rm -f $@ && ar rcs $@ $^
 
 UNIT_SRCS  := $(sort $(wildcard tests/test_*.c))
 UNIT_BINS  := $(UNIT_SRCS:tests/%.c=$(BUILD)/tests/%)
-$(BUILD)/tests/%: $(BUILD)/obj/tests/%.o $(RUNNER_A) $(ALL_LIBS)
+$(BUILD)/tests/%: $(BUILD)/obj/tests/%.o $(RUNNER_A) $(TS_A) $(ALL_LIBS)
 	@mkdir -p $(@D)
-	$(CC) $(LDFLAGS) -o $@ $< $(RUNNER_A) $(ALL_LIBS) $(ALL_LDLIBS)
+	$(CC) $(LDFLAGS) -o $@ $< $(RUNNER_A) $(TS_A) $(ALL_LIBS) $(ALL_LDLIBS) $(FT_LIBS)
 
 # Suites that modules add (binaries or scripts the test driver runs).
 TEST_BINS += $(UNIT_BINS)

@@ -33,3 +33,11 @@ $(BENCH_PLOT): $(BUILD)/obj/bench/bench_plot.o $(CORE_A)
 	@mkdir -p $(@D)
 	$(CC) $(LDFLAGS) -o $@ $< $(CORE_A) $(CORE_LIBS)
 BENCH_BINS += $(BENCH_PLOT)
+
+# ---- bench_fidelity (issue 14): conica/path.h on glyph outlines, independent checker
+BENCH_FIDELITY := $(BUILD)/bench/bench_fidelity
+$(BUILD)/obj/bench/bench_fidelity.o: CPPFLAGS += -Itests/support
+$(BENCH_FIDELITY): $(BUILD)/obj/bench/bench_fidelity.o $(BUILD)/lib/libconica_testsupport.a $(CORE_A)
+	@mkdir -p $(@D)
+	$(CC) $(LDFLAGS) -o $@ $< $(BUILD)/lib/libconica_testsupport.a $(CORE_A) $(CORE_LIBS) $(FT_LIBS)
+BENCH_BINS += $(BENCH_FIDELITY)

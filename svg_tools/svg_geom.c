@@ -221,8 +221,10 @@ conica_code conica_svg__path_polylines(const conica_svg_path *p, const conica_sv
         i = j;
     }
     if (rc != CONICA_OK) {
+        char why[sizeof st->message];
+        snprintf(why, sizeof why, "%s", st ? st->message : "bad geometry");
         conica_path_free(&cp);
-        return conica__fail(st, rc, 0, 0, "%s: %s", what, st ? st->message : "bad geometry");
+        return conica__fail(st, rc, 0, 0, "%s: %s", what, why);
     }
     ps.corner_angle = s->corner_angle_deg >= 180.0 ? M_PI : s->corner_angle_deg * M_PI / 180.0;
     ps.precision = precision;
@@ -275,8 +277,11 @@ conica_code conica_svg__path_polylines(const conica_svg_path *p, const conica_sv
         rc = conica__fail(st, rc, 0, 0,
                           "%s: output would exceed the limit of %zu points (--max-points)", what,
                           s->limits.max_points);
-    else if (rc != CONICA_OK)
-        rc = conica__fail(st, rc, 0, 0, "%s: %s", what, st ? st->message : "failed");
+    else if (rc != CONICA_OK) {
+        char why[sizeof st->message];
+        snprintf(why, sizeof why, "%s", st ? st->message : "failed");
+        rc = conica__fail(st, rc, 0, 0, "%s: %s", what, why);
+    }
     for (i = 0; i < r.n && rc == CONICA_OK; i++) {
         const conica_path_polyline *l = &r.lines[i];
         *budget -= l->n <= *budget ? l->n : *budget;

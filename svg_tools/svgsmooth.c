@@ -16,17 +16,25 @@
 static const char usage_text[] =
     "Usage: svgsmooth [OPTION]... IN\n"
     "Smooth the outlines of an SVG file (paths, polylines, polygons) with\n"
-    "conic-preserving subdivision: vertices stay, corners stay sharp, arcs and\n"
-    "conics are reproduced. Or flatten every curve to a polyline within a\n"
-    "tolerance. Everything else in the document is kept as it is.\n"
+    "conic-preserving subdivision that stays within --fidelity of the drawn\n"
+    "curves: corners stay sharp, straight segments straight, arcs and conics\n"
+    "exact; polygon and polyline vertices are interpolated. Or flatten every\n"
+    "curve to a polyline within a tolerance. Everything else in the document\n"
+    "is kept as it is.\n"
     "IN and OUT may be '-' for stdin/stdout.\n"
     "\n"
     "  --levels K          subdivision levels (default 4; 0 writes the vertices)\n"
-    "  --tolerance T       smoothing: refine until a level moves no point more\n"
-    "                      than T user units; with --flatten: maximum distance\n"
-    "                      of the polyline from the true curve\n"
+    "  --tolerance T       smoothing: the fewest levels (per piece) whose chords\n"
+    "                      stay within T user units of the smoothed curve; with\n"
+    "                      --flatten: maximum distance from the drawn curve\n"
+    "  --fidelity T        largest distance of the smoothed curve from the drawn\n"
+    "                      one, user units (default 1e-3 of each subpath's\n"
+    "                      bounding-box diagonal)\n"
     "  --corner-angle DEG  tangent turn that makes a corner (default 40; 180\n"
     "                      disables corners)\n"
+    "  --lines-as-samples  smooth through the vertices of subpaths made only of\n"
+    "                      straight segments (traced outlines); by default\n"
+    "                      straight segments stay straight\n"
     "  --flatten           flatten curves within --tolerance (required) with the\n"
     "                      guaranteed adaptive plotter; straight segments stay\n"
     "  --precision N       significant digits written (1..17, default 7)\n"
@@ -148,6 +156,13 @@ int main(int argc, char **argv)
             set.tolerance = d;
             have_tol = 1;
             i++;
+        } else if (!strcmp(a, "--fidelity")) {
+            if (!v || cli_parse_double(v, &d) || !(d > 0.0) || !(d < 1e300))
+                return cli_usage_error(PROG, "--fidelity needs a number > 0");
+            set.fidelity = d;
+            i++;
+        } else if (!strcmp(a, "--lines-as-samples")) {
+            set.lines_as_samples = 1;
         } else if (!strcmp(a, "--corner-angle")) {
             if (!v || cli_parse_double(v, &d) || !(d >= 0.0 && d <= 180.0))
                 return cli_usage_error(PROG, "--corner-angle needs degrees in 0..180");

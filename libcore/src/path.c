@@ -20,6 +20,7 @@
 #include "conica/path.h"
 
 #include <float.h>
+#include <stdio.h>
 #include <math.h>
 #include <stdint.h>
 #include <stdlib.h>
@@ -1403,9 +1404,12 @@ static conica_code samples_subpath(ctx *c, const conica_path_subpath *sp, int sm
                             piece_closed, lev, c->s.precision, &o);
             if (rc != CONICA_OK) {
                 conica_curve_free(&o);
-                if (rc != CONICA_ERR_LIMIT && rc != CONICA_ERR_NOMEM)
-                    rc = conica__fail(c->st, rc, 0, c->subpath, "subpath %zu: %s",
-                                      c->subpath + 1, c->st ? c->st->message : "subdivision failed");
+                if (rc != CONICA_ERR_LIMIT && rc != CONICA_ERR_NOMEM) {
+                    char why[sizeof c->st->message];
+                    snprintf(why, sizeof why, "%s", c->st ? c->st->message : "subdivision failed");
+                    rc = conica__fail(c->st, rc, 0, c->subpath, "subpath %zu: %s", c->subpath + 1,
+                                      why);
+                }
                 break;
             }
             /* map output points to sample edges */
@@ -1473,8 +1477,9 @@ static conica_code run(const conica_path *p, const conica_path_settings *s, int 
         !(c.s.level_tolerance >= 0) || !isfinite(c.s.level_tolerance))
         return conica__fail(st, CONICA_ERR_ARG, 0, 0,
                             "corner angle, precision and level tolerance must be >= 0");
-    if (c.s.levels < 0 || c.s.levels > PATH_LEVELS_MAX)
-        return conica__fail(st, CONICA_ERR_ARG, 0, 0, "levels must be 0..%d", PATH_LEVELS_MAX);
+    if (c.s.levels < 0 || c.s.levels > CONICA_SUBDIV_MAX_LEVELS)
+        return conica__fail(st, CONICA_ERR_ARG, 0, 0, "levels must be 0..%d",
+                            CONICA_SUBDIV_MAX_LEVELS);
     conica_path_result_init(&r);
     if (p->nsub) {
         r.lines = calloc(p->nsub, sizeof *r.lines);

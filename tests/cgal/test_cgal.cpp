@@ -1189,7 +1189,8 @@ TEST_CASE("exporters: svgsmooth closed subpaths from simple input are simple, or
     std::vector<std::vector<Point>> in_paths, out_paths;
     std::string why;
     t.shapes = long(shapes.size());
-    int rc = run_command("'" + tool + "' --levels 4 -o '" + d + "/out.svg' '" + d +
+    /* polygons of samples (drawn straight segments would stay straight) */
+    int rc = run_command("'" + tool + "' --levels 4 --lines-as-samples -o '" + d + "/out.svg' '" + d +
                          "/in.svg' 2>'" + d + "/err.txt'");
     if (rc != 0)
         t.fail("svgsmooth exit " + std::to_string(rc) + ": " + slurp(d + "/err.txt"));

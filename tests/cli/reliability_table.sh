@@ -60,7 +60,7 @@ row 1 "nan.txt:2: 'nan' is not a finite number" "$scad" nan.txt
 row 1 "nan.spl:4: non-finite number 'nan'" "$scad" nan.spl
 row 0 'warning: nanpath.svg:1: .*number is not finite; the valid part before it is kept' \
     "$svgsmooth" nanpath.svg
-row 1 'no closed subpath' "$scad" nanpath.svg
+row 1 'has 2 points' "$scad" nanpath.svg
 
 begin_case "one point"
 row 1 'one.txt: a closed curve needs at least 3 points \(got 1\)' "$conica" subdivide one.txt

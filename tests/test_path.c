@@ -1,0 +1,386 @@
+/* The curve front end (conica/path.h) against curves no one here drew:
+ * glyph outlines of a Debian font read with FreeType, measured by the
+ * independent checker of tests/support (no libcore code), plus the exact
+ * cases: conics, straight edges, Blender's default Bezier, noise. */
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "conica/path.h"
+#include "conica_test.h"
+#include "fidelity.h"
+#include "glyphs.h"
+
+#ifndef M_PI
+#define M_PI 3.14159265358979323846
+#endif
+
+/* A ts_contour as a drawn, closed subpath (scaled and moved). */
+static void add_contour(conica_path *p, const ts_contour *c, double s, double dx, double dy)
+{
+    size_t i;
+    REQUIRE(conica_path_move_to(p, s * c->seg[0].p[0][0] + dx, s * c->seg[0].p[0][1] + dy, 0,
+                                NULL) == CONICA_OK);
+    for (i = 0; i < c->n; i++) {
+        const ts_seg *g = &c->seg[i];
+        double q[6];
+        int k;
+        for (k = 1; k <= g->degree; k++) {
+            q[2 * (k - 1)] = s * g->p[k][0] + dx;
+            q[2 * (k - 1) + 1] = s * g->p[k][1] + dy;
+        }
+        REQUIRE(conica_path_bezier_to(p, g->degree, q, NULL, i, NULL) == CONICA_OK);
+    }
+    if (c->closed)
+        REQUIRE(conica_path_close(p, NULL) == CONICA_OK);
+}
+
+static ts_contour scaled(const ts_contour *c, double s, double dx, double dy)
+{
+    ts_contour o = *c;
+    size_t i;
+    int k;
+    o.seg = malloc(c->n * sizeof *o.seg);
+    REQUIRE(o.seg != NULL);
+    for (i = 0; i < c->n; i++) {
+        o.seg[i] = c->seg[i];
+        for (k = 0; k <= c->seg[i].degree; k++) {
+            o.seg[i].p[k][0] = s * c->seg[i].p[k][0] + dx;
+            o.seg[i].p[k][1] = s * c->seg[i].p[k][1] + dy;
+        }
+    }
+    return o;
+}
+
+static double perimeter(const double *xy, size_t n)
+{
+    double l = 0;
+    size_t i;
+    for (i = 0; i < n; i++) {
+        size_t j = (i + 1) % n;
+        l += hypot(xy[2 * j] - xy[2 * i], xy[2 * j + 1] - xy[2 * i + 1]);
+    }
+    return l;
+}
+
+/* Every glyph of `text`: each tool mode within the tolerance of the drawn
+ * outline in both directions, contours kept, corners kept, no new
+ * crossings, area within tolerance x perimeter. */
+static void check_text(const char *font, const char *text, double scale, double dx, double dy,
+                       int smooth)
+{
+    ts_text t;
+    ts_code rc;
+    size_t g;
+    ts_text_init(&t);
+    rc = ts_text_outlines(font, text, &t);
+    if (rc == TS_ERR_NO_FONT || rc == TS_ERR_NO_FREETYPE)
+        SKIP("%s: %s (install libfreetype-dev fonts-dejavu-core)", font, ts_strerror(rc));
+    REQUIRE_EQ(rc, TS_OK);
+    for (g = 0; g < t.n; g++) {
+        const ts_outline *o = &t.glyph[g];
+        conica_path p;
+        conica_path_result r;
+        conica_path_settings s = conica_path_defaults();
+        ts_poly *polys;
+        ts_contour *cs;
+        size_t i, crossings = 0;
+        if (o->n == 0)
+            continue;
+        INFO("glyph U+%04lX (%s)", t.cp[g], smooth ? "smooth" : "flatten");
+        conica_path_init(&p);
+        conica_path_result_init(&r);
+        for (i = 0; i < o->n; i++)
+            add_contour(&p, &o->c[i], scale, dx, dy);
+        /* level 6: the polyline's chords show the limit curve closely */
+        s.levels = 6;
+        REQUIRE((smooth ? conica_path_smooth(&p, &s, &r, NULL)
+                        : conica_path_flatten(&p, &s, &r, NULL)) == CONICA_OK);
+        REQUIRE_EQ_U(r.n, o->n);
+        polys = calloc(r.n, sizeof *polys);
+        cs = calloc(o->n, sizeof *cs);
+        REQUIRE(polys && cs);
+        for (i = 0; i < r.n; i++) {
+            ts_hausdorff h;
+            ts_corner *k = NULL;
+            ts_corner_check kc;
+            size_t nk = 0;
+            double tol = r.lines[i].tolerance, chord = 0, area_in, area_out;
+            ts_poly one;
+            cs[i] = scaled(&o->c[i], scale, dx, dy);
+            polys[i].xy = r.lines[i].xy;
+            polys[i].n = r.lines[i].n;
+            polys[i].closed = 1;
+            one = polys[i];
+            CHECK(r.lines[i].closed);
+            REQUIRE(ts_hausdorff_measure(&cs[i], 1, &one, 1, NULL, &h) == TS_OK);
+            if (smooth) {
+                /* the polyline's own chords at level 6 (the limit curve is
+                 * what the tolerance bounds): at most their bulge more */
+                size_t j, n = r.lines[i].n;
+                const double *v = r.lines[i].xy;
+                for (j = 0; j < n; j++) {
+                    const double *a = v + 2 * ((j + n - 1) % n), *b = v + 2 * j,
+                                 *c = v + 2 * ((j + 1) % n);
+                    double sx = a[0] - 2 * b[0] + c[0], sy = a[1] - 2 * b[1] + c[1];
+                    double sg = 0.25 * hypot(sx, sy);
+                    chord = sg > chord ? sg : chord;
+                }
+                chord = chord < 0.25 * tol ? chord : 0.25 * tol;
+            }
+            CAPTURE_D(tol);
+            CAPTURE_D(h.poly_to_curve);
+            CAPTURE_D(h.curve_to_poly);
+            CHECK_LE(h.poly_to_curve, tol * (1 + 1e-9));
+            CHECK_LE(h.curve_to_poly, tol * (1 + 1e-9) + chord);
+            /* area within tolerance x perimeter */
+            area_in = ts_contour_area(&cs[i]);
+            area_out = ts_poly_area(r.lines[i].xy, r.lines[i].n);
+            CHECK_LE(fabs(area_out - area_in), tol * perimeter(r.lines[i].xy, r.lines[i].n));
+            /* corners: every join turning by more than 40 degrees */
+            REQUIRE(ts_contour_corners(&cs[i], 40.0 * M_PI / 180.0 + 1e-6, &k, &nk) == TS_OK);
+            /* flattened, the chord next to a corner leaves it off the
+             * tangent by up to the chord's own turn: a wider slack */
+            REQUIRE(ts_corners_kept(k, nk, &one, 1, 1e-9 * scale * 2048,
+                                    (smooth ? 5.0 : 25.0) * M_PI / 180.0, &kc) == TS_OK);
+            CHECK_EQ_U(kc.missing, 0);
+            free(k);
+        }
+        /* no crossing the drawn contours did not have (glyph contours do
+         * not cross) */
+        REQUIRE(ts_poly_crossings(polys, r.n, 1, &crossings, NULL) == TS_OK);
+        CHECK_EQ_U(crossings, 0);
+        for (i = 0; i < o->n; i++)
+            free(cs[i].seg);
+        free(cs);
+        free(polys);
+        conica_path_result_free(&r);
+        conica_path_free(&p);
+    }
+    ts_text_free(&t);
+}
+
+TEST_CASE("glyph outlines stay within the fidelity tolerance, corners and contours kept",
+          "[path][glyphs]")
+{
+    SECTION("DejaVu Sans, smoothed")
+    check_text(TS_FONT_SANS, "Sphinx gR&8 Z Y 7 4 @", 1.0, 0.0, 0.0, 1);
+    SECTION("DejaVu Sans, flattened")
+    check_text(TS_FONT_SANS, "Sphinx gR&8 Z Y 7 4 @", 1.0, 0.0, 0.0, 0);
+    SECTION("DejaVu Serif, smoothed, small and far from the origin")
+    check_text(TS_FONT_SERIF, "Sphinx gR&8 Q", 1e-3, 1e5, -3e4, 1);
+}
+
+TEST_CASE("the result does not depend on where the outline sits or its size", "[path][glyphs]")
+{
+    ts_outline o;
+    ts_code rc;
+    size_t counts[3] = {0, 0, 0};
+    const double sc[3][3] = {{1, 0, 0}, {1e-3, 1e5, 1e5}, {1e3, -1e7, 3e6}};
+    int k;
+    ts_outline_init(&o);
+    rc = ts_glyph_outline(TS_FONT_SANS, '&', &o, NULL);
+    if (rc == TS_ERR_NO_FONT || rc == TS_ERR_NO_FREETYPE)
+        SKIP("%s (install libfreetype-dev fonts-dejavu-core)", ts_strerror(rc));
+    REQUIRE_EQ(rc, TS_OK);
+    for (k = 0; k < 3; k++) {
+        conica_path p;
+        conica_path_result r;
+        size_t i;
+        conica_path_init(&p);
+        conica_path_result_init(&r);
+        for (i = 0; i < o.n; i++)
+            add_contour(&p, &o.c[i], sc[k][0], sc[k][1], sc[k][2]);
+        REQUIRE(conica_path_smooth(&p, NULL, &r, NULL) == CONICA_OK);
+        counts[k] = r.points;
+        CHECK_LE(r.worst_ratio, 1.0);
+        conica_path_result_free(&r);
+        conica_path_free(&p);
+    }
+    CHECK_EQ_U(counts[1], counts[0]);
+    CHECK_EQ_U(counts[2], counts[0]);
+    ts_outline_free(&o);
+}
+
+static double radial(const conica_path_result *r, double cx, double cy, double a, double b)
+{
+    double w = 0;
+    size_t i, j;
+    for (i = 0; i < r->n; i++)
+        for (j = 0; j < r->lines[i].n; j++) {
+            double x = (r->lines[i].xy[2 * j] - cx) / a, y = (r->lines[i].xy[2 * j + 1] - cy) / b;
+            double e = fabs(hypot(x, y) - 1);
+            w = e > w ? e : w;
+        }
+    return w;
+}
+
+TEST_CASE("conics stay exact: arcs, rational quadratics, a Bezier circle", "[path][conic]")
+{
+    conica_path p;
+    conica_path_result r;
+    conica_path_init(&p);
+    conica_path_result_init(&r);
+    SECTION("an ellipse of two arcs far from the origin")
+    {
+        double cx = 1e4, cy = -2e4;
+        REQUIRE(conica_path_move_to(&p, cx + 3, cy, 0, NULL) == CONICA_OK);
+        REQUIRE(conica_path_arc_to(&p, cx, cy, 3, 2, 0, 0, M_PI, cx - 3, cy, 0, NULL) == CONICA_OK);
+        REQUIRE(conica_path_arc_to(&p, cx, cy, 3, 2, 0, M_PI, M_PI, cx + 3, cy, 0, NULL) ==
+                CONICA_OK);
+        REQUIRE(conica_path_close(&p, NULL) == CONICA_OK);
+        REQUIRE(conica_path_smooth(&p, NULL, &r, NULL) == CONICA_OK);
+        CHECK_LE(radial(&r, cx, cy, 3, 2), 1e-11);
+        CHECK_EQ_U(r.refinements, 0);
+    }
+    SECTION("Blender's Bezier circle: four cubics with the 0.5523 handles")
+    {
+        /* the cubics deviate 2.7e-4 r from the circle, below the default
+         * fidelity (1e-3 of the diagonal): the circle comes out exact */
+        double k = 4.0 / 3.0 * (sqrt(2.0) - 1.0);
+        double c[4][6] = {{1, k, k, 1, 0, 1}, {-k, 1, -1, k, -1, 0}, {-1, -k, -k, -1, 0, -1},
+                          {k, -1, 1, -k, 1, 0}};
+        int i;
+        REQUIRE(conica_path_move_to(&p, 1, 0, 0, NULL) == CONICA_OK);
+        for (i = 0; i < 4; i++)
+            REQUIRE(conica_path_bezier_to(&p, 3, c[i], NULL, (size_t)i, NULL) == CONICA_OK);
+        REQUIRE(conica_path_close(&p, NULL) == CONICA_OK);
+        REQUIRE(conica_path_smooth(&p, NULL, &r, NULL) == CONICA_OK);
+        CHECK_LE(radial(&r, 0, 0, 1, 1), 1e-14);
+        CHECK_EQ_U(r.corners, 0);
+    }
+    conica_path_result_free(&r);
+    conica_path_free(&p);
+}
+
+TEST_CASE("straight segments stay straight, their ends and tangent joins exact", "[path][lines]")
+{
+    /* a rounded rectangle: lines meeting quarter arcs tangentially */
+    conica_path p;
+    conica_path_result r;
+    double w = 1 / sqrt(2.0);
+    size_t i, hits = 0;
+    conica_path_init(&p);
+    conica_path_result_init(&r);
+    REQUIRE(conica_path_move_to(&p, 10, 0, 0, NULL) == CONICA_OK);
+    REQUIRE(conica_path_line_to(&p, 70, 0, 1, NULL) == CONICA_OK);
+    {
+        double q[4] = {80, 0, 80, 10}, ww[3] = {1, w, 1};
+        REQUIRE(conica_path_bezier_to(&p, 2, q, ww, 2, NULL) == CONICA_OK);
+    }
+    REQUIRE(conica_path_line_to(&p, 80, 50, 3, NULL) == CONICA_OK);
+    REQUIRE(conica_path_line_to(&p, 0, 50, 4, NULL) == CONICA_OK);
+    REQUIRE(conica_path_line_to(&p, 0, 10, 5, NULL) == CONICA_OK);
+    {
+        double q[4] = {0, 0, 10, 0}, ww[3] = {1, w, 1};
+        REQUIRE(conica_path_bezier_to(&p, 2, q, ww, 6, NULL) == CONICA_OK);
+    }
+    REQUIRE(conica_path_close(&p, NULL) == CONICA_OK);
+    REQUIRE(conica_path_smooth(&p, NULL, &r, NULL) == CONICA_OK);
+    REQUIRE_EQ_U(r.n, 1);
+    for (i = 0; i < r.lines[0].n; i++) {
+        double x = r.lines[0].xy[2 * i], y = r.lines[0].xy[2 * i + 1];
+        /* no point strays off the straight sides' lines, between their ends */
+        if (y == 0 || y == 50 || x == 0 || x == 80)
+            hits++;
+        if (y < 1e-12 && !(x >= 10 && x <= 70))
+            FAIL_CHECK("a point on the bottom edge outside it: %g %g", x, y);
+        CHECK(x >= 0 && x <= 80 && y >= 0 && y <= 50);
+    }
+    /* the tangent joins (10,0) (70,0) (80,10) (0,10) and the corners are points */
+    CHECK_EQ_U(r.corners, 2);
+    CHECK(hits >= 6);
+    CHECK_LE(r.worst_ratio, 1.0);
+    conica_path_result_free(&r);
+    conica_path_free(&p);
+}
+
+TEST_CASE("Blender's default Bezier curve stays the curve it is", "[path][blender]")
+{
+    /* anchors (-1,0), (1,0); handles (-0.5,0.5) and (0,0): the end handle
+     * along the chord, so no conic with those end tangents is anything but
+     * the chord; the samples follow the cubic itself */
+    conica_path p;
+    conica_path_result r;
+    ts_seg sg;
+    ts_contour c;
+    ts_poly poly;
+    ts_hausdorff h;
+    double b[6] = {-0.5, 0.5, 0, 0, 1, 0};
+    conica_path_init(&p);
+    conica_path_result_init(&r);
+    REQUIRE(conica_path_move_to(&p, -1, 0, 0, NULL) == CONICA_OK);
+    REQUIRE(conica_path_bezier_to(&p, 3, b, NULL, 0, NULL) == CONICA_OK);
+    REQUIRE(conica_path_smooth(&p, NULL, &r, NULL) == CONICA_OK);
+    REQUIRE_EQ_U(r.n, 1);
+    CHECK(!r.lines[0].closed);
+    memset(&sg, 0, sizeof sg);
+    sg.degree = 3;
+    sg.p[0][0] = -1;
+    sg.p[1][0] = -0.5;
+    sg.p[1][1] = 0.5;
+    sg.p[3][0] = 1;
+    c.n = 1;
+    c.seg = &sg;
+    c.closed = 0;
+    poly.xy = r.lines[0].xy;
+    poly.n = r.lines[0].n;
+    poly.closed = 0;
+    REQUIRE(ts_hausdorff_measure(&c, 1, &poly, 1, NULL, &h) == TS_OK);
+    CAPTURE_D(h.poly_to_curve);
+    CHECK_LE(h.poly_to_curve, r.lines[0].tolerance);
+    CHECK(r.lines[0].xy[0] == -1 && r.lines[0].xy[2 * r.lines[0].n - 2] == 1);
+    conica_path_result_free(&r);
+    conica_path_free(&p);
+}
+
+TEST_CASE("rounding noise makes no inflection points", "[path][noise]")
+{
+    /* a 20 000-point circle stored as float32, as Blender keeps it */
+    size_t n = 20000, i;
+    double *xy = malloc(2 * n * sizeof *xy);
+    conica_path p;
+    conica_path_result r;
+    conica_path_settings s = conica_path_defaults();
+    REQUIRE(xy != NULL);
+    for (i = 0; i < n; i++) {
+        double a = 2 * M_PI * (double)i / (double)n;
+        xy[2 * i] = (double)(float)(3 + cos(a));
+        xy[2 * i + 1] = (double)(float)(-2 + sin(a));
+    }
+    conica_path_init(&p);
+    conica_path_result_init(&r);
+    REQUIRE(conica_path_samples(&p, xy, NULL, n, 1, 0, NULL) == CONICA_OK);
+    s.levels = 3;
+    s.precision = conica_path_float32_precision(4.0);
+    REQUIRE(conica_path_smooth(&p, &s, &r, NULL) == CONICA_OK);
+    CHECK_EQ_U(r.lines[0].n, n * 8);
+    conica_path_result_free(&r);
+    conica_path_free(&p);
+    free(xy);
+}
+
+TEST_CASE("nothing drawn is dropped: open subpaths, lone points, loops", "[path]")
+{
+    conica_path p;
+    conica_path_result r;
+    double loop[6] = {2, 2, -1, 2, 0, 0}; /* a cubic that returns to its start */
+    conica_path_init(&p);
+    conica_path_result_init(&r);
+    REQUIRE(conica_path_move_to(&p, 5, 5, 0, NULL) == CONICA_OK); /* a lone point */
+    REQUIRE(conica_path_move_to(&p, 0, 0, 1, NULL) == CONICA_OK);
+    REQUIRE(conica_path_bezier_to(&p, 3, loop, NULL, 2, NULL) == CONICA_OK);
+    REQUIRE(conica_path_line_to(&p, 3, 0, 3, NULL) == CONICA_OK);
+    REQUIRE(conica_path_smooth(&p, NULL, &r, NULL) == CONICA_OK);
+    REQUIRE_EQ_U(r.n, 2);
+    CHECK_EQ_U(r.lines[0].n, 1);
+    CHECK(!r.lines[1].closed);
+    CHECK(r.lines[1].n > 10); /* the loop is a curve, not a point */
+    CHECK_LE(r.worst_ratio, 1.0);
+    conica_path_result_free(&r);
+    REQUIRE(conica_path_flatten(&p, NULL, &r, NULL) == CONICA_OK);
+    CHECK(r.lines[1].n > 10);
+    CHECK_LE(r.worst_ratio, 1.0);
+    conica_path_result_free(&r);
+    conica_path_free(&p);
+}
