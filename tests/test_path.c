@@ -233,7 +233,7 @@ TEST_CASE("conics stay exact: arcs, rational quadratics, a Bezier circle", "[pat
         CHECK_LE(radial(&r, cx, cy, 3, 2), 1e-11);
         CHECK_EQ_U(r.refinements, 0);
     }
-    SECTION("Blender's Bezier circle: four cubics with the 0.5523 handles")
+    SECTION("a Bezier circle: four cubics with the 0.5523 handles")
     {
         /* the cubics deviate 2.7e-4 r from the circle, below the default
          * fidelity (1e-3 of the diagonal): the circle comes out exact */
@@ -248,6 +248,28 @@ TEST_CASE("conics stay exact: arcs, rational quadratics, a Bezier circle", "[pat
         REQUIRE(conica_path_smooth(&p, NULL, &r, NULL) == CONICA_OK);
         CHECK_LE(radial(&r, 0, 0, 1, 1), 1e-14);
         CHECK_EQ_U(r.corners, 0);
+    }
+    SECTION("Blender's Bezier circle primitive: handles 0.552125 long (float32)")
+    {
+        /* Add > Curve > Circle: AUTO handles 0.552125, 8.5e-5 inside the
+         * circle at the middles; the four anchors with their exact tangents
+         * are samples of the circle, and the circle is within the fidelity
+         * tolerance of the drawn cubics: it comes out exact */
+        double k = (double)0.552125f;
+        double c[4][6] = {{1, k, k, 1, 0, 1}, {-k, 1, -1, k, -1, 0}, {-1, -k, -k, -1, 0, -1},
+                          {k, -1, 1, -k, 1, 0}};
+        conica_path_settings s = conica_path_defaults();
+        int i;
+        s.precision = conica_path_float32_precision(1.0);
+        s.levels = 3;
+        REQUIRE(conica_path_move_to(&p, 1, 0, 0, NULL) == CONICA_OK);
+        for (i = 0; i < 4; i++)
+            REQUIRE(conica_path_bezier_to(&p, 3, c[i], NULL, (size_t)i, NULL) == CONICA_OK);
+        REQUIRE(conica_path_close(&p, NULL) == CONICA_OK);
+        REQUIRE(conica_path_smooth(&p, &s, &r, NULL) == CONICA_OK);
+        CHECK_LE(radial(&r, 0, 0, 1, 1), 1e-14);
+        CHECK_EQ_U(r.lines[0].n, 4 * 8); /* four samples, 2^3 each */
+        CHECK_LE(r.worst_ratio, 1.0);
     }
     conica_path_result_free(&r);
     conica_path_free(&p);

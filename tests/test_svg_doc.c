@@ -193,9 +193,8 @@ TEST_CASE("a circle written as four arcs comes out on the circle", "[svg][conic]
         s.levels = 5;
         extract(t, &s, &sh);
         REQUIRE_EQ_U(sh.nsubpaths, 1);
-        /* each arc is a piece of its own (exact end normals), with its
-         * middle as a third sample: 4 arcs x 2 sample edges x 2^5 */
-        CHECK_EQ_U(sh.subpaths[0].n, 4 * 64);
+        /* the four arc ends with their exact normals: 4 x 2^5 */
+        CHECK_EQ_U(sh.subpaths[0].n, 4 * 32);
         CHECK(sh.subpaths[0].closed);
         err = circle_error(&sh, centres[k][0], centres[k][1], 37.5);
         CAPTURE_D(err);
@@ -210,7 +209,7 @@ TEST_CASE("a circle written as four arcs comes out on the circle", "[svg][conic]
             out = save(doc);
             s.mode = CONICA_SVG_KEEP;
             extract(out, &s, &sh);
-            CHECK_EQ_U(sh.subpaths[0].n, 256);
+            CHECK_EQ_U(sh.subpaths[0].n, 128);
             CHECK_LE(circle_error(&sh, centres[k][0], centres[k][1], 37.5), 1e-9);
             conica_svg_shapes_free(&sh);
             free(out);
@@ -253,7 +252,7 @@ TEST_CASE("an ellipse as cubic Beziers with exact tangents comes out on the elli
         extract(t, &s, &sh);
         INFO("centre (%g, %g)", cx, cy);
         REQUIRE_EQ_U(sh.nsubpaths, 1);
-        CHECK_EQ_U(sh.subpaths[0].n, (size_t)n * 64); /* two sample edges per cubic */
+        CHECK_EQ_U(sh.subpaths[0].n, (size_t)n * 32);
         for (j = 0; j < sh.subpaths[0].n; j++) {
             double x = (sh.subpaths[0].xy[2 * j] - cx) / a, y = (sh.subpaths[0].xy[2 * j + 1] - cy) / b;
             /* radial distance on the unit circle, scaled to the ellipse size */
@@ -824,7 +823,7 @@ TEST_CASE("fill rule, transforms, viewport, selection and shapes", "[svg][doc]")
             one = sh;
             one.nsubpaths = 1;
             one.subpaths = sh.subpaths + sh.elements[3].first_subpath;
-            CHECK_EQ_U(one.subpaths[0].n, 128); /* 4 arcs x 2 sample edges x 2^4 */
+            CHECK_EQ_U(one.subpaths[0].n, 64);
             CHECK_LE(circle_error(&one, 5000, 3000, 20), 1e-9);
         }
         conica_svg_shapes_free(&sh);

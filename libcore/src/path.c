@@ -51,7 +51,7 @@
  * precision (at least this fraction of its chord) of the chord. */
 #define PATH_STRAIGHT_REL 1e-12
 /* Initial samples: sample edges turn by at most this (radians). */
-#define PATH_MAX_EDGE_TURN (0.5 * M_PI)
+#define PATH_MAX_EDGE_TURN (0.5 * M_PI * (1 + 1e-6))
 /* Inflections: sign changes of the curvature searched on this grid. */
 #define PATH_INFL_GRID 32
 /* Rounds of resampling where the subdivision strays, and samples per
@@ -1030,52 +1030,125 @@ static int locate(const double *sxy, size_t ns, const conica_curve *o, size_t *i
     return k == ns;
 }
 
-/* Append curved segment s smoothed (its first point is there already),
- * starting with unit tangent tin and ending with tout; its end point gets
- * normal nend and endflags. */
-static conica_code smooth_seg(ctx *c, size_t s, const double tin[2], const double tout[2],
-                              const double nend[2], unsigned endflags, double *deviation)
+/* One sample of a piece: segment k of the piece at parameter t. */
+typedef struct smp {
+    size_t k;
+    double t;
+} smp;
+
+/* A piece: consecutive curved segments joined smoothly, between breaks
+ * (corners, straight segments, open ends), or a whole closed subpath. */
+typedef struct piece {
+    const size_t *seg;   /* its segments (indices into path.seg) */
+    size_t m;
+    int closed;
+    const double *tan;   /* 2(m+1) unit tangents at its joins: tan[k] where segment k starts,
+                            tan[m] where the last ends (closed: tan[m] = tan[0]) */
+    const double *nend;  /* normal written at the end point (open) */
+    unsigned endflags;
+} piece;
+
+/* Parameter range of sample edge i: its segment and [t0, t1]. */
+static void edge_range(const smp *S, size_t ns, int closed, size_t i, size_t *k, double *t0,
+                       double *t1)
 {
-    const conica_path *p = c->p;
-    const double *q = seg_pts(p, s);
-    int d = p->seg[s].degree, ok = 0, round, lev, L;
-    size_t ns = 0, i, k, *idx = NULL;
-    double infl[3 * CONICA_PATH_MAX_DEGREE], worst = 0;
+    size_t j = i + 1 < ns ? i + 1 : 0;
+    *k = S[i].k;
+    *t0 = S[i].t;
+    *t1 = (j != 0 || !closed) && S[j].k == S[i].k && S[j].t > S[i].t ? S[j].t : 1.0;
+}
+
+static const double *piece_q(const ctx *c, const piece *P, size_t k, int *d)
+{
+    *d = c->p->seg[P->seg[k]].degree;
+    return seg_pts(c->p, P->seg[k]);
+}
+
+/* The polyline of the edge from output index a to b (b may be out.n on a
+ * closed curve: the first point again), contiguous in *buf if it wraps. */
+static const double *edge_points(const conica_curve *o, size_t a, size_t b, double **buf)
+{
+    size_t m = b - a;
+    *buf = NULL;
+    if (b < o->n)
+        return o->xy + 2 * a;
+    *buf = malloc(2 * (m + 1) * sizeof **buf);
+    if (!*buf)
+        return NULL;
+    memcpy(*buf, o->xy + 2 * a, 2 * m * sizeof **buf);
+    (*buf)[2 * m] = o->xy[0];
+    (*buf)[2 * m + 1] = o->xy[1];
+    return *buf;
+}
+
+/* Append a piece smoothed (its first point is there already). */
+static conica_code smooth_piece(ctx *c, const piece *P, double *deviation)
+{
+    int ok = 0, round, lev, L = 0, d;
+    size_t ns = 0, cap, i, k, ne, *idx = NULL;
+    smp *S = NULL;
+    const double *q;
+    double worst = 0;
     conica_curve out, fin;
     conica_code rc = CONICA_OK;
     unsigned char *bad = NULL;
 
     conica_curve_init(&out);
     conica_curve_init(&fin);
-    if (!scratch(c, 16))
+    cap = 8 * P->m + 16;
+    S = malloc(cap * sizeof *S);
+    if (!S)
         return fail_nomem(c);
-    /* Samples: the ends, the inflections, then halving edges that turn by
-     * more than PATH_MAX_EDGE_TURN; at least three (two point-normal pairs
-     * do not fix a conic). */
-    c->par[ns++] = 0.0;
-    {
-        size_t ni = find_inflections(q, d, infl, sizeof infl / sizeof *infl);
+    /* Samples: each segment's start, its inflections, and (open) the last
+     * end; edges turning by more than PATH_MAX_EDGE_TURN are halved, and a
+     * piece gets at least three (two point-normal pairs do not fix a conic). */
+    for (k = 0; k < P->m; k++) {
+        double infl[3 * CONICA_PATH_MAX_DEGREE];
+        size_t ni;
+        q = piece_q(c, P, k, &d);
+        ni = find_inflections(q, d, infl, sizeof infl / sizeof *infl);
         c->r->inflections += ni;
-        for (i = 0; i < ni; i++)
-            c->par[ns++] = infl[i];
+        S[ns].k = k;
+        S[ns++].t = 0.0;
+        for (i = 0; i < ni; i++) {
+            S[ns].k = k;
+            S[ns++].t = infl[i];
+        }
     }
-    c->par[ns++] = 1.0;
+    if (!P->closed) {
+        S[ns].k = P->m - 1;
+        S[ns++].t = 1.0;
+    }
     for (;;) {
         size_t add = 0;
-        if (!scratch(c, 2 * ns + 1))
-            return fail_nomem(c);
-        for (i = ns - 1; i > 0; i--) {
-            double a[2], b[2];
-            inner_tangent(q, d, c->par[i - 1], 1, a);
-            inner_tangent(q, d, c->par[i], -1, b);
-            if (i == 1)
-                end_tangent(q, d, 0, a, &worst);
-            if (i == ns - 1)
-                end_tangent(q, d, 1, b, &worst);
-            if ((angle_between(a, b) > PATH_MAX_EDGE_TURN && ns + add < 64) ||
-                (ns + add == 2)) {
-                memmove(c->par + i + 1, c->par + i, (ns + add - i) * sizeof *c->par);
-                c->par[i] = 0.5 * (c->par[i - 1] + c->par[i + 1]);
+        if (2 * ns + 2 > cap) {
+            smp *T;
+            cap = 2 * ns + 2;
+            if (!(T = realloc(S, cap * sizeof *S))) {
+                free(S);
+                return fail_nomem(c);
+            }
+            S = T;
+        }
+        ne = P->closed ? ns : ns - 1;
+        for (i = ne; i-- > 0;) {
+            size_t kk;
+            double t0, t1, a[2], b[2];
+            edge_range(S, ns + add, P->closed, i, &kk, &t0, &t1);
+            q = piece_q(c, P, kk, &d);
+            if (t0 == 0.0)
+                memcpy(a, P->tan + 2 * kk, sizeof a);
+            else
+                inner_tangent(q, d, t0, 1, a);
+            if (t1 == 1.0)
+                memcpy(b, P->tan + 2 * (kk + 1), sizeof b);
+            else
+                inner_tangent(q, d, t1, -1, b);
+            if ((angle_between(a, b) > PATH_MAX_EDGE_TURN && ns + add < 64 * P->m) ||
+                ns + add < 3) {
+                memmove(S + i + 2, S + i + 1, (ns + add - i - 1) * sizeof *S);
+                S[i + 1].k = kk;
+                S[i + 1].t = 0.5 * (t0 + t1);
                 add++;
             }
         }
@@ -1083,69 +1156,95 @@ static conica_code smooth_seg(ctx *c, size_t s, const double tin[2], const doubl
         if (!add)
             break;
     }
-    worst = 0;
     for (round = 0; round <= PATH_MAX_ROUNDS && rc == CONICA_OK; round++) {
         size_t nbad = 0;
-        if (!scratch(c, 2 * ns + 1)) {
+        ne = P->closed ? ns : ns - 1;
+        if (!scratch(c, ns + 1)) {
             rc = fail_nomem(c);
             break;
         }
         free(idx);
         free(bad);
-        idx = malloc(ns * sizeof *idx);
-        bad = calloc(ns, 1);
+        idx = malloc((ns + 1) * sizeof *idx);
+        bad = calloc(ns + 1, 1);
         if (!idx || !bad) {
             rc = fail_nomem(c);
             break;
         }
         for (i = 0; i < ns; i++) {
             double pt[2], tg[2];
-            if (i == 0 || i + 1 == ns) {
-                pt[0] = q[i ? 3 * d : 0];
-                pt[1] = q[i ? 3 * d + 1 : 1];
-                memcpy(tg, i ? tout : tin, sizeof tg);
+            q = piece_q(c, P, S[i].k, &d);
+            if (S[i].t == 0.0) {
+                pt[0] = q[0];
+                pt[1] = q[1];
+                memcpy(tg, P->tan + 2 * S[i].k, sizeof tg);
+            } else if (S[i].t == 1.0) {
+                pt[0] = q[3 * d];
+                pt[1] = q[3 * d + 1];
+                memcpy(tg, P->tan + 2 * (S[i].k + 1), sizeof tg);
             } else {
-                bez_eval(q, d, c->par[i], pt, NULL, NULL);
-                inner_tangent(q, d, c->par[i], 1, tg);
+                bez_eval(q, d, S[i].t, pt, NULL, NULL);
+                inner_tangent(q, d, S[i].t, 1, tg);
             }
             c->sxy[2 * i] = pt[0];
             c->sxy[2 * i + 1] = pt[1];
             normal_of(tg, c->snxy + 2 * i);
         }
-        L = levels_for(c->sxy, c->snxy, ns, 0, PATH_CHECK_SAG * c->tol, PATH_CHECK_MIN_LEVEL,
-                       PATH_CHECK_MAX_LEVEL);
+        L = levels_for(c->sxy, c->snxy, ns, P->closed, PATH_CHECK_SAG * c->tol,
+                       PATH_CHECK_MIN_LEVEL, PATH_CHECK_MAX_LEVEL);
         conica_curve_free(&out);
-        rc = run_subdiv(c, c->sxy, c->snxy, ns, 0, L, 0.0, &out);
+        rc = run_subdiv(c, c->sxy, c->snxy, ns, P->closed, L, 0.0, &out);
         if (rc == CONICA_ERR_LIMIT || rc == CONICA_ERR_NOMEM)
             break;
         if (rc != CONICA_OK || !locate(c->sxy, ns, &out, idx)) {
             rc = CONICA_OK; /* the samples defeat the subdivision: flatten */
             break;
         }
+        idx[ns] = out.n; /* closed: the last edge runs to the first point again */
         worst = 0;
-        for (k = 0; k + 1 < ns; k++) {
-            double e = check_edge(q, d, c->par[k], c->par[k + 1], out.xy + 2 * idx[k],
-                                  idx[k + 1] - idx[k], NULL);
+        for (i = 0; i < ne; i++) {
+            size_t kk;
+            double t0, t1, e, *buf;
+            const double *v = edge_points(&out, idx[i], idx[i + 1], &buf);
+            if (!v) {
+                rc = fail_nomem(c);
+                break;
+            }
+            edge_range(S, ns, P->closed, i, &kk, &t0, &t1);
+            q = piece_q(c, P, kk, &d);
+            e = check_edge(q, d, t0, t1, v, idx[i + 1] - idx[i], NULL);
+            free(buf);
             if (!(e <= c->tol)) {
-                bad[k] = 1;
+                bad[i] = 1;
                 nbad++;
             }
             worst = e > worst ? e : worst;
         }
+        if (rc != CONICA_OK)
+            break;
         if (!nbad) {
             ok = 1;
             break;
         }
-        if (ns + nbad > PATH_MAX_SEG_SAMPLES)
+        if (ns + nbad > PATH_MAX_SEG_SAMPLES * P->m)
             break;
-        if (!scratch(c, ns + nbad)) {
-            rc = fail_nomem(c);
-            break;
+        if (ns + nbad > cap) {
+            smp *T;
+            cap = 2 * (ns + nbad);
+            if (!(T = realloc(S, cap * sizeof *S))) {
+                rc = fail_nomem(c);
+                break;
+            }
+            S = T;
         }
-        for (k = ns - 1; k-- > 0;)
-            if (bad[k]) {
-                memmove(c->par + k + 2, c->par + k + 1, (ns - k - 1) * sizeof *c->par);
-                c->par[k + 1] = 0.5 * (c->par[k] + c->par[k + 2]);
+        for (i = ne; i-- > 0;)
+            if (bad[i]) {
+                size_t kk;
+                double t0, t1;
+                edge_range(S, ns, P->closed, i, &kk, &t0, &t1);
+                memmove(S + i + 2, S + i + 1, (ns - i - 1) * sizeof *S);
+                S[i + 1].k = kk;
+                S[i + 1].t = 0.5 * (t0 + t1);
                 ns++;
                 c->r->refinements++;
             }
@@ -1154,53 +1253,85 @@ static conica_code smooth_seg(ctx *c, size_t s, const double tin[2], const doubl
         conica_curve_free(&out);
         free(idx);
         free(bad);
+        free(S);
         if (rc != CONICA_OK)
             return rc;
+        /* written flattened, segment by segment (within the tolerance) */
         c->r->fallbacks++;
-        return flatten_seg(c, s, nend, endflags, deviation);
+        for (k = 0; k < P->m && rc == CONICA_OK; k++) {
+            double nn[2];
+            if (k + 1 == P->m && !P->closed) {
+                rc = flatten_seg(c, P->seg[k], P->nend, P->endflags, deviation);
+            } else {
+                normal_of(P->tan + 2 * (k + 1), nn);
+                rc = flatten_seg(c, P->seg[k], nn, CONICA_PATH_PT_VERTEX, deviation);
+            }
+        }
+        return rc;
     }
     c->r->samples += ns;
     if (worst > *deviation)
         *deviation = worst;
     /* the output levels */
     lev = c->s.level_tolerance > 0
-              ? levels_for(c->sxy, c->snxy, ns, 0, c->s.level_tolerance, 0, PATH_LEVELS_MAX)
+              ? levels_for(c->sxy, c->snxy, ns, P->closed, c->s.level_tolerance, 0,
+                           PATH_LEVELS_MAX)
               : c->s.levels;
     if (lev != L) {
-        rc = run_subdiv(c, c->sxy, c->snxy, ns, 0, lev, 0.0, &fin);
+        rc = run_subdiv(c, c->sxy, c->snxy, ns, P->closed, lev, 0.0, &fin);
         if (rc == CONICA_OK && !locate(c->sxy, ns, &fin, idx))
             rc = conica__fail(c->st, CONICA_ERR_NUMERIC, 0, c->subpath,
                               "subpath %zu: the subdivision lost a sample", c->subpath + 1);
+        idx[ns] = fin.n;
     } else {
         fin = out;
         conica_curve_init(&out);
     }
     if (rc == CONICA_OK)
-        rc = take(c, fin.n - 1);
-    for (k = 0; k + 1 < ns && rc == CONICA_OK; k++) {
-        size_t m = idx[k + 1] - idx[k];
-        double tau_stack[1025], *tau = m < 1025 ? tau_stack : malloc((m + 1) * sizeof *tau);
-        if (!tau) {
+        rc = take(c, fin.n - (P->closed ? 0 : 1));
+    for (i = 0; i < ne && rc == CONICA_OK; i++) {
+        size_t kk, m = idx[i + 1] - idx[i], j;
+        double t0, t1, tau_stack[1025], *tau, *buf;
+        const double *v = edge_points(&fin, idx[i], idx[i + 1], &buf);
+        edge_range(S, ns, P->closed, i, &kk, &t0, &t1);
+        q = piece_q(c, P, kk, &d);
+        tau = m < 1025 ? tau_stack : malloc((m + 1) * sizeof *tau);
+        if (!tau || !v) {
+            if (tau != tau_stack)
+                free(tau);
+            free(buf);
             rc = fail_nomem(c);
             break;
         }
-        check_edge(q, d, c->par[k], c->par[k + 1], fin.xy + 2 * idx[k], m, tau);
-        for (i = 1; i <= m; i++) {
-            size_t o = idx[k] + i;
-            int last = k + 2 == ns && i == m;
-            if (!add_pt(c, fin.xy + 2 * o, last ? nend : fin.nxy + 2 * o, s, tau[i],
-                        last ? endflags : 0)) {
+        check_edge(q, d, t0, t1, v, m, tau);
+        for (j = 1; j <= m; j++) {
+            size_t o = idx[i] + j;
+            int is_end = !P->closed && i + 1 == ne && j == m;
+            int is_vertex = j == m && (i + 1 == ns || S[i + 1].t == 0.0 || is_end);
+            const double *pt = o < fin.n ? fin.xy + 2 * o : fin.xy;
+            const double *nn = o < fin.n ? fin.nxy + 2 * o : fin.nxy;
+            /* a point at a segment's end belongs to the next segment at 0 */
+            size_t sg = P->seg[kk];
+            double tt = tau[j];
+            if (j == m && !is_end && S[(i + 1) % ns].t == 0.0) {
+                sg = P->seg[S[(i + 1) % ns].k];
+                tt = 0.0;
+            }
+            if (!add_pt(c, pt, is_end ? P->nend : nn, sg, tt,
+                        is_end ? P->endflags : is_vertex ? CONICA_PATH_PT_VERTEX : 0u)) {
                 rc = fail_nomem(c);
                 break;
             }
         }
         if (tau != tau_stack)
             free(tau);
+        free(buf);
     }
     conica_curve_free(&out);
     conica_curve_free(&fin);
     free(idx);
     free(bad);
+    free(S);
     return rc;
 }
 
@@ -1212,13 +1343,50 @@ static double seg_extent_all(const conica_path *p, const conica_path_subpath *sp
     return pt_extent(p->pt, a->first, z->first + (size_t)z->degree + 1);
 }
 
+/* Rotate the polyline so that it starts at point `at`. */
+static int rotate_line(conica_path_polyline *l, size_t at)
+{
+    size_t n = l->n, i;
+    double *x = malloc(5 * n * sizeof *x);
+    size_t *sg = malloc(n * sizeof *sg);
+    unsigned char *fl = malloc(n);
+    if (!x || !sg || !fl) {
+        free(x);
+        free(sg);
+        free(fl);
+        return 0;
+    }
+    for (i = 0; i < n; i++) {
+        size_t j = (i + at) % n;
+        x[2 * i] = l->xy[2 * j];
+        x[2 * i + 1] = l->xy[2 * j + 1];
+        x[2 * n + 2 * i] = l->nxy[2 * j];
+        x[2 * n + 2 * i + 1] = l->nxy[2 * j + 1];
+        x[4 * n + i] = l->t[j];
+        sg[i] = l->seg[j];
+        fl[i] = l->flags[j];
+    }
+    memcpy(l->xy, x, 2 * n * sizeof *x);
+    memcpy(l->nxy, x + 2 * n, 2 * n * sizeof *x);
+    memcpy(l->t, x + 4 * n, n * sizeof *x);
+    memcpy(l->seg, sg, n * sizeof *sg);
+    memcpy(l->flags, fl, n);
+    free(x);
+    free(sg);
+    free(fl);
+    return 1;
+}
+
 static conica_code drawn_subpath(ctx *c, const conica_path_subpath *sp, int smooth)
 {
     const conica_path *p = c->p;
-    size_t j, n = sp->n;
+    size_t j, n = sp->n, start = 0, done;
     join *J;
-    double nrm[2], dev = 0;
+    unsigned char *line, *brk;
+    size_t *order;
+    double *tan, nrm[2], dev = 0;
     conica_code rc = CONICA_OK;
+    int any_break = 0;
     if (n == 0) { /* a lone move: its point */
         double pt[2] = {sp->x0, sp->y0}, nn[2] = {0, 0};
         rc = take(c, 1);
@@ -1227,49 +1395,122 @@ static conica_code drawn_subpath(ctx *c, const conica_path_subpath *sp, int smoo
         return rc;
     }
     J = malloc(n * sizeof *J);
-    if (!J)
+    line = malloc(2 * n);
+    order = malloc(n * sizeof *order);
+    tan = malloc(2 * (n + 1) * sizeof *tan);
+    if (!J || !line || !order || !tan) {
+        free(J);
+        free(line);
+        free(order);
+        free(tan);
         return fail_nomem(c);
-    for (j = 0; j < n; j++)
-        J[j] = join_at(c, sp, j);
-    for (j = 0; j < n; j++)
-        c->r->corners += (size_t)J[j].corner;
-    join_normal(&J[0], nrm);
-    rc = take(c, 1);
-    if (rc == CONICA_OK && !add_pt(c, seg_pts(p, sp->first), nrm, sp->first, 0.0,
-                                   CONICA_PATH_PT_VERTEX | (J[0].corner ? CONICA_PATH_PT_CORNER : 0u)))
-        rc = fail_nomem(c);
-    for (j = 0; j < n && rc == CONICA_OK; j++) {
+    }
+    brk = line + n;
+    for (j = 0; j < n; j++) {
         size_t s = sp->first + j;
-        const double *q = seg_pts(p, s);
-        int d = p->seg[s].degree;
-        double tout[2], nend[2], len;
+        J[j] = join_at(c, sp, j);
+        c->r->corners += (size_t)J[j].corner;
+        line[j] = (unsigned char)seg_straight(seg_pts(p, s), p->seg[s].degree, straight_tol(c));
+    }
+    /* join j (where segment j starts) breaks the smoothing: a corner, a
+     * straight segment on either side, the start of an open subpath */
+    for (j = 0; j < n; j++) {
+        size_t pv = (j + n - 1) % n;
+        brk[j] = (unsigned char)(J[j].corner || line[j] || (line[pv] && (sp->closed || j > 0)) ||
+                                 (j == 0 && !sp->closed));
+        any_break |= brk[j];
+    }
+    if (sp->closed && any_break && !brk[0])
+        for (start = 1; start < n && !brk[start]; start++)
+            ;
+    for (j = 0; j < n; j++)
+        order[j] = sp->first + (start + j) % n;
+    join_normal(&J[start], nrm);
+    rc = take(c, 1);
+    if (rc == CONICA_OK &&
+        !add_pt(c, seg_pts(p, order[0]), nrm, order[0], 0.0,
+                CONICA_PATH_PT_VERTEX | (J[start].corner ? CONICA_PATH_PT_CORNER : 0u)))
+        rc = fail_nomem(c);
+    for (done = 0; done < n && rc == CONICA_OK;) {
+        size_t jj = (start + done) % n, s = order[done], m, k;
+        double nend[2], len;
         unsigned fl = CONICA_PATH_PT_VERTEX;
-        if (j + 1 < n || sp->closed) {
-            const join *N = &J[(j + 1) % n];
-            memcpy(tout, N->t_prev, sizeof tout);
+        if (line[jj] || !smooth) {
+            /* one segment: straight, or flattened */
+            if (done + 1 < n || sp->closed) {
+                const join *N = &J[(jj + 1) % n];
+                join_normal(N, nend);
+                if (N->corner)
+                    fl |= CONICA_PATH_PT_CORNER;
+            } else {
+                double tout[2];
+                seg_end_tangent(c, s, 1, tout, &len);
+                normal_of(tout, nend);
+            }
+            if (line[jj]) {
+                const double *q = seg_pts(p, s);
+                int d = p->seg[s].degree;
+                double e[2] = {q[3 * d], q[3 * d + 1]};
+                rc = take(c, 1);
+                if (rc == CONICA_OK && !add_pt(c, e, nend, s, 1.0, fl))
+                    rc = fail_nomem(c);
+            } else {
+                rc = flatten_seg(c, s, nend, fl, &dev);
+            }
+            done++;
+            continue;
+        }
+        /* a piece: curved segments up to the next break */
+        for (m = 1; done + m < n && !brk[(jj + m) % n]; m++)
+            ;
+        for (k = 0; k < m; k++)
+            memcpy(tan + 2 * k, J[(jj + k) % n].t_next, 2 * sizeof *tan);
+        if (done + m < n || sp->closed) {
+            const join *N = &J[(jj + m) % n];
+            memcpy(tan + 2 * m, N->t_prev, 2 * sizeof *tan);
             join_normal(N, nend);
             if (N->corner)
                 fl |= CONICA_PATH_PT_CORNER;
         } else {
-            seg_end_tangent(c, s, 1, tout, &len);
-            normal_of(tout, nend);
+            seg_end_tangent(c, order[done + m - 1], 1, tan + 2 * m, &len);
+            normal_of(tan + 2 * m, nend);
         }
-        if (seg_straight(q, d, straight_tol(c))) {
-            double e[2] = {q[3 * d], q[3 * d + 1]};
-            rc = take(c, 1);
-            if (rc == CONICA_OK && !add_pt(c, e, nend, s, 1.0, fl))
-                rc = fail_nomem(c);
-        } else if (smooth) {
-            rc = smooth_seg(c, s, J[j].t_next, tout, nend, fl, &dev);
-        } else {
-            rc = flatten_seg(c, s, nend, fl, &dev);
+        {
+            piece P;
+            P.seg = order + done;
+            P.m = m;
+            P.closed = sp->closed && !any_break;
+            P.tan = tan;
+            P.nend = nend;
+            P.endflags = fl;
+            rc = smooth_piece(c, &P, &dev);
         }
+        done += m;
     }
-    free(J);
     if (rc == CONICA_OK && sp->closed && c->L->n > 1) {
         c->L->n--; /* the last point is the first */
         c->budget++;
     }
+    if (rc == CONICA_OK && start != 0) {
+        /* start the polyline where the subpath starts: the end of its last segment */
+        size_t at = 0, i;
+        for (i = 0; i < c->L->n; i++)
+            if (c->L->seg[i] == sp->first + n - 1 && c->L->t[i] == 1.0) {
+                at = (i + 1) % c->L->n;
+                break;
+            }
+        for (i = 0; i < c->L->n && at == 0; i++)
+            if (c->L->seg[i] == sp->first && c->L->t[i] == 0.0) {
+                at = i;
+                break;
+            }
+        if (at && !rotate_line(c->L, at))
+            rc = fail_nomem(c);
+    }
+    free(J);
+    free(line);
+    free(order);
+    free(tan);
     c->L->deviation = dev;
     return rc;
 }
