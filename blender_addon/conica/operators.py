@@ -1,6 +1,10 @@
 # Operators of the Conica add-on: curve.conic_subdivide and
 # curve.adaptive_to_poly. Python only moves Blender's data in and out
-# (foreach_get/foreach_set on flat arrays); the geometry runs in _conica.
+# (foreach_get/foreach_set on flat arrays); the geometry runs in _conica,
+# which hands every spline to libcore's curve front end (conica/path.h):
+# Bezier and NURBS splines are drawn curves, the ground truth the result
+# stays within the fidelity tolerance of; POLY splines are points to
+# interpolate. Corners, tangents at joins and straight pieces are its rules.
 #
 # Both operators first compute every spline's result and only then modify
 # the scene, so a failure leaves the scene unchanged; a spline that cannot
@@ -99,9 +103,10 @@ class SplineData:
         return a
 
     def abs_tol(self):
-        if not self.co:
+        vals = [v for a in (self.co, self.hl, self.hr) if a for v in (min(a), max(a))]
+        if not vals:
             return 0.0
-        return FLOAT32_SLACK * max(abs(min(self.co)), abs(max(self.co)))
+        return FLOAT32_SLACK * max(abs(v) for v in vals)
 
 
 # ---------------------------------------------------------------- NURBS
@@ -152,90 +157,24 @@ def nurbs_spline(sp, data):
     return order - 1, knots, ctrl, w, attrs
 
 
-def plot_nurbs(sp, data, tolerance, tangents=False):
-    """(points, attrs) of the plotted NURBS spline, plus its exact tangents
-    (first derivatives) at the points when asked."""
-    degree, knots, ctrl, w, attrs = nurbs_spline(sp, data)
-    res = _conica.plot(ctrl, dim=3, degree=degree, knots=knots, weights=w,
-                       tolerance=tolerance, attrs=attrs, nattrs=2,
-                       max_points=MAX_POINTS, tangents=tangents)
-    if tangents:
-        return res[0], res[1], res[3]
-    return res[0], res[1]
-
-
-def plot_bezier(data, tolerance):
-    """Cubic Bezier segments one by one (so every anchor is a vertex of the
-    result), joined; radius and tilt linear in each segment's parameter."""
-    n = data.n
-    co, hl, hr = data.co, data.hl, data.hr
-    segs = n if data.cyclic else n - 1
-    out = array.array("d")
-    att = array.array("d")
-    for s in range(segs):
-        a, b = s, (s + 1) % n
-        ctrl = (co[3 * a:3 * a + 3] + hr[3 * a:3 * a + 3] + hl[3 * b:3 * b + 3] +
-                co[3 * b:3 * b + 3])
-        r0, r1 = data.radius[a], data.radius[b]
-        t0, t1 = data.tilt[a], data.tilt[b]
-        attrs = [r0, t0, (2 * r0 + r1) / 3, (2 * t0 + t1) / 3,
-                 (r0 + 2 * r1) / 3, (t0 + 2 * t1) / 3, r1, t1]
-        pts, at, _info = _conica.plot(ctrl, dim=3, degree=3,
-                                      knots=[0, 0, 0, 0, 1, 1, 1, 1], weights=None,
-                                      tolerance=tolerance, attrs=attrs, nattrs=2,
-                                      max_points=MAX_POINTS)
-        skip = 0 if s == 0 else 1
-        out.extend(pts[3 * skip:])
-        att.extend(at[2 * skip:])
-        if len(out) > 3 * MAX_POINTS:
-            raise _conica.LimitError("more than %d points" % MAX_POINTS)
-    if data.cyclic and len(out) >= 6:
-        del out[-3:]  # the closing point repeats the first
-        del att[-2:]
-    return out, att
+def spline_curve(sp, data, **kw):
+    """Run one spline through _conica.curve (libcore's curve front end):
+    a BEZIER spline as its cubic segments, a NURBS spline with the knots
+    and weights Blender evaluates it with, a POLY spline as points. kw: the
+    mode and its settings, handles, stride. Raises _conica.ConicaError."""
+    common = dict(dim=3, closed=data.cyclic, plane_tol=PLANE_TOL, abs_tol=data.abs_tol(),
+                  nattrs=2, typecode="f", max_points=MAX_POINTS)
+    common.update(kw)
+    if data.type == "BEZIER":
+        return _conica.curve("BEZIER", data.co, data.hl, data.hr, attrs=data.attrs(), **common)
+    if data.type == "NURBS":
+        degree, knots, ctrl, w, attrs = nurbs_spline(sp, data)
+        return _conica.curve("NURBS", ctrl, degree=degree, knots=knots, weights=w,
+                             attrs=attrs, **common)
+    return _conica.curve("POLY", data.co, attrs=data.attrs(), **common)
 
 
 # ---------------------------------------------------------------- helpers
-
-def _drop_closing_point(pts, att, tans=None):
-    """The plot of a cyclic spline ends where it starts (up to rounding in
-    the last bits): drop that repeated point in place."""
-    if len(pts) < 9:
-        return
-    size = _size(pts)
-    gap = math.sqrt(sum((pts[-3 + k] - pts[k]) ** 2 for k in range(3)))
-    if gap <= 1e-12 * size:
-        del pts[-3:]
-        del att[-2:]
-        if tans is not None:
-            del tans[-3:]
-
-
-def _bezier_tangents(data):
-    """Arriving and leaving tangents at each anchor from its handles (a
-    zero-length handle borrows the other side, then the chord)."""
-    n = data.n
-    co, hl, hr = data.co, data.hl, data.hr
-    tin = array.array("d", bytes(24 * n))
-    tout = array.array("d", bytes(24 * n))
-    for i in range(n):
-        p = co[3 * i:3 * i + 3]
-        a = [p[k] - hl[3 * i + k] for k in range(3)]
-        b = [hr[3 * i + k] - p[k] for k in range(3)]
-        la = math.sqrt(sum(x * x for x in a))
-        lb = math.sqrt(sum(x * x for x in b))
-        if la == 0.0 and lb == 0.0:
-            j0 = (i - 1) % n if (data.cyclic or i > 0) else i
-            j1 = (i + 1) % n if (data.cyclic or i < n - 1) else i
-            a = b = [co[3 * j1 + k] - co[3 * j0 + k] for k in range(3)]
-        elif la == 0.0:
-            a = b
-        elif lb == 0.0:
-            b = a
-        tin[3 * i:3 * i + 3] = array.array("d", a)
-        tout[3 * i:3 * i + 3] = array.array("d", b)
-    return tin, tout
-
 
 def curve_objects(context):
     """(objects, edit): the curve objects to work on, each data-block once."""
@@ -549,9 +488,14 @@ class _CurveOperator:
         return {"FINISHED"}
 
 
+FIDELITY_HELP = ("Largest distance of the result from the drawn curve, as a fraction of "
+                 "the spline's size (the diagonal of its bounding box)")
+
+
 class CURVE_OT_conic_subdivide(_CurveOperator, bpy.types.Operator):
     """Subdivide curves so that circles, ellipses and other conics stay
-    exact (conic-preserving interpolatory subdivision)"""
+    exact (conic-preserving interpolatory subdivision), staying faithful to
+    the drawn Bezier and NURBS curves"""
     bl_idname = "curve.conic_subdivide"
     bl_label = "Conic Subdivide"
     bl_options = {"REGISTER", "UNDO"}
@@ -559,96 +503,49 @@ class CURVE_OT_conic_subdivide(_CurveOperator, bpy.types.Operator):
     levels: IntProperty(
         name="Levels", description="Subdivision levels; each doubles the segments",
         default=3, min=1, max=8, options={"SKIP_SAVE"})
-    normals: EnumProperty(
-        name="Normals", default="AUTO",
-        items=[("AUTO", "Auto",
-                "From Bézier handles and NURBS tangents; estimated for poly splines"),
-               ("ESTIMATE", "Estimate", "Always estimate normals from the points")])
     keep_corners: BoolProperty(
-        name="Keep Corners", default=False,
-        description="Keep vertices where the curve turns more than the corner angle "
-                    "as sharp corners")
+        name="Keep Corners", default=True,
+        description="Keep joins where the curve turns by more than the corner angle "
+                    "(Bezier handles that kink, polygon vertices) as sharp corners")
     corner_angle: FloatProperty(
-        name="Corner Angle", subtype="ANGLE", default=math.radians(60.0),
+        name="Corner Angle", subtype="ANGLE", default=_conica.CORNER_ANGLE,
         min=math.radians(1.0), max=math.radians(179.0),
-        description="Turning angle above which a vertex is a corner")
+        description="Turning angle above which a join is a corner")
+    fidelity: FloatProperty(
+        name="Fidelity", default=_conica.REL_TOLERANCE, min=1e-6, max=0.1, precision=5,
+        step=0.01, description=FIDELITY_HELP)
     output: EnumProperty(name="Output", items=OUTPUT_ITEMS, default="REPLACE")
-    precise: BoolProperty(
-        name="Precise", default=False,
-        description="Compute in extended precision (slower)")
-    tolerance: FloatProperty(
-        name="NURBS Tolerance", default=1e-3, min=1e-7, max=0.1,
-        description="NURBS splines are first plotted within this fraction of their size")
 
     def process(self, ob, sp, data):
         kind = "BEZIER" if self.output == "BEZIER" else "POLY"
-        normals = normals_out = None
-        tangents = False
-        if data.type == "NURBS":
-            size = _size(data.co)
-            if not size > 0:
-                raise _conica.DegenerateError("NURBS spline has no extent")
-            t0 = time.perf_counter()
-            pts, att, tans = plot_nurbs(sp, data, self.tolerance * size, tangents=True)
-            t_plot = time.perf_counter() - t0
-            if data.cyclic:
-                _drop_closing_point(pts, att, tans)
-            co, attrs = pts, att
-            if self.normals == "AUTO":
-                # the NURBS's own tangents: exact normals for the scheme
-                normals = tans
-                tangents = True
-        else:
-            t_plot = 0.0
-            co, attrs = data.co, data.attrs()
-            if data.type == "BEZIER" and self.normals == "AUTO":
-                normals, normals_out = _bezier_tangents(data)
-                tangents = True
         t0 = time.perf_counter()
-        res = _conica.subdivide(
-            co, normals, dim=3, closed=data.cyclic, levels=self.levels,
-            precise=self.precise, estimate=self.normals == "ESTIMATE" or normals is None,
-            normals_out=normals_out, tangents=tangents,
-            corner_angle=self.corner_angle if self.keep_corners else 0.0,
-            attrs=attrs, nattrs=2, handles=kind == "BEZIER",
-            plane_tol=PLANE_TOL, abs_tol=data.abs_tol(),
-            stride=4 if kind == "POLY" else 3, typecode="f", max_points=MAX_POINTS,
-            want_normals=False)
-        t_lib = time.perf_counter() - t0 + t_plot
+        res = spline_curve(
+            sp, data, mode="smooth", levels=self.levels,
+            corner_angle=self.corner_angle if self.keep_corners else math.pi,
+            fidelity=self.fidelity, handles=kind == "BEZIER",
+            stride=4 if kind == "POLY" else 3)
+        t_lib = time.perf_counter() - t0
         r = _Result()
         r.kind = kind
-        r.t_core = res[4]["seconds"]
+        r.t_core = res[3]["seconds"]
         r.co, r.attrs = res[0], res[2]
-        r.hl, r.hr = (res[5], res[6]) if kind == "BEZIER" else (None, None)
+        r.hl, r.hr = (res[4], res[5]) if kind == "BEZIER" else (None, None)
         return r, t_lib
 
     def draw(self, context):
         layout = self.layout
         layout.use_property_split = True
         layout.prop(self, "levels")
-        layout.prop(self, "normals")
         row = layout.row(heading="Keep Corners")
         row.prop(self, "keep_corners", text="")
         sub = row.row()
         sub.active = self.keep_corners
         sub.prop(self, "corner_angle", text="")
+        layout.prop(self, "fidelity")
+        col = layout.column(align=True)
+        col.label(text="Fidelity: largest distance from the drawn curve,")
+        col.label(text="as a fraction of the spline's size")
         layout.prop(self, "output")
-        layout.prop(self, "precise")
-        layout.prop(self, "tolerance")
-
-
-def _size(co):
-    """Bounding-box diagonal of flat x,y,z values."""
-    if not co:
-        return 0.0
-    d2 = 0.0
-    for k in range(3):
-        c = co[k::3]
-        lo, hi = min(c), max(c)
-        if not (math.isfinite(lo) and math.isfinite(hi)):
-            return float("nan")
-        d2 += (hi - lo) ** 2
-    return math.sqrt(d2)
 
 
 class CURVE_OT_adaptive_to_poly(_CurveOperator, bpy.types.Operator):
@@ -670,23 +567,12 @@ class CURVE_OT_adaptive_to_poly(_CurveOperator, bpy.types.Operator):
         if data.n < 2:
             raise _conica.DegenerateError("a spline needs at least 2 points, has %d" % data.n)
         t0 = time.perf_counter()
-        if data.type == "BEZIER":
-            pts, att = plot_bezier(data, self.tolerance)
-        else:
-            pts, att = plot_nurbs(sp, data, self.tolerance)
-            if data.cyclic:
-                _drop_closing_point(pts, att)
+        res = spline_curve(sp, data, mode="flatten", tolerance=self.tolerance, stride=4)
         t_lib = time.perf_counter() - t0
-        n = len(pts) // 3
-        co4 = _zeros(4 * n)
-        co4[0::4] = array.array("f", pts[0::3])
-        co4[1::4] = array.array("f", pts[1::3])
-        co4[2::4] = array.array("f", pts[2::3])
-        co4[3::4] = array.array("f", [1.0]) * n
         r = _Result()
         r.kind = "POLY"
-        r.co = co4
-        r.attrs = array.array("f", att)
+        r.t_core = res[3]["seconds"]
+        r.co, r.attrs = res[0], res[2]
         r.hl = r.hr = None
         return r, t_lib
 

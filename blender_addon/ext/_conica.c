@@ -5,11 +5,13 @@
  * accepts) in and out of libcore, which is linked in statically so the
  * add-on is self-contained. Everything that touches many points runs in C
  * with the GIL released: the plane fit of a 3D spline, the projection into
- * the plane and back, the conic subdivision (seed 000, Section 1.1), the
- * interpolation of per-point attributes (radius, tilt) and the Bezier
- * handles along the conic tangents. Python only reads and writes Blender's
- * data, so the add-on stays fast (the benchmark compares it with Blender's
- * own curve.subdivide).
+ * the plane and back, libcore's curve front end (conica/path.h: drawn
+ * Bezier and NURBS splines smoothed by conic subdivision or flattened
+ * within a fidelity tolerance, POLY splines interpolated; corners and
+ * tangents are its rules), the interpolation of per-point attributes
+ * (radius, tilt) and the Bezier handles along the conic tangents. Python
+ * only reads and writes Blender's data, so the add-on stays fast (the
+ * benchmark compares it with Blender's own curve.subdivide).
  *
  * Every libcore status becomes a Python exception (a subclass of
  * ConicaError that also derives from the matching built-in exception)
@@ -30,8 +32,13 @@
 #include "conica/bspline.h"
 #include "conica/common.h"
 #include "conica/curve.h"
+#include "conica/path.h"
 #include "conica/plot.h"
 #include "conica/subdiv.h"
+
+#ifndef M_PI
+#define M_PI 3.14159265358979323846
+#endif
 
 #ifndef CONICA_SOABI
 #error "build with -DCONICA_SOABI=\"...\" (python3-config --extension-suffix)"
@@ -489,264 +496,53 @@ static void cx_from_plane(const cx_plane *pl, const double *p2, size_t n, double
 
 /* ------------------------------------------------------------ subdivision */
 
-/* Growable 2D point-normal buffer for joining pieces split at corners.
- * nxy holds the normal of the edge arriving at each point, nout that of
- * the edge leaving it: they differ only at corners. */
-typedef struct cx_buf {
-    size_t n, cap;
-    double *xy, *nxy, *nout;
-} cx_buf;
-
-static int cx_buf_push(cx_buf *b, const double *xy, const double *nxy, size_t count)
-{
-    if (b->n + count > b->cap) {
-        size_t cap = b->cap ? b->cap : 64;
-        while (cap < b->n + count)
-            cap *= 2;
-        double *x = realloc(b->xy, 2 * cap * sizeof *x);
-        if (x == NULL)
-            return 0;
-        b->xy = x;
-        double *nn = realloc(b->nxy, 2 * cap * sizeof *nn);
-        if (nn == NULL)
-            return 0;
-        b->nxy = nn;
-        double *no = realloc(b->nout, 2 * cap * sizeof *no);
-        if (no == NULL)
-            return 0;
-        b->nout = no;
-        b->cap = cap;
-    }
-    memcpy(b->xy + 2 * b->n, xy, 2 * count * sizeof *xy);
-    memcpy(b->nxy + 2 * b->n, nxy, 2 * count * sizeof *nxy);
-    memcpy(b->nout + 2 * b->n, nxy, 2 * count * sizeof *nxy);
-    b->n += count;
-    return 1;
-}
-
-static double cx_angle_between(double ax, double ay, double bx, double by)
-{
-    double cr = ax * by - ay * bx, dt = ax * bx + ay * by;
-    return fabs(atan2(cr, dt));
-}
-
-/* Everything a subdivision call needs, in 2D plane coordinates. */
+/* One run of the scheme on a whole spline, in 2D plane coordinates. Corners
+ * and the normals of drawn curves are the path front end's (conica/path.h,
+ * curve() below); this is the bare scheme on points and normals. */
 typedef struct cx_job {
     /* inputs */
     size_t n;
     int closed;
     const double *xy;      /* 2n */
-    const double *nin;     /* 2n normals for the edge arriving at a point, or NULL */
-    const double *nout;    /* 2n normals for the edge leaving a point, or NULL */
-    double corner_angle;   /* radians; <= 0: no corners */
+    const double *nrm;     /* 2n normals, or NULL */
     conica_subdiv_settings set;
     /* outputs */
-    cx_buf out;
+    conica_curve out;
     size_t *inflections;
     size_t ninflections;
-    size_t corners;
     double seconds;
     conica_status st;
 } cx_job;
 
-/* Is vertex i a corner? From the normals when given (the tangent kink at a
- * Bezier anchor), from the polygon's turning angle otherwise. */
-static int cx_is_corner(const cx_job *j, size_t i)
+/* Runs without the GIL (no Python calls in here). */
+static conica_code cx_run(cx_job *j)
 {
-    if (j->corner_angle <= 0.0)
-        return 0;
-    if (j->nin && j->nout)
-        return cx_angle_between(j->nin[2 * i], j->nin[2 * i + 1], j->nout[2 * i],
-                                j->nout[2 * i + 1]) > j->corner_angle;
-    if (!j->closed && (i == 0 || i + 1 == j->n))
-        return 0;
-    size_t a = (i + j->n - 1) % j->n, b = (i + 1) % j->n;
-    double ex = j->xy[2 * i] - j->xy[2 * a], ey = j->xy[2 * i + 1] - j->xy[2 * a + 1];
-    double fx = j->xy[2 * b] - j->xy[2 * i], fy = j->xy[2 * b + 1] - j->xy[2 * i + 1];
-    return cx_angle_between(ex, ey, fx, fy) > j->corner_angle;
-}
-
-static conica_code cx_nomem(cx_job *j)
-{
-    j->st.code = CONICA_ERR_NOMEM;
-    snprintf(j->st.message, sizeof j->st.message, "out of memory");
-    return CONICA_ERR_NOMEM;
-}
-
-/* Subdivide the open or closed chain of input vertices idx[0..m-1]. */
-static conica_code cx_run_piece(cx_job *j, const size_t *idx, size_t m, int closed, int first)
-{
-    double *pxy = malloc(2 * m * sizeof *pxy);
-    double *pn = j->nin || j->nout ? malloc(2 * m * sizeof *pn) : NULL;
-    if (pxy == NULL || ((j->nin || j->nout) && pn == NULL)) {
-        free(pxy);
-        free(pn);
-        return cx_nomem(j);
-    }
-    for (size_t k = 0; k < m; k++) {
-        size_t i = idx[k];
-        pxy[2 * k] = j->xy[2 * i];
-        pxy[2 * k + 1] = j->xy[2 * i + 1];
-        if (pn) {
-            /* At a piece end the one-sided normal applies: the arriving
-             * one at the last vertex, the leaving one at the first. */
-            const double *src;
-            if (!closed && k == 0)
-                src = j->nout ? j->nout : j->nin;
-            else if (!closed && k + 1 == m)
-                src = j->nin ? j->nin : j->nout;
-            else
-                src = NULL;
-            if (src) {
-                pn[2 * k] = src[2 * i];
-                pn[2 * k + 1] = src[2 * i + 1];
-            } else { /* both sides: the bisecting direction */
-                const double *a = j->nin ? j->nin : j->nout, *b = j->nout ? j->nout : j->nin;
-                double la = hypot(a[2 * i], a[2 * i + 1]), lb = hypot(b[2 * i], b[2 * i + 1]);
-                la = la > 0 ? la : 1.0;
-                lb = lb > 0 ? lb : 1.0;
-                pn[2 * k] = a[2 * i] / la + b[2 * i] / lb;
-                pn[2 * k + 1] = a[2 * i + 1] / la + b[2 * i + 1] / lb;
-            }
-        }
-    }
-    conica_curve in, out;
+    conica_curve in;
     conica_curve_init(&in);
-    conica_curve_init(&out);
     conica_subdiv_info info;
     conica_subdiv_info_init(&info);
-    conica_code rc = conica_curve_set(pxy, pn, m, closed, &in, &j->st);
-    free(pxy);
-    free(pn);
+    conica_code rc = conica_curve_set(j->xy, j->nrm, j->n, j->closed, &in, &j->st);
     if (rc == CONICA_OK) {
         double t0 = cx_now();
-        rc = conica_subdivide(&in, &j->set, &out, &info, &j->st);
+        rc = conica_subdivide(&in, &j->set, &j->out, &info, &j->st);
         j->seconds += cx_now() - t0;
     }
     conica_curve_free(&in);
-    if (rc != CONICA_OK) {
-        conica_subdiv_info_free(&info);
-        return rc;
-    }
-    size_t skip = first ? 0 : 1; /* the shared corner vertex is already there */
-    size_t base = j->out.n;
-    if (out.n > skip && !cx_buf_push(&j->out, out.xy + 2 * skip, out.nxy + 2 * skip, out.n - skip)) {
-        conica_curve_free(&out);
-        conica_subdiv_info_free(&info);
-        return cx_nomem(j);
-    }
-    if (skip && base > 0 && out.n > 0) { /* the corner leaves along this piece */
-        j->out.nout[2 * (base - 1)] = out.nxy[0];
-        j->out.nout[2 * (base - 1) + 1] = out.nxy[1];
-    }
-    if (info.inflections > 0 && info.inflection_index) {
-        size_t *ni = realloc(j->inflections, (j->ninflections + info.inflections) * sizeof *ni);
-        if (ni == NULL) {
-            conica_curve_free(&out);
-            conica_subdiv_info_free(&info);
-            return cx_nomem(j);
+    if (rc == CONICA_OK && info.inflections > 0 && info.inflection_index) {
+        j->inflections = malloc(info.inflections * sizeof *j->inflections);
+        if (j->inflections == NULL) {
+            rc = CONICA_ERR_NOMEM;
+            j->st.code = rc;
+            snprintf(j->st.message, sizeof j->st.message, "out of memory");
+        } else {
+            memcpy(j->inflections, info.inflection_index,
+                   info.inflections * sizeof *j->inflections);
+            j->ninflections = info.inflections;
         }
-        j->inflections = ni;
-        for (size_t k = 0; k < info.inflections; k++)
-            if (info.inflection_index[k] >= skip)
-                j->inflections[j->ninflections++] = base + info.inflection_index[k] - skip;
     }
-    conica_curve_free(&out);
     conica_subdiv_info_free(&info);
-    return CONICA_OK;
-}
-
-/* Run the whole job: split at corners, subdivide the pieces, join them and
- * rotate a closed result back so it starts at input vertex 0. Runs without
- * the GIL (no Python calls in here). */
-static conica_code cx_run(cx_job *j)
-{
-    size_t n = j->n;
-    size_t *idx = malloc((n + 1) * sizeof *idx);
-    size_t *corner = malloc((n + 1) * sizeof *corner);
-    if (idx == NULL || corner == NULL) {
-        free(idx);
-        free(corner);
-        j->st.code = CONICA_ERR_NOMEM;
-        snprintf(j->st.message, sizeof j->st.message, "out of memory");
-        return CONICA_ERR_NOMEM;
-    }
-    size_t nc = 0;
-    for (size_t i = 0; i < n; i++)
-        if (cx_is_corner(j, i))
-            corner[nc++] = i;
-    j->corners = nc;
-    conica_code rc = CONICA_OK;
-    if (nc == 0) {
-        for (size_t i = 0; i < n; i++)
-            idx[i] = i;
-        rc = cx_run_piece(j, idx, n, j->closed, 1);
-    } else {
-        /* Open pieces between consecutive corners (and the ends of an
-         * open curve); a closed curve is walked from its first corner. */
-        size_t start = j->closed ? corner[0] : 0;
-        size_t total = j->closed ? n : n - 1; /* edges */
-        size_t m = 0, first = 1;
-        idx[m++] = start;
-        for (size_t e = 1; e <= total && rc == CONICA_OK; e++) {
-            size_t i = (start + e) % n;
-            idx[m++] = i;
-            int end = (e == total) || cx_is_corner(j, i);
-            if (end) {
-                rc = cx_run_piece(j, idx, m, 0, (int)first);
-                first = 0;
-                m = 0;
-                idx[m++] = i;
-            }
-        }
-        if (rc == CONICA_OK && j->closed && j->out.n > 1) {
-            /* Drop the repeated start vertex (keeping the normal it
-             * arrives with), then rotate to vertex 0. */
-            j->out.n--;
-            j->out.nxy[0] = j->out.nxy[2 * j->out.n];
-            j->out.nxy[1] = j->out.nxy[2 * j->out.n + 1];
-            size_t z = 0;
-            const double x0 = j->xy[0], y0 = j->xy[1];
-            while (z < j->out.n && !(j->out.xy[2 * z] == x0 && j->out.xy[2 * z + 1] == y0))
-                z++;
-            if (z > 0 && z < j->out.n) {
-                size_t N = j->out.n;
-                double *rx = malloc(2 * N * sizeof *rx), *rn = malloc(2 * N * sizeof *rn);
-                double *ro = malloc(2 * N * sizeof *ro);
-                if (rx == NULL || rn == NULL || ro == NULL) {
-                    free(rx);
-                    free(rn);
-                    free(ro);
-                    rc = CONICA_ERR_NOMEM;
-                    j->st.code = rc;
-                    snprintf(j->st.message, sizeof j->st.message, "out of memory");
-                } else {
-                    for (size_t k = 0; k < N; k++) {
-                        size_t from = (k + z) % N;
-                        rx[2 * k] = j->out.xy[2 * from];
-                        rx[2 * k + 1] = j->out.xy[2 * from + 1];
-                        rn[2 * k] = j->out.nxy[2 * from];
-                        rn[2 * k + 1] = j->out.nxy[2 * from + 1];
-                        ro[2 * k] = j->out.nout[2 * from];
-                        ro[2 * k + 1] = j->out.nout[2 * from + 1];
-                    }
-                    free(j->out.xy);
-                    free(j->out.nxy);
-                    free(j->out.nout);
-                    j->out.xy = rx;
-                    j->out.nxy = rn;
-                    j->out.nout = ro;
-                    for (size_t k = 0; k < j->ninflections; k++)
-                        j->inflections[k] = (j->inflections[k] % N + N - z) % N;
-                }
-            }
-        }
-    }
-    free(idx);
-    free(corner);
     return rc;
 }
-
 /*
  * Find each input vertex in the output: the scheme keeps old vertices
  * bit-for-bit (seed 000, Section 1.1), in order, so one forward scan finds
@@ -845,44 +641,51 @@ static void cx_restore_exact(const double *in3, size_t n, const size_t *anchor, 
 }
 
 /*
- * Cubic Bezier handles along the conic tangents. The curve was refined one
- * level further than asked: the even points are the result, each odd point
- * m is the scheme's edge point of the conic arc between its neighbours.
- * Written as a rational quadratic Bezier (p0, C, p1; weight w), with C the
- * intersection of the tangent lines, the arc's midpoint satisfies
- * m - M = w/(1+w) (C - M) with M the chord midpoint; the cubic through the
- * same ends and tangents that matches the arc's midpoint has handles
- * p0 + 4/3 w/(1+w) (C - p0) (for a circle this is the classical
- * 4/3 tan(theta/4) r). Where the tangents do not meet ahead of the chord
- * (inflection, straight piece) the handles are a third of the chord along
- * the tangents.
+ * Cubic Bezier handles along the conic tangents. Each output edge s (points
+ * s and s+1) comes with the midpoint mid[s] of the curve between them: the
+ * scheme's edge point one level further. Written as a rational quadratic
+ * Bezier (p0, C, p1; weight w), with C the intersection of the tangent
+ * lines, the arc's midpoint satisfies m - M = w/(1+w) (C - M) with M the
+ * chord midpoint; the cubic through the same ends and tangents that matches
+ * the arc's midpoint has handles p0 + 4/3 w/(1+w) (C - p0) (for a circle
+ * this is the classical 4/3 tan(theta/4) r). Where the tangents do not meet
+ * ahead of the chord (inflection) the handles are a third of the chord
+ * along the tangents. An edge without a midpoint (hasmid[s] == 0: a
+ * straight or flattened piece) gets handles a third of the chord along the
+ * chord, so it stays the straight edge it is. nout holds the normal each
+ * point leaves with, nin the one it arrives with (they differ at corners).
  */
-static void cx_handles(const double *fxy, const double *fn, const double *fout, size_t N,
-                       int closed, double *left, double *right)
+static void cx_handles(const double *fxy, const double *nin, const double *nout,
+                       const double *mid, const unsigned char *hasmid, size_t N, int closed,
+                       double *left, double *right)
 {
     size_t segs = closed ? N : N - 1;
-    size_t F = closed ? 2 * N : 2 * N - 1;
     for (size_t i = 0; i < N; i++) { /* defaults for open ends */
-        left[2 * i] = right[2 * i] = fxy[4 * i];
-        left[2 * i + 1] = right[2 * i + 1] = fxy[4 * i + 1];
+        left[2 * i] = right[2 * i] = fxy[2 * i];
+        left[2 * i + 1] = right[2 * i + 1] = fxy[2 * i + 1];
     }
     for (size_t s = 0; s < segs; s++) {
-        size_t a = 2 * s, mi = 2 * s + 1, b = (2 * s + 2) % F;
+        size_t a = s, b = (s + 1) % N;
         double p0x = fxy[2 * a], p0y = fxy[2 * a + 1], p1x = fxy[2 * b], p1y = fxy[2 * b + 1];
-        double mx = fxy[2 * mi], my = fxy[2 * mi + 1];
+        double cx = p1x - p0x, cy = p1y - p0y, chord = hypot(cx, cy);
+        double h0x = p0x, h0y = p0y, h1x = p1x, h1y = p1y;
+        int done = 0;
+        if (hasmid && !hasmid[s]) {
+            h0x = p0x + cx / 3; h0y = p0y + cy / 3;
+            h1x = p1x - cx / 3; h1y = p1y - cy / 3;
+            done = 1;
+        }
+        double mx = mid[2 * s], my = mid[2 * s + 1];
         /* leaving tangent at the start, arriving one at the end (they
          * differ at kept corners) */
-        double t0x = -fout[2 * a + 1], t0y = fout[2 * a], t1x = -fn[2 * b + 1], t1y = fn[2 * b];
-        double cx = p1x - p0x, cy = p1y - p0y, chord = hypot(cx, cy);
+        double t0x = -nout[2 * a + 1], t0y = nout[2 * a], t1x = -nin[2 * b + 1], t1y = nin[2 * b];
         /* orient the tangents along the chord */
         if (t0x * cx + t0y * cy < 0) { t0x = -t0x; t0y = -t0y; }
         if (t1x * cx + t1y * cy < 0) { t1x = -t1x; t1y = -t1y; }
         double l0 = hypot(t0x, t0y), l1 = hypot(t1x, t1y);
-        double h0x, h0y, h1x, h1y;
-        int done = 0;
         if (l0 > 0) { t0x /= l0; t0y /= l0; }
         if (l1 > 0) { t1x /= l1; t1y /= l1; }
-        if (l0 > 0 && l1 > 0 && chord > 0) {
+        if (!done && l0 > 0 && l1 > 0 && chord > 0) {
             /* p0 + a t0 = p1 - b t1  ->  a t0 + b t1 = p1 - p0 */
             double det = t0x * t1y - t0y * t1x;
             if (fabs(det) > 1e-12) {
@@ -922,8 +725,8 @@ static void cx_handles(const double *fxy, const double *fn, const double *fout, 
         left[0] = 2 * fxy[0] - right[0];
         left[1] = 2 * fxy[1] - right[1];
         size_t e = N - 1;
-        right[2 * e] = 2 * fxy[4 * e] - left[2 * e];
-        right[2 * e + 1] = 2 * fxy[4 * e + 1] - left[2 * e + 1];
+        right[2 * e] = 2 * fxy[2 * e] - left[2 * e];
+        right[2 * e + 1] = 2 * fxy[2 * e + 1] - left[2 * e + 1];
     }
 }
 
@@ -936,49 +739,68 @@ static int cx_parse_normal_method(const char *s, conica_normal_method *out)
 
 PyDoc_STRVAR(subdivide_doc,
 "subdivide(points, normals=None, *, dim=2, closed=False, levels=3, precise=False,\n"
-"          estimate=False, normal_method='area', inflections=True, normals_out=None,\n"
-"          tangents=False, corner_angle=0.0, attrs=None, nattrs=0, handles=False,\n"
-"          plane_tol=1e-6, abs_tol=0.0, stride=0, typecode='d',\n"
+"          estimate=False, normal_method='area', inflections=True, tangents=False,\n"
+"          attrs=None, nattrs=0, handles=False, plane_tol=1e-6, abs_tol=0.0,\n"
+"          stride=0, typecode='d',\n"
 "          max_points=4194304, want_normals=True)\n"
 "--\n\n"
-"Conic-preserving subdivision of one spline (seed 000, Section 1.1).\n\n"
+"Conic-preserving subdivision of one point-normal polygon (seed 000, Section 1.1),\n"
+"the bare scheme: no corners, the points and normals as given. Blender curves go\n"
+"through curve(), which owns corners and the normals of drawn curves.\n\n"
 "points: flat x,y (dim=2) or x,y,z (dim=3) values, a buffer of float32/float64\n"
 "or any sequence of numbers. A 3D spline is processed in its best-fit plane;\n"
 "it must be planar within plane_tol * size + abs_tol (NonPlanarError).\n"
 "normals: one vector per point (dim values each) or None (estimated);\n"
-"normals_out: normals of the edge leaving each point when they differ from\n"
-"those arriving (Bezier corners); tangents=True: the vectors are tangents\n"
-"(direction of travel) and are turned into normals in the plane.\n"
-"corner_angle (radians, 0 = off): vertices whose tangents or edges turn by more\n"
-"are kept as corners (the pieces between are subdivided as open curves).\n"
+"tangents=True: the vectors are tangents (direction of travel) and are turned\n"
+"into normals in the plane.\n"
 "attrs: nattrs values per point (radius, tilt, ...) interpolated onto the output.\n"
 "handles=True also returns Bezier handles along the conic tangents.\n"
 "stride > dim pads every output point with 1.0 (stride 4 = Blender's POLY 'co').\n"
 "want_normals=False skips the output normals (None is returned for them).\n\n"
 "Returns (points, normals, attrs or None, inflections, info) or, with handles=True,\n"
 "(points, normals, attrs, inflections, info, left_handles, right_handles).\n"
-"info is a dict: points, corners, inflections, seconds (libcore), plane data.");
+"info is a dict: points, inflections, seconds (libcore), plane data.");
+
+/* The plane fit refused the spline: raise and say so (1), or 0. */
+static int cx_plane_refused(cx_state *S, int tiny, int nonplanar, const cx_plane *pl,
+                            double plane_tol, double abs_tol)
+{
+    if (tiny) {
+        cx_raisef(S->degenerate,
+                  "spline is too small: its extent %.3g is below %.3g, the smallest "
+                  "normal double", pl->extent, CX_MIN_PLANE_SIZE);
+        return 1;
+    }
+    if (nonplanar) {
+        cx_raisef(S->nonplanar,
+                  "spline is not planar: its points are up to %.3g from their best-fit plane, "
+                  "more than %.3g (%.3g of its size %.3g)",
+                  pl->deviation, plane_tol * pl->size + abs_tol, plane_tol, pl->size);
+        return 1;
+    }
+    return 0;
+}
 
 static PyObject *cx_subdivide(PyObject *self, PyObject *args, PyObject *kw)
 {
     static char *kwlist[] = {"points", "normals", "dim", "closed", "levels", "precise",
-                             "estimate", "normal_method", "inflections", "normals_out",
-                             "tangents", "corner_angle", "attrs", "nattrs", "handles",
+                             "estimate", "normal_method", "inflections", "tangents",
+                             "attrs", "nattrs", "handles",
                              "plane_tol", "abs_tol", "stride", "typecode", "max_points",
                              "want_normals", NULL};
     cx_state *S = cx_get_state(self);
-    PyObject *opoints, *onormals = Py_None, *onormals_out = Py_None, *oattrs = Py_None;
+    PyObject *opoints, *onormals = Py_None, *oattrs = Py_None;
     PyObject *otype = NULL;
     int dim = 2, closed = 0, levels = 3, precise = 0, estimate = 0, inflections = 1;
     int tangents = 0, nattrs = 0, handles = 0, stride = 0, want_normals = 1;
     const char *method = "area";
-    double corner_angle = 0.0, plane_tol = 1e-6, abs_tol = 0.0;
+    double plane_tol = 1e-6, abs_tol = 0.0;
     Py_ssize_t max_points = (Py_ssize_t)CX_DEFAULT_MAX_POINTS;
-    if (!PyArg_ParseTupleAndKeywords(args, kw, "O|O$ipippspOpdOipddiOnp:subdivide", kwlist,
+    if (!PyArg_ParseTupleAndKeywords(args, kw, "O|O$ipippsppOipddiOnp:subdivide", kwlist,
                                      &opoints, &onormals, &dim, &closed, &levels, &precise,
-                                     &estimate, &method, &inflections, &onormals_out, &tangents,
-                                     &corner_angle, &oattrs, &nattrs, &handles, &plane_tol,
-                                     &abs_tol, &stride, &otype, &max_points, &want_normals))
+                                     &estimate, &method, &inflections, &tangents, &oattrs,
+                                     &nattrs, &handles, &plane_tol, &abs_tol, &stride, &otype,
+                                     &max_points, &want_normals))
         return NULL;
     char typecode;
     if (!cx_typecode(S, otype, &typecode))
@@ -1000,26 +822,24 @@ static PyObject *cx_subdivide(PyObject *self, PyObject *args, PyObject *kw)
         return cx_raisef(S->arg_error, "nattrs must be 0..%d, got %d", CX_MAX_ATTRS, nattrs);
     if ((oattrs == Py_None) != (nattrs == 0))
         return cx_raisef(S->arg_error, "attrs and nattrs > 0 go together");
-    if (!isfinite(corner_angle) || corner_angle < 0)
-        return cx_raisef(S->arg_error, "corner_angle must be a finite angle >= 0");
     if (!isfinite(plane_tol) || plane_tol < 0 || !isfinite(abs_tol) || abs_tol < 0)
         return cx_raisef(S->arg_error, "plane_tol and abs_tol must be finite and >= 0");
     conica_normal_method nm;
     if (!cx_parse_normal_method(method, &nm))
         return cx_raisef(S->arg_error, "normal_method must be 'area' or 'circle', got '%s'",
                          method);
-    if (onormals == Py_None && onormals_out != Py_None)
-        return cx_raisef(S->arg_error, "normals_out needs normals");
 
     PyObject *result = NULL;
-    double *pts = NULL, *nrm = NULL, *nrm_out = NULL, *attrs = NULL;
-    double *xy = NULL, *nin2 = NULL, *nout2 = NULL;
+    double *pts = NULL, *nrm = NULL, *attrs = NULL;
+    double *xy = NULL, *nin2 = NULL;
     double *fin_xy = NULL, *fin_n = NULL, *fin_attr = NULL, *hl = NULL, *hr = NULL;
+    double *mids = NULL;
     double *o3 = NULL, *on3 = NULL, *hl3 = NULL, *hr3 = NULL;
     size_t *anchor = NULL;
-    size_t npts_v = 0, nn = 0, nno = 0, na = 0;
+    size_t npts_v = 0, nn = 0, na = 0;
     cx_job job;
     memset(&job, 0, sizeof job);
+    conica_curve_init(&job.out);
 
     if (!cx_read_doubles(opoints, "points", &pts, &npts_v))
         goto done;
@@ -1055,19 +875,6 @@ static PyObject *cx_subdivide(PyObject *self, PyObject *args, PyObject *kw)
             goto done;
         }
     }
-    if (onormals_out != Py_None) {
-        if (!cx_read_doubles(onormals_out, "normals_out", &nrm_out, &nno))
-            goto done;
-        if (nno != npts_v) {
-            cx_raisef(S->arg_error, "normals_out: %zu values for %zu points of dim %d", nno, n,
-                      dim);
-            goto done;
-        }
-        if ((bad = cx_first_nonfinite(nrm_out, nno)) < nno) {
-            cx_raisef(S->nonfinite, "normals_out %zu is not finite", bad / (size_t)dim);
-            goto done;
-        }
-    }
     if (nattrs > 0) {
         if (!cx_read_doubles(oattrs, "attrs", &attrs, &na))
             goto done;
@@ -1097,8 +904,7 @@ static PyObject *cx_subdivide(PyObject *self, PyObject *args, PyObject *kw)
 
     xy = malloc(2 * n * sizeof *xy);
     nin2 = nrm ? malloc(2 * n * sizeof *nin2) : NULL;
-    nout2 = nrm_out ? malloc(2 * n * sizeof *nout2) : NULL;
-    if (xy == NULL || (nrm && nin2 == NULL) || (nrm_out && nout2 == NULL)) {
+    if (xy == NULL || (nrm && nin2 == NULL)) {
         PyErr_NoMemory();
         goto done;
     }
@@ -1117,35 +923,26 @@ static PyObject *cx_subdivide(PyObject *self, PyObject *args, PyObject *kw)
             cx_to_plane(&pl, pts, n, xy, 0);
             if (nrm)
                 cx_to_plane(&pl, nrm, n, nin2, 1);
-            if (nrm_out)
-                cx_to_plane(&pl, nrm_out, n, nout2, 1);
         }
     } else {
         memcpy(xy, pts, 2 * n * sizeof *xy);
         if (nrm)
             memcpy(nin2, nrm, 2 * n * sizeof *nin2);
-        if (nrm_out)
-            memcpy(nout2, nrm_out, 2 * n * sizeof *nout2);
     }
-    if (!nonplanar && !tiny && tangents) {
+    if (!nonplanar && !tiny && tangents && nin2) {
         /* tangent (tx, ty) -> normal (ty, -tx): right of the direction of
          * travel, libcore's orientation (curve.h) */
-        double *vs[2] = {nin2, nout2};
-        for (int q = 0; q < 2; q++)
-            if (vs[q])
-                for (size_t i = 0; i < n; i++) {
-                    double tx = vs[q][2 * i], ty = vs[q][2 * i + 1];
-                    vs[q][2 * i] = ty;
-                    vs[q][2 * i + 1] = -tx;
-                }
+        for (size_t i = 0; i < n; i++) {
+            double tx = nin2[2 * i], ty = nin2[2 * i + 1];
+            nin2[2 * i] = ty;
+            nin2[2 * i + 1] = -tx;
+        }
     }
     if (!nonplanar && !tiny) {
         job.n = n;
         job.closed = closed;
         job.xy = xy;
-        job.nin = nin2;
-        job.nout = nout2;
-        job.corner_angle = corner_angle;
+        job.nrm = nin2;
         job.set = conica_subdiv_defaults();
         job.set.levels = run_levels;
         job.set.precise = precise;
@@ -1163,19 +960,8 @@ static PyObject *cx_subdivide(PyObject *self, PyObject *args, PyObject *kw)
         rc = cx_run(&job);
     }
     Py_END_ALLOW_THREADS
-    if (tiny) {
-        cx_raisef(S->degenerate,
-                  "spline is too small: its extent %.3g is below %.3g, the smallest "
-                  "normal double", pl.extent, CX_MIN_PLANE_SIZE);
+    if (cx_plane_refused(S, tiny, nonplanar, &pl, plane_tol, abs_tol))
         goto done;
-    }
-    if (nonplanar) {
-        cx_raisef(S->nonplanar,
-                  "spline is not planar: its points are up to %.3g from their best-fit plane, "
-                  "more than %.3g (%.3g of its size %.3g)",
-                  pl.deviation, plane_tol * pl.size + abs_tol, plane_tol, pl.size);
-        goto done;
-    }
     if (rc != CONICA_OK) {
         cx_raise(S, rc, &job.st);
         goto done;
@@ -1185,20 +971,24 @@ static PyObject *cx_subdivide(PyObject *self, PyObject *args, PyObject *kw)
     size_t N = job.out.n;
     size_t F = N;
     if (handles) {
+        /* the even points are the result, the odd ones the midpoints */
         N = closed ? F / 2 : (F + 1) / 2;
         fin_xy = malloc(2 * N * sizeof *fin_xy);
         fin_n = malloc(2 * N * sizeof *fin_n);
+        mids = malloc(2 * N * sizeof *mids);
         hl = malloc(2 * N * sizeof *hl);
         hr = malloc(2 * N * sizeof *hr);
-        if (!fin_xy || !fin_n || !hl || !hr) {
+        if (!fin_xy || !fin_n || !mids || !hl || !hr) {
             PyErr_NoMemory();
             goto done;
         }
         for (size_t i = 0; i < N; i++) {
             memcpy(fin_xy + 2 * i, job.out.xy + 4 * i, 2 * sizeof(double));
             memcpy(fin_n + 2 * i, job.out.nxy + 4 * i, 2 * sizeof(double));
+            if (2 * i + 1 < F)
+                memcpy(mids + 2 * i, job.out.xy + 4 * i + 2, 2 * sizeof(double));
         }
-        cx_handles(job.out.xy, job.out.nxy, job.out.nout, N, closed, hl, hr);
+        cx_handles(fin_xy, fin_n, fin_n, mids, NULL, N, closed, hl, hr);
     }
     const double *rxy = handles ? fin_xy : job.out.xy;
     const double *rn = handles ? fin_n : job.out.nxy;
@@ -1263,8 +1053,8 @@ static PyObject *cx_subdivide(PyObject *self, PyObject *args, PyObject *kw)
                               : (Py_INCREF(Py_None), Py_None);
     PyObject *infl = PyTuple_New((Py_ssize_t)job.ninflections);
     PyObject *info = Py_BuildValue(
-        "{s:n,s:n,s:n,s:d,s:d,s:d,s:(ddd),s:(ddd)}", "points", (Py_ssize_t)N, "corners",
-        (Py_ssize_t)job.corners, "inflections", (Py_ssize_t)job.ninflections, "seconds",
+        "{s:n,s:n,s:d,s:d,s:d,s:(ddd),s:(ddd)}", "points", (Py_ssize_t)N,
+        "inflections", (Py_ssize_t)job.ninflections, "seconds",
         job.seconds, "plane_deviation", pl.deviation, "size", pl.size, "plane_origin",
         pl.origin[0], pl.origin[1], pl.origin[2], "plane_normal", pl.normal[0], pl.normal[1],
         pl.normal[2]);
@@ -1292,17 +1082,14 @@ static PyObject *cx_subdivide(PyObject *self, PyObject *args, PyObject *kw)
 done:
     PyMem_Free(pts);
     PyMem_Free(nrm);
-    PyMem_Free(nrm_out);
     PyMem_Free(attrs);
     free(xy);
     free(nin2);
-    free(nout2);
-    free(job.out.xy);
-    free(job.out.nxy);
-    free(job.out.nout);
+    conica_curve_free(&job.out);
     free(job.inflections);
     free(fin_xy);
     free(fin_n);
+    free(mids);
     free(fin_attr);
     free(hl);
     free(hr);
@@ -1606,6 +1393,777 @@ done:
     return result;
 }
 
+/* ------------------------------------------------------------ curves (path.h) */
+
+/*
+ * Blender splines through libcore's curve front end (conica/path.h): BEZIER
+ * and NURBS splines are drawn curves (their segments, or the Bezier pieces
+ * of the NURBS), POLY splines samples to interpolate. path.h owns every
+ * rule about them (corners, tangents at joins, straight segments, the
+ * fidelity to the drawn curve); this only puts a spline into its plane,
+ * hands it over, and carries radius and tilt, exact anchors and the Bezier
+ * handles of the result back.
+ */
+#define CX_PATH_MAX_LEVELS 16 /* conica_path_settings.levels: 0..16 */
+/* path.h's default corner angle in radians (curve()'s corner_angle). */
+#define CX_CORNER_ANGLE (CONICA_PATH_DEFAULT_CORNER_DEG * M_PI / 180.0)
+#define CX_NONE SIZE_MAX
+
+typedef enum cx_kind { CX_BEZIER, CX_NURBS, CX_POLY } cx_kind;
+
+typedef struct cx_curve_job {
+    /* inputs, in plane coordinates */
+    cx_kind kind;
+    size_t n;
+    int closed, smooth, handles;
+    const double *xy, *hl, *hr; /* 2n each; hl, hr: BEZIER only */
+    const double *w;            /* NURBS: n weights or NULL */
+    const double *knots;        /* NURBS: n + degree + 1 */
+    size_t nknots;
+    int degree;
+    const double *attrs;        /* n * nattrs */
+    int nattrs;
+    conica_path_settings set;
+    /* outputs, in plane coordinates (a closed POLY result is rotated to
+     * start at input point 0) */
+    size_t N;
+    double *oxy, *onxy, *oattr, *ohl, *ohr;
+    size_t *exact;              /* N: the input point an output point is, or CX_NONE */
+    conica_path_result res;
+    double seconds;
+    conica_status st;
+} cx_curve_job;
+
+static conica_code cx_fail(conica_status *st, conica_code code, const char *msg)
+{
+    st->code = code;
+    snprintf(st->message, sizeof st->message, "%s", msg);
+    return code;
+}
+
+/* The spline as a one-subpath path: Bezier segment i (anchors i, i+1)
+ * tagged i; the Bezier pieces of a NURBS; the points of a POLY spline.
+ * *s_end: the segments drawn before conica_path_close (which may add a
+ * straight closing edge). */
+static conica_code cx_build_path(const cx_curve_job *j, conica_path *p, conica_bspline *bs,
+                                 size_t *s_end, conica_status *st)
+{
+    conica_code rc = CONICA_OK;
+    *s_end = 0;
+    if (j->kind == CX_POLY)
+        return conica_path_samples(p, j->xy, NULL, j->n, j->closed, 0, st);
+    if (j->kind == CX_NURBS) {
+        rc = conica_bspline_set(j->degree, 2, j->knots, j->nknots, j->xy, j->n, j->w, bs, st);
+        if (rc == CONICA_OK)
+            rc = conica_path_bspline(p, bs, 0, st);
+    } else {
+        size_t segs = j->closed ? j->n : j->n - 1;
+        rc = conica_path_move_to(p, j->xy[0], j->xy[1], 0, st);
+        for (size_t i = 0; i < segs && rc == CONICA_OK; i++) {
+            size_t k = (i + 1) % j->n;
+            double c[6] = {j->hr[2 * i], j->hr[2 * i + 1], j->hl[2 * k], j->hl[2 * k + 1],
+                           j->xy[2 * k], j->xy[2 * k + 1]};
+            rc = conica_path_bezier_to(p, 3, c, NULL, i, st);
+        }
+    }
+    *s_end = p->nseg;
+    if (rc == CONICA_OK && j->closed)
+        rc = conica_path_close(p, st);
+    return rc;
+}
+
+/* NURBS: the knot interval [ua, ub] of every path segment drawn from the
+ * spline (s < s_end), found by matching its control points with the
+ * spline's Bezier pieces in order (conica_path_bspline skips pieces of zero
+ * size, so segment and piece indices may differ). */
+static conica_code cx_piece_params(const conica_path *p, const conica_bspline *bs, size_t s_end,
+                                   double *ua, double *ub, conica_status *st)
+{
+    conica_bspline bz;
+    conica_bspline_init(&bz);
+    conica_code rc = conica_bspline_to_bezier(bs, &bz, st);
+    size_t nb = rc == CONICA_OK ? conica_bspline_bezier_count(&bz) : 0, k = 0;
+    int d = bz.degree;
+    double ctrl[2 * (CONICA_PATH_MAX_DEGREE + 1)];
+    for (size_t s = 0; s < s_end && rc == CONICA_OK; s++) {
+        const double *q = p->pt + 3 * p->seg[s].first;
+        int found = 0;
+        while (k < nb && !found && rc == CONICA_OK) {
+            double a, b;
+            rc = conica_bspline_bezier_piece(&bz, k++, ctrl, NULL, &a, &b, st);
+            found = rc == CONICA_OK && p->seg[s].degree == d;
+            for (int i = 1; i <= d && found; i++)
+                if (ctrl[2 * i] != q[3 * i] || ctrl[2 * i + 1] != q[3 * i + 1])
+                    found = 0;
+            if (found) {
+                ua[s] = a;
+                ub[s] = b;
+            }
+        }
+        if (rc == CONICA_OK && !found)
+            rc = cx_fail(st, CONICA_ERR_NUMERIC, "a NURBS piece is missing from the path");
+    }
+    conica_bspline_free(&bz);
+    return rc;
+}
+
+/* Unit normal (right of the direction of travel, libcore's side) of the
+ * tangent drawn segment s arrives at its end with: towards its end from
+ * the last control point that differs from it. */
+static int cx_seg_end_normal(const conica_path *p, size_t s, double n[2])
+{
+    const double *q = p->pt + 3 * p->seg[s].first;
+    int d = p->seg[s].degree;
+    for (int i = d - 1; i >= 0; i--) {
+        double tx = q[3 * d] - q[3 * i], ty = q[3 * d + 1] - q[3 * i + 1], l = hypot(tx, ty);
+        if (l > 0) {
+            n[0] = ty / l;
+            n[1] = -tx / l;
+            return 1;
+        }
+    }
+    return 0;
+}
+
+/* Unit normal (libcore's side) of the chord from a to b; 0 if they coincide. */
+static int cx_chord_normal(const double *a, const double *b, double n[2])
+{
+    double tx = b[0] - a[0], ty = b[1] - a[1], l = hypot(tx, ty);
+    if (!(l > 0))
+        return 0;
+    n[0] = ty / l;
+    n[1] = -tx / l;
+    return 1;
+}
+
+static int cx_same2(const double *a, const double *b)
+{
+    return a[0] == b[0] && a[1] == b[1];
+}
+
+/*
+ * Bezier handles of the result L (N points): the midpoint of every edge is
+ * the point between its ends in F, the same path smoothed one level
+ * further (the scheme is interpolatory: F holds L's points bit for bit, in
+ * order, and one new point on each subdivided edge; a straight or
+ * flattened edge has none). At corners each side keeps its own tangent:
+ * the drawn segment's that arrives there (the path's normal is the leaving
+ * side's), or for samples the first edge of F on each side.
+ */
+static conica_code cx_curve_handles(cx_curve_job *j, const conica_path *p,
+                                    const conica_path_polyline *L,
+                                    const conica_path_polyline *F, conica_status *st)
+{
+    size_t N = L->n, NF = F ? F->n : 0, segs = j->closed ? N : N - 1;
+    size_t *pos = malloc(N * sizeof *pos);
+    double *nin = malloc(2 * N * sizeof *nin), *nout = malloc(2 * N * sizeof *nout);
+    double *mid = malloc(2 * N * sizeof *mid);
+    unsigned char *has = calloc(N, 1);
+    conica_code rc = CONICA_OK;
+    if (!pos || !nin || !nout || !mid || !has) {
+        rc = cx_fail(st, CONICA_ERR_NOMEM, "out of memory");
+        goto out;
+    }
+    memcpy(nin, L->nxy, 2 * N * sizeof *nin);
+    memcpy(nout, L->nxy, 2 * N * sizeof *nout);
+    memset(mid, 0, 2 * N * sizeof *mid);
+    if (F) {
+        size_t b = 0;
+        for (size_t k = 0; k < N; k++) {
+            while (b < NF && !cx_same2(F->xy + 2 * b, L->xy + 2 * k))
+                b++;
+            if (b == NF) {
+                rc = cx_fail(st, CONICA_ERR_NUMERIC,
+                             "the handles' refinement lost a point of the result");
+                goto out;
+            }
+            pos[k] = b++;
+        }
+        for (size_t s = 0; s < segs; s++) {
+            size_t a = pos[s], e = s + 1 < N ? pos[s + 1] : NF + pos[0];
+            if (e - a >= 2) { /* one point between (the middle one if more) */
+                size_t m = (a + (e - a) / 2) % NF;
+                memcpy(mid + 2 * s, F->xy + 2 * m, 2 * sizeof *mid);
+                has[s] = 1;
+            }
+        }
+    }
+    for (size_t k = 0; k < N; k++) {
+        if (!(L->flags[k] & CONICA_PATH_PT_CORNER))
+            continue;
+        if (j->kind != CX_POLY) {
+            size_t s = L->seg[k];
+            if (L->t[k] < 1.0 && k == 0 && j->closed) /* arrives by the last segment */
+                s = p->sub[0].first + p->sub[0].n - 1;
+            if (L->t[k] >= 1.0 || (k == 0 && j->closed))
+                cx_seg_end_normal(p, s, nin + 2 * k);
+        } else if (F) {
+            size_t b = pos[k];
+            if (b > 0 || j->closed)
+                cx_chord_normal(F->xy + 2 * ((b + NF - 1) % NF), F->xy + 2 * b, nin + 2 * k);
+            if (b + 1 < NF || j->closed)
+                cx_chord_normal(F->xy + 2 * b, F->xy + 2 * ((b + 1) % NF), nout + 2 * k);
+        }
+    }
+    cx_handles(L->xy, nin, nout, mid, has, N, j->closed, j->ohl, j->ohr);
+out:
+    free(pos);
+    free(nin);
+    free(nout);
+    free(mid);
+    free(has);
+    return rc;
+}
+
+/* Radius, tilt, ...: linear in the segment parameter between the two
+ * anchors (BEZIER) or samples (POLY) of the point's segment; NURBS: spline
+ * functions with the curve's knots and weights at the point's parameter.
+ * A column equal on every input point is copied without arithmetic. */
+static conica_code cx_curve_attrs(cx_curve_job *j, const conica_path *p,
+                                  const conica_path_polyline *L, const double *ua,
+                                  const double *ub, size_t s_end, conica_status *st)
+{
+    size_t N = L->n, n = j->n, m = (size_t)j->nattrs;
+    const double *A = j->attrs;
+    if (j->kind == CX_NURBS) {
+        double *par = malloc(N * sizeof *par), lo, hi;
+        if (!par)
+            return cx_fail(st, CONICA_ERR_NOMEM, "out of memory");
+        lo = j->knots[j->degree];
+        hi = j->knots[n];
+        for (size_t k = 0; k < N; k++) {
+            size_t s = L->seg[k];
+            double u = s < s_end ? ua[s] + L->t[k] * (ub[s] - ua[s]) : hi;
+            par[k] = u < lo ? lo : u > hi ? hi : u;
+        }
+        conica_code rc = cx_plot_attrs(j->degree, j->knots, j->nknots, A, j->nattrs, n, j->w,
+                                       par, N, j->oattr, st);
+        free(par);
+        return rc;
+    }
+    for (size_t q = 0; q < m; q++) {
+        size_t i = 1;
+        while (i < n && A[i * m + q] == A[q])
+            i++;
+        for (size_t k = 0; k < N; k++) {
+            size_t a, b, s = L->seg[k];
+            if (i == n) { /* constant */
+                j->oattr[k * m + q] = A[q];
+                continue;
+            }
+            if (j->kind == CX_BEZIER) {
+                a = p->seg[s].tag;
+                b = (a + 1) % n;
+            } else {
+                const conica_path_subpath *sp = &p->sub[0];
+                size_t next = s + 1 < sp->first + sp->n ? s + 1 : sp->first;
+                a = p->smptag[s];
+                b = p->smptag[next];
+            }
+            double t = L->t[k], v0 = A[a * m + q], v1 = A[b * m + q];
+            j->oattr[k * m + q] = v0 == v1 ? v0 : (1.0 - t) * v0 + t * v1;
+        }
+    }
+    return CONICA_OK;
+}
+
+/* Rotate the N items of `width` doubles in a so that item z comes first. */
+static void cx_rotate(double *a, size_t N, size_t width, size_t z, double *tmp)
+{
+    if (a == NULL || z == 0)
+        return;
+    memcpy(tmp, a + z * width, (N - z) * width * sizeof *a);
+    memcpy(tmp + (N - z) * width, a, z * width * sizeof *a);
+    memcpy(a, tmp, N * width * sizeof *a);
+}
+
+/* Build the path, run the front end and collect the outputs. Runs without
+ * the GIL (no Python calls in here). */
+static conica_code cx_curve_run(cx_curve_job *j)
+{
+    conica_path p;
+    conica_path_result fine;
+    conica_bspline bs;
+    double *ua = NULL, *ub = NULL;
+    size_t s_end = 0;
+    conica_status *st = &j->st;
+    conica_path_init(&p);
+    conica_path_result_init(&fine);
+    conica_bspline_init(&bs);
+    conica_code rc = cx_build_path(j, &p, &bs, &s_end, st);
+    if (rc == CONICA_OK && j->kind == CX_NURBS && j->nattrs > 0) {
+        ua = malloc((p.nseg ? p.nseg : 1) * sizeof *ua);
+        ub = malloc((p.nseg ? p.nseg : 1) * sizeof *ub);
+        rc = ua && ub ? cx_piece_params(&p, &bs, s_end, ua, ub, st)
+                      : cx_fail(st, CONICA_ERR_NOMEM, "out of memory");
+    }
+    if (rc == CONICA_OK) {
+        double t0 = cx_now();
+        rc = j->smooth ? conica_path_smooth(&p, &j->set, &j->res, st)
+                       : conica_path_flatten(&p, &j->set, &j->res, st);
+        if (rc == CONICA_OK && j->handles && j->smooth) {
+            conica_path_settings s2 = j->set;
+            s2.levels++;
+            s2.max_points = 2 * j->set.max_points + 1;
+            rc = conica_path_smooth(&p, &s2, &fine, st);
+        }
+        j->seconds = cx_now() - t0;
+    }
+    const conica_path_polyline *L = rc == CONICA_OK && j->res.n == 1 ? &j->res.lines[0] : NULL;
+    if (rc == CONICA_OK && (L == NULL || L->n < 2))
+        rc = cx_fail(st, CONICA_ERR_DEGENERATE, "nothing is drawn: every segment has zero size");
+    size_t N = L ? L->n : 0;
+    if (rc == CONICA_OK) {
+        j->N = N;
+        j->oxy = malloc(2 * N * sizeof *j->oxy);
+        j->onxy = malloc(2 * N * sizeof *j->onxy);
+        j->exact = malloc(N * sizeof *j->exact);
+        j->oattr = j->nattrs ? malloc(N * (size_t)j->nattrs * sizeof *j->oattr) : NULL;
+        j->ohl = j->handles ? malloc(2 * N * sizeof *j->ohl) : NULL;
+        j->ohr = j->handles ? malloc(2 * N * sizeof *j->ohr) : NULL;
+        if (!j->oxy || !j->onxy || !j->exact || (j->nattrs && !j->oattr) ||
+            (j->handles && (!j->ohl || !j->ohr)))
+            rc = cx_fail(st, CONICA_ERR_NOMEM, "out of memory");
+    }
+    if (rc == CONICA_OK) {
+        memcpy(j->oxy, L->xy, 2 * N * sizeof *j->oxy);
+        memcpy(j->onxy, L->nxy, 2 * N * sizeof *j->onxy);
+        /* output points that are input points, bit for bit in the plane */
+        for (size_t k = 0; k < N; k++) {
+            size_t s = L->seg[k], a = CX_NONE, b = CX_NONE;
+            j->exact[k] = CX_NONE;
+            if (!(L->flags[k] & CONICA_PATH_PT_VERTEX))
+                continue;
+            if (j->kind == CX_BEZIER) {
+                a = p.seg[s].tag;
+                b = (a + 1) % j->n;
+            } else if (j->kind == CX_POLY) {
+                a = p.smptag[s];
+            } else {
+                a = 0;
+                b = j->n - 1;
+            }
+            if (a != CX_NONE && cx_same2(L->xy + 2 * k, j->xy + 2 * a))
+                j->exact[k] = a;
+            else if (b != CX_NONE && cx_same2(L->xy + 2 * k, j->xy + 2 * b))
+                j->exact[k] = b;
+        }
+    }
+    if (rc == CONICA_OK && j->nattrs > 0)
+        rc = cx_curve_attrs(j, &p, L, ua, ub, s_end, st);
+    if (rc == CONICA_OK && j->handles)
+        rc = cx_curve_handles(j, &p, L, j->smooth ? &fine.lines[0] : NULL, st);
+    if (rc == CONICA_OK && j->closed && j->kind == CX_POLY) {
+        /* the samples of a closed POLY spline with corners come out from
+         * its first corner on: start at input point 0 again */
+        size_t z = 0;
+        while (z < N && j->exact[z] != 0)
+            z++;
+        if (z > 0 && z < N) {
+            size_t w = j->nattrs > 2 ? (size_t)j->nattrs : 2;
+            double *tmp = malloc(N * w * sizeof *tmp);
+            size_t *ex = malloc(N * sizeof *ex);
+            if (!tmp || !ex) {
+                rc = cx_fail(st, CONICA_ERR_NOMEM, "out of memory");
+            } else {
+                cx_rotate(j->oxy, N, 2, z, tmp);
+                cx_rotate(j->onxy, N, 2, z, tmp);
+                cx_rotate(j->oattr, N, (size_t)j->nattrs, z, tmp);
+                cx_rotate(j->ohl, N, 2, z, tmp);
+                cx_rotate(j->ohr, N, 2, z, tmp);
+                for (size_t k = 0; k < N; k++)
+                    ex[k] = j->exact[(k + z) % N];
+                memcpy(j->exact, ex, N * sizeof *ex);
+            }
+            free(tmp);
+            free(ex);
+        }
+    }
+    free(ua);
+    free(ub);
+    conica_bspline_free(&bs);
+    conica_path_result_free(&fine);
+    conica_path_free(&p);
+    return rc;
+}
+
+static int cx_parse_kind(const char *s, cx_kind *out)
+{
+    if (strcmp(s, "BEZIER") == 0) { *out = CX_BEZIER; return 1; }
+    if (strcmp(s, "NURBS") == 0) { *out = CX_NURBS; return 1; }
+    if (strcmp(s, "POLY") == 0) { *out = CX_POLY; return 1; }
+    return 0;
+}
+
+/* Read an optional flat array of `want` values (want == 0: any length),
+ * finite, beyond no CX_MAX_ABS_COORD when `coords`. Returns 0 with an
+ * exception set on failure. */
+static int cx_read_checked(cx_state *S, PyObject *obj, const char *what, size_t want, int coords,
+                           double **out, size_t *n)
+{
+    if (!cx_read_doubles(obj, what, out, n))
+        return 0;
+    if (want && *n != want) {
+        cx_raisef(S->arg_error, "%s: %zu values, %zu expected", what, *n, want);
+        return 0;
+    }
+    size_t bad = cx_first_nonfinite(*out, *n);
+    if (bad < *n) {
+        cx_raisef(S->nonfinite, "%s: value %zu is non-finite", what, bad);
+        return 0;
+    }
+    if (coords && (bad = cx_first_huge(*out, *n)) < *n) {
+        cx_raisef(S->limit_error, "%s: value %zu is beyond +-%g", what, bad, CX_MAX_ABS_COORD);
+        return 0;
+    }
+    return 1;
+}
+
+PyDoc_STRVAR(curve_doc,
+"curve(kind, points, handles_left=None, handles_right=None, *, dim=3, closed=False,\n"
+"      weights=None, degree=0, knots=None, mode='smooth', levels=3,\n"
+"      corner_angle=CORNER_ANGLE, fidelity=REL_TOLERANCE, tolerance=0.0,\n"
+"      precision=None, plane_tol=1e-6, abs_tol=0.0, attrs=None, nattrs=0,\n"
+"      handles=False, stride=0, typecode='d', max_points=4194304, want_normals=False)\n"
+"--\n\n"
+"One Blender spline through libconica's curve front end (conica/path.h).\n\n"
+"kind 'BEZIER': points are the anchors, handles_left/handles_right their handles;\n"
+"segment i is the cubic (anchor i, right handle i, left handle i+1, anchor i+1),\n"
+"closed adds the segment back to anchor 0. 'NURBS': points are the control\n"
+"points of a B-spline of `degree` with `knots` (n + degree + 1) and optional\n"
+"positive weights, drawn over its domain (a cyclic spline comes wrapped, as\n"
+"Blender evaluates it). 'POLY': points to interpolate. Values are flat x,y,z\n"
+"(dim=3) or x,y (dim=2); a 3D spline is processed in its best-fit plane and\n"
+"must be planar within plane_tol * size + abs_tol (NonPlanarError).\n\n"
+"mode 'smooth': conic-preserving subdivision (levels) whose limit curve stays\n"
+"within the fidelity tolerance of a drawn curve; 'flatten': a polyline within\n"
+"it. The tolerance is `tolerance` (absolute) if > 0, else fidelity times the\n"
+"spline's size (bounding-box diagonal of its anchors and the handles that shape\n"
+"it, or of its control points). Joins whose tangents turn by more than\n"
+"corner_angle (radians; >= pi: none) stay corners. precision: how far the input\n"
+"coordinates may be off (absolute); None: float32 rounding of the largest one.\n"
+"attrs: nattrs values per input point (radius, tilt) carried to the output:\n"
+"linear in the segment parameter (BEZIER, POLY), as spline functions with the\n"
+"same knots and weights (NURBS). handles=True also returns Bezier handles along\n"
+"the curve's tangents (corners keep each side's own). stride > dim pads every\n"
+"output point with 1.0 (stride 4 = Blender's POLY 'co').\n\n"
+"Returns (points, normals or None, attrs or None, info) or, with handles=True,\n"
+"(points, normals, attrs, info, left_handles, right_handles). info: points,\n"
+"corners, inflections, samples, refinements, fallbacks, deviation, tolerance,\n"
+"precision, worst_ratio, seconds (libcore), size and plane data.");
+
+static PyObject *cx_curve(PyObject *self, PyObject *args, PyObject *kw)
+{
+    static char *kwlist[] = {"kind", "points", "handles_left", "handles_right", "dim",
+                             "closed", "weights", "degree", "knots", "mode", "levels",
+                             "corner_angle", "fidelity", "tolerance", "precision",
+                             "plane_tol", "abs_tol", "attrs", "nattrs", "handles", "stride",
+                             "typecode", "max_points", "want_normals", NULL};
+    cx_state *S = cx_get_state(self);
+    const char *kind_s, *mode = "smooth";
+    PyObject *opoints, *ohl = Py_None, *ohr = Py_None, *ow = Py_None, *oknots = Py_None;
+    PyObject *oprec = Py_None, *oattrs = Py_None, *otype = NULL;
+    int dim = 3, closed = 0, degree = 0, levels = 3, nattrs = 0, handles = 0, stride = 0;
+    int want_normals = 0;
+    double corner_angle = CX_CORNER_ANGLE;
+    double fidelity = CONICA_PATH_DEFAULT_REL_TOLERANCE, tolerance = 0.0, precision = 0.0;
+    double plane_tol = 1e-6, abs_tol = 0.0;
+    Py_ssize_t max_points = (Py_ssize_t)CX_DEFAULT_MAX_POINTS;
+    if (!PyArg_ParseTupleAndKeywords(args, kw, "sO|OO$ipOiOsidddOddOipiOnp:curve", kwlist,
+                                     &kind_s, &opoints, &ohl, &ohr, &dim, &closed, &ow, &degree,
+                                     &oknots, &mode, &levels, &corner_angle, &fidelity,
+                                     &tolerance, &oprec, &plane_tol, &abs_tol, &oattrs, &nattrs,
+                                     &handles, &stride, &otype, &max_points, &want_normals))
+        return NULL;
+    cx_kind kind;
+    char typecode;
+    if (!cx_parse_kind(kind_s, &kind))
+        return cx_raisef(S->arg_error, "kind must be 'BEZIER', 'NURBS' or 'POLY', got '%s'",
+                         kind_s);
+    if (!cx_typecode(S, otype, &typecode))
+        return NULL;
+    int smooth = strcmp(mode, "smooth") == 0;
+    if (!smooth && strcmp(mode, "flatten") != 0)
+        return cx_raisef(S->arg_error, "mode must be 'smooth' or 'flatten', got '%s'", mode);
+    if (dim != 2 && dim != 3)
+        return cx_raisef(S->arg_error, "dim must be 2 or 3, got %d", dim);
+    if (stride == 0)
+        stride = dim;
+    if (stride < dim || stride > 4)
+        return cx_raisef(S->arg_error, "stride must be between dim (%d) and 4, got %d", dim,
+                         stride);
+    int top = CX_PATH_MAX_LEVELS - (handles ? 1 : 0);
+    if (levels < 0 || levels > top)
+        return cx_raisef(S->limit_error, "levels must be 0..%d%s, got %d", top,
+                         handles ? " with handles" : "", levels);
+    if (max_points < 2 || (size_t)max_points > CX_HARD_MAX_POINTS)
+        return cx_raisef(S->limit_error, "max_points must be 2..%zu, got %zd",
+                         CX_HARD_MAX_POINTS, max_points);
+    if (nattrs < 0 || nattrs > CX_MAX_ATTRS)
+        return cx_raisef(S->arg_error, "nattrs must be 0..%d, got %d", CX_MAX_ATTRS, nattrs);
+    if ((oattrs == Py_None) != (nattrs == 0))
+        return cx_raisef(S->arg_error, "attrs and nattrs > 0 go together");
+    if (!isfinite(corner_angle) || corner_angle < 0)
+        return cx_raisef(S->arg_error, "corner_angle must be a finite angle >= 0");
+    if (!isfinite(tolerance) || tolerance < 0 ||
+        (!(tolerance > 0) && !(isfinite(fidelity) && fidelity > 0)))
+        return cx_raisef(S->arg_error, "fidelity must be a positive finite fraction (or give "
+                         "a positive absolute tolerance)");
+    if (oprec != Py_None) {
+        precision = PyFloat_AsDouble(oprec);
+        if (precision == -1.0 && PyErr_Occurred())
+            return NULL;
+        if (!isfinite(precision) || precision < 0)
+            return cx_raisef(S->arg_error, "precision must be None or a finite number >= 0");
+    }
+    if (!isfinite(plane_tol) || plane_tol < 0 || !isfinite(abs_tol) || abs_tol < 0)
+        return cx_raisef(S->arg_error, "plane_tol and abs_tol must be finite and >= 0");
+    if ((kind == CX_BEZIER) != (ohl != Py_None) || (kind == CX_BEZIER) != (ohr != Py_None))
+        return cx_raisef(S->arg_error, "handles_left and handles_right go with kind 'BEZIER' "
+                         "(and only with it)");
+    if (kind != CX_NURBS && (ow != Py_None || oknots != Py_None || degree != 0))
+        return cx_raisef(S->arg_error, "weights, degree and knots go with kind 'NURBS'");
+    if (kind == CX_NURBS && (oknots == Py_None || degree < 1 || degree > CONICA_PATH_MAX_DEGREE))
+        return cx_raisef(S->arg_error, "a NURBS needs knots and a degree of 1..%d, got %d",
+                         CONICA_PATH_MAX_DEGREE, degree);
+
+    PyObject *result = NULL;
+    double *pts = NULL, *hl = NULL, *hr = NULL, *w = NULL, *knots = NULL, *attrs = NULL;
+    double *xy = NULL, *hl2 = NULL, *hr2 = NULL, *shape = NULL;
+    double *o3 = NULL, *on3 = NULL, *hl3 = NULL, *hr3 = NULL;
+    size_t nv = 0, nh = 0, nw = 0, nk = 0, na = 0;
+    cx_curve_job job;
+    memset(&job, 0, sizeof job);
+    conica_path_result_init(&job.res);
+
+    if (!cx_read_checked(S, opoints, "points", 0, 1, &pts, &nv))
+        goto done;
+    if (nv % (size_t)dim != 0) {
+        cx_raisef(S->arg_error, "points: %zu values is not a multiple of dim=%d", nv, dim);
+        goto done;
+    }
+    size_t n = nv / (size_t)dim;
+    size_t need = kind == CX_NURBS ? (size_t)degree + 1 : (kind == CX_POLY && closed) ? 3 : 2;
+    if (n < need) {
+        cx_raisef(S->degenerate, "a%s %s spline needs at least %zu points, has %zu",
+                  closed ? " cyclic" : "n open", kind_s, need, n);
+        goto done;
+    }
+    if (kind == CX_BEZIER &&
+        (!cx_read_checked(S, ohl, "handles_left", nv, 1, &hl, &nh) ||
+         !cx_read_checked(S, ohr, "handles_right", nv, 1, &hr, &nh)))
+        goto done;
+    if (kind == CX_NURBS) {
+        if (!cx_read_checked(S, oknots, "knots", n + (size_t)degree + 1, 0, &knots, &nk))
+            goto done;
+        if (ow != Py_None && !cx_read_checked(S, ow, "weights", n, 0, &w, &nw))
+            goto done;
+        for (size_t i = 0; w && i < n; i++)
+            if (!(w[i] > 0)) {
+                cx_raisef(S->arg_error, "weights: weight %zu is not positive", i);
+                goto done;
+            }
+    }
+    if (nattrs > 0 && !cx_read_checked(S, oattrs, "attrs", n * (size_t)nattrs, 0, &attrs, &na))
+        goto done;
+
+    /* The points that shape the drawn curve (an open spline's outer handles
+     * do not): they decide the plane, the size and the precision. */
+    size_t nshape = n;
+    if (kind == CX_BEZIER)
+        nshape = closed ? 3 * n : 3 * n - 2;
+    shape = malloc(nshape * (size_t)dim * sizeof *shape);
+    xy = malloc(2 * n * sizeof *xy);
+    if (kind == CX_BEZIER) {
+        hl2 = malloc(2 * n * sizeof *hl2);
+        hr2 = malloc(2 * n * sizeof *hr2);
+    }
+    if (!shape || !xy || (kind == CX_BEZIER && (!hl2 || !hr2))) {
+        PyErr_NoMemory();
+        goto done;
+    }
+    {
+        size_t d = (size_t)dim, at = 0;
+        memcpy(shape, pts, n * d * sizeof *shape);
+        at = n;
+        for (size_t i = 0; kind == CX_BEZIER && i < n; i++) {
+            if (closed || i + 1 < n)
+                memcpy(shape + d * at++, hr + d * i, d * sizeof *shape);
+            if (closed || i > 0)
+                memcpy(shape + d * at++, hl + d * i, d * sizeof *shape);
+        }
+    }
+    cx_plane pl;
+    memset(&pl, 0, sizeof pl);
+    double max_abs = 0.0;
+    for (size_t i = 0; i < nshape * (size_t)dim; i++)
+        if (fabs(shape[i]) > max_abs)
+            max_abs = fabs(shape[i]);
+    conica_code rc = CONICA_OK;
+    int nonplanar = 0, tiny = 0, coincide = 0;
+    Py_BEGIN_ALLOW_THREADS
+    if (dim == 3) {
+        cx_fit_plane(shape, nshape, &pl);
+        if (pl.extent == 0.0) {
+            coincide = 1;
+        } else if (pl.extent < CX_MIN_PLANE_SIZE) {
+            tiny = 1;
+        } else if (pl.deviation > plane_tol * pl.size + abs_tol) {
+            nonplanar = 1;
+        } else {
+            cx_to_plane(&pl, pts, n, xy, 0);
+            if (kind == CX_BEZIER) {
+                cx_to_plane(&pl, hl, n, hl2, 0);
+                cx_to_plane(&pl, hr, n, hr2, 0);
+            }
+        }
+    } else {
+        double lo[2] = {shape[0], shape[1]}, hi[2] = {shape[0], shape[1]};
+        for (size_t i = 0; i < nshape; i++)
+            for (int k = 0; k < 2; k++) {
+                double v = shape[2 * i + (size_t)k];
+                lo[k] = v < lo[k] ? v : lo[k];
+                hi[k] = v > hi[k] ? v : hi[k];
+            }
+        pl.size = hypot(hi[0] - lo[0], hi[1] - lo[1]);
+        pl.u[0] = pl.v[1] = pl.normal[2] = 1.0;
+        coincide = !(hi[0] > lo[0]) && !(hi[1] > lo[1]);
+        memcpy(xy, pts, 2 * n * sizeof *xy);
+        if (kind == CX_BEZIER) {
+            memcpy(hl2, hl, 2 * n * sizeof *hl2);
+            memcpy(hr2, hr, 2 * n * sizeof *hr2);
+        }
+    }
+    if (!nonplanar && !tiny && !coincide) {
+        job.kind = kind;
+        job.n = n;
+        job.closed = closed;
+        job.smooth = smooth;
+        job.handles = handles;
+        job.xy = xy;
+        job.hl = hl2;
+        job.hr = hr2;
+        job.w = w;
+        job.knots = knots;
+        job.nknots = nk;
+        job.degree = degree;
+        job.attrs = attrs;
+        job.nattrs = nattrs;
+        job.set = conica_path_defaults();
+        job.set.tolerance = tolerance > 0 ? tolerance : fidelity * pl.size;
+        job.set.corner_angle = corner_angle;
+        job.set.precision = oprec == Py_None ? conica_path_float32_precision(max_abs) : precision;
+        job.set.levels = levels;
+        job.set.max_points = (size_t)max_points;
+        rc = cx_curve_run(&job);
+    }
+    if (rc == CONICA_OK && !nonplanar && !tiny && !coincide) {
+        size_t N = job.N;
+        if (dim == 3) {
+            o3 = malloc(3 * N * sizeof *o3);
+            on3 = want_normals ? malloc(3 * N * sizeof *on3) : NULL;
+            hl3 = handles ? malloc(3 * N * sizeof *hl3) : NULL;
+            hr3 = handles ? malloc(3 * N * sizeof *hr3) : NULL;
+            if (!o3 || (want_normals && !on3) || (handles && (!hl3 || !hr3))) {
+                rc = cx_fail(&job.st, CONICA_ERR_NOMEM, "out of memory");
+            } else {
+                cx_from_plane(&pl, job.oxy, N, o3, 0);
+                if (on3)
+                    cx_from_plane(&pl, job.onxy, N, on3, 1);
+                if (handles) {
+                    cx_from_plane(&pl, job.ohl, N, hl3, 0);
+                    cx_from_plane(&pl, job.ohr, N, hr3, 0);
+                }
+                /* input points come back with their exact coordinates, and a
+                 * coordinate every shaping point shares (z of a 2D curve)
+                 * is set exactly everywhere */
+                for (size_t k = 0; k < N; k++)
+                    if (job.exact[k] != CX_NONE)
+                        memcpy(o3 + 3 * k, pts + 3 * job.exact[k], 3 * sizeof *o3);
+                for (size_t c = 0; c < 3; c++) {
+                    size_t i = 1;
+                    while (i < nshape && shape[3 * i + c] == shape[c])
+                        i++;
+                    for (size_t k = 0; i == nshape && k < N; k++) {
+                        o3[3 * k + c] = shape[c];
+                        if (handles) {
+                            hl3[3 * k + c] = shape[c];
+                            hr3[3 * k + c] = shape[c];
+                        }
+                    }
+                }
+            }
+        }
+    }
+    Py_END_ALLOW_THREADS
+    if (coincide) {
+        cx_raisef(S->degenerate, "the spline's points coincide (its size is 0)");
+        goto done;
+    }
+    if (cx_plane_refused(S, tiny, nonplanar, &pl, plane_tol, abs_tol))
+        goto done;
+    if (rc != CONICA_OK) {
+        cx_raise(S, rc, &job.st);
+        goto done;
+    }
+    {
+        size_t N = job.N;
+        const conica_path_result *R = &job.res;
+        const conica_path_polyline *L = &R->lines[0];
+        PyObject *ap = cx_make_array(S, typecode, dim == 3 ? o3 : job.oxy, N, dim, stride, 1.0);
+        const double *rn = dim == 3 ? on3 : job.onxy;
+        PyObject *an = want_normals ? cx_make_array(S, typecode, rn, N, dim, dim, 0.0)
+                                    : (Py_INCREF(Py_None), Py_None);
+        PyObject *aa = nattrs > 0 ? cx_make_array(S, typecode, job.oattr, N, nattrs, nattrs, 0.0)
+                                  : (Py_INCREF(Py_None), Py_None);
+        PyObject *info = Py_BuildValue(
+            "{s:n,s:n,s:n,s:n,s:n,s:n,s:d,s:d,s:d,s:d,s:d,s:d,s:d,s:(ddd),s:(ddd)}", "points",
+            (Py_ssize_t)N, "corners", (Py_ssize_t)R->corners, "inflections",
+            (Py_ssize_t)R->inflections, "samples", (Py_ssize_t)R->samples, "refinements",
+            (Py_ssize_t)R->refinements, "fallbacks", (Py_ssize_t)R->fallbacks, "deviation",
+            L->deviation, "tolerance", job.set.tolerance, "precision", job.set.precision,
+            "worst_ratio", R->worst_ratio, "seconds", job.seconds, "plane_deviation",
+            pl.deviation, "size", pl.size, "plane_origin", pl.origin[0], pl.origin[1],
+            pl.origin[2], "plane_normal", pl.normal[0], pl.normal[1], pl.normal[2]);
+        PyObject *al = NULL, *ar = NULL;
+        if (handles) {
+            al = cx_make_array(S, typecode, dim == 3 ? hl3 : job.ohl, N, dim, dim, 0.0);
+            ar = cx_make_array(S, typecode, dim == 3 ? hr3 : job.ohr, N, dim, dim, 0.0);
+        }
+        if (ap && an && aa && info && (!handles || (al && ar)))
+            result = handles ? PyTuple_Pack(6, ap, an, aa, info, al, ar)
+                             : PyTuple_Pack(4, ap, an, aa, info);
+        Py_XDECREF(ap);
+        Py_XDECREF(an);
+        Py_XDECREF(aa);
+        Py_XDECREF(info);
+        Py_XDECREF(al);
+        Py_XDECREF(ar);
+    }
+done:
+    PyMem_Free(pts);
+    PyMem_Free(hl);
+    PyMem_Free(hr);
+    PyMem_Free(w);
+    PyMem_Free(knots);
+    PyMem_Free(attrs);
+    free(xy);
+    free(hl2);
+    free(hr2);
+    free(shape);
+    free(o3);
+    free(on3);
+    free(hl3);
+    free(hr3);
+    free(job.oxy);
+    free(job.onxy);
+    free(job.oattr);
+    free(job.ohl);
+    free(job.ohr);
+    free(job.exact);
+    conica_path_result_free(&job.res);
+    return result;
+}
 /* ------------------------------------------------------------ plane fit API */
 
 PyDoc_STRVAR(fit_plane_doc,
@@ -1656,6 +2214,7 @@ static PyObject *cx_version(PyObject *self, PyObject *unused)
 static PyMethodDef cx_methods[] = {
     {"subdivide", (PyCFunction)(void (*)(void))cx_subdivide, METH_VARARGS | METH_KEYWORDS,
      subdivide_doc},
+    {"curve", (PyCFunction)(void (*)(void))cx_curve, METH_VARARGS | METH_KEYWORDS, curve_doc},
     {"plot", (PyCFunction)(void (*)(void))cx_plot, METH_VARARGS | METH_KEYWORDS, plot_doc},
     {"fit_plane", cx_fit_plane_py, METH_O, fit_plane_doc},
     {"version", cx_version, METH_NOARGS, version_doc},
@@ -1778,7 +2337,11 @@ PyMODINIT_FUNC PyInit__conica(void)
         PyModule_AddObject(m, "PY_VERSION",
                            Py_BuildValue("(ii)", PY_MAJOR_VERSION, PY_MINOR_VERSION)) < 0 ||
         PyModule_AddIntConstant(m, "MAX_LEVELS", CONICA_SUBDIV_MAX_LEVELS) < 0 ||
-        PyModule_AddIntConstant(m, "MAX_POINTS", (long)CX_HARD_MAX_POINTS) < 0)
+        PyModule_AddIntConstant(m, "MAX_POINTS", (long)CX_HARD_MAX_POINTS) < 0 ||
+        PyModule_AddIntConstant(m, "MAX_PATH_LEVELS", CX_PATH_MAX_LEVELS) < 0 ||
+        PyModule_AddObject(m, "CORNER_ANGLE", PyFloat_FromDouble(CX_CORNER_ANGLE)) < 0 ||
+        PyModule_AddObject(m, "REL_TOLERANCE",
+                           PyFloat_FromDouble(CONICA_PATH_DEFAULT_REL_TOLERANCE)) < 0)
         goto fail;
     return m;
 fail:

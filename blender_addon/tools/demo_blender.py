@@ -74,9 +74,9 @@ def blender_subdivide(ob, cuts):
     bpy.ops.object.mode_set(mode="OBJECT")
 
 
-def conic_subdivide(ob, levels):
+def conic_subdivide(ob, levels, keep_corners=True):
     select_only(ob)
-    bpy.ops.curve.conic_subdivide(levels=levels)
+    bpy.ops.curve.conic_subdivide(levels=levels, keep_corners=keep_corners)
 
 
 def points_of(ob):
@@ -148,12 +148,14 @@ def main():
     a = poly_object("octagon_blender", oct_in)
     b = poly_object("octagon_conic", oct_in)
     blender_subdivide(a, 7)
-    conic_subdivide(b, 3)
+    # a coarse POLY polygon is samples of a smooth curve: its 45 degree
+    # turns are not corners to keep
+    conic_subdivide(b, 3, keep_corners=False)
     fl_in = flower(1.0)
     c = poly_object("flower_blender", fl_in)
     d = poly_object("flower_conic", fl_in)
     blender_subdivide(c, 7)
-    conic_subdivide(d, 3)
+    conic_subdivide(d, 3, keep_corners=False)
     e = bezier_circle("bezier_circle_conic", 1.0)
     circle_in = points_of(e)
     conic_subdivide(e, 3)
