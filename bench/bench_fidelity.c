@@ -39,7 +39,7 @@ static void run(const char *font, const char *text, int smooth, double rel)
 {
     ts_text t;
     size_t contours = 0, kept = 0, corners = 0, ckept = 0, points = 0;
-    double worst = 0, area = 0, secs = 0;
+    double worst = 0, limit = 0, area = 0, secs = 0;
     ts_text_init(&t);
     if (ts_text_outlines(font, text, &t) != TS_OK) {
         printf("%s: not available (install fonts-dejavu-core libfreetype-dev)\n", font);
@@ -102,12 +102,32 @@ static void run(const char *font, const char *text, int smooth, double rel)
             }
             free(k);
         }
+        if (smooth) {
+            /* the limit curve: the same samples at level 8 (chords 1/16 of
+             * level 4's), whose points all lie on it */
+            conica_path_result_free(&r);
+            s.levels = 8;
+            if (conica_path_smooth(&p, &s, &r, NULL) == CONICA_OK)
+                for (size_t i = 0; i < r.n && i < o->n; i++) {
+                    ts_poly poly = {r.lines[i].xy, r.lines[i].n, 1};
+                    ts_hausdorff h;
+                    if (ts_hausdorff_measure(&o->c[i], 1, &poly, 1, NULL, &h) == TS_OK &&
+                        h.max / r.lines[i].tolerance > limit)
+                        limit = h.max / r.lines[i].tolerance;
+                }
+        }
         conica_path_result_free(&r);
         conica_path_free(&p);
     }
-    printf("| %-7s | %-8s | %.0e | %5.3f | %5.3f | %zu/%zu | %zu/%zu | %zu | %.3f |\n",
-           smooth ? "smooth" : "flatten", font[strlen("/usr/share/fonts/truetype/dejavu/")] ? font + strlen("/usr/share/fonts/truetype/dejavu/") : font,
-           rel, worst, area, kept, contours, ckept, corners, points, secs);
+    {
+        const char *base = strrchr(font, '/');
+        char lim[16] = "-";
+        if (smooth)
+            snprintf(lim, sizeof lim, "%5.3f", limit);
+        printf("| %-7s | %s | %.0e | %s | %5.3f | %5.3f | %zu/%zu | %zu/%zu | %zu | %.3f |\n",
+               smooth ? "smooth" : "flatten", base ? base + 1 : font, rel, lim, worst, area, kept,
+               contours, ckept, corners, points, secs);
+    }
     ts_text_free(&t);
 }
 
@@ -117,8 +137,9 @@ int main(void)
     printf("Fidelity on real outlines (DejaVu glyphs, %zu characters; lib: conica/path.h,\n"
            "checker: tests/support, dense sampling both directions)\n\n",
            strlen(text));
-    printf("| mode | font | rel. tol | worst dist / tol | area err / (tol x perim) | contours kept | "
-           "corners kept | points | CPU s |\n|---|---|---|---|---|---|---|---|---|\n");
+    printf("| mode | font | rel. tol | limit curve: worst dist / tol | written polyline: worst dist / tol | "
+           "area err / (tol x perim) | contours kept | corners kept | points | CPU s |\n"
+           "|---|---|---|---|---|---|---|---|---|---|\n");
     for (int m = 0; m < 2; m++)
         for (int k = 0; k < 2; k++) {
             run(TS_FONT_SANS, text, m == 0, k ? 1e-4 : 1e-3);
