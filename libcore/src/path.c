@@ -414,9 +414,47 @@ conica_code conica_path_samples(conica_path *p, const double *xy, const double *
 /* Point c, first and second derivative of a rational Bézier of degree d
  * with control points q (x, y, w triples) at t: de Casteljau on the
  * homogeneous points and their hodographs, then the quotient rule. */
+/* Polynomial Bézier of degree 1..3 in Bernstein form (the common case of
+ * lines, quadratic and cubic segments): no homogeneous detour. */
+static void bez_eval_poly3(const double *q, int d, double t, double c[2], double d1[2],
+                           double d2[2])
+{
+    double u = 1.0 - t;
+    int k;
+    for (k = 0; k < 2; k++) {
+        double p0 = q[k], p1 = q[3 + k];
+        if (d == 1) {
+            c[k] = u * p0 + t * p1;
+            if (d1)
+                d1[k] = p1 - p0;
+            if (d2)
+                d2[k] = 0;
+        } else if (d == 2) {
+            double p2 = q[6 + k];
+            c[k] = u * u * p0 + 2 * u * t * p1 + t * t * p2;
+            if (d1)
+                d1[k] = 2 * (u * (p1 - p0) + t * (p2 - p1));
+            if (d2)
+                d2[k] = 2 * (p2 - 2 * p1 + p0);
+        } else {
+            double p2 = q[6 + k], p3 = q[9 + k];
+            c[k] = u * u * (u * p0 + 3 * t * p1) + t * t * (3 * u * p2 + t * p3);
+            if (d1)
+                d1[k] = 3 * (u * u * (p1 - p0) + 2 * u * t * (p2 - p1) + t * t * (p3 - p2));
+            if (d2)
+                d2[k] = 6 * (u * (p2 - 2 * p1 + p0) + t * (p3 - 2 * p2 + p1));
+        }
+    }
+}
+
 static void bez_eval(const double *q, int d, double t, double c[2], double d1[2], double d2[2])
 {
     double h[CONICA_PATH_MAX_DEGREE + 1][3];
+    if (d <= 3 && q[2] == 1.0 && q[5] == 1.0 && (d < 2 || q[8] == 1.0) &&
+        (d < 3 || q[11] == 1.0)) {
+        bez_eval_poly3(q, d, t, c, d1, d2);
+        return;
+    }
     double a[3][3] = {{0}}; /* A, A', A'' (homogeneous) */
     double u = 1.0 - t, W, W1, W2;
     int i, k, r;
@@ -880,45 +918,64 @@ static double project(const double *q, int d, const double x[2], double t0, doub
     double best = t0, bd, t = t0, c[2], d1[2], d2[2];
     int k;
     bez_eval(q, d, t, c, d1, d2);
-    bd = hypot(c[0] - x[0], c[1] - x[1]);
+    bd = (c[0] - x[0]) * (c[0] - x[0]) + (c[1] - x[1]) * (c[1] - x[1]);
     for (k = 0; k < PATH_NEWTON_STEPS; k++) {
         double ex = c[0] - x[0], ey = c[1] - x[1];
         double g = ex * d1[0] + ey * d1[1];
-        double h = d1[0] * d1[0] + d1[1] * d1[1] + ex * d2[0] + ey * d2[1], dd;
+        double h = d1[0] * d1[0] + d1[1] * d1[1] + ex * d2[0] + ey * d2[1], dd, tn;
         if (!(h > 0))
             h = d1[0] * d1[0] + d1[1] * d1[1];
         if (!(h > 0))
             break;
-        t -= g / h;
-        t = t < lo ? lo : t > hi ? hi : t;
+        tn = t - g / h;
+        tn = tn < lo ? lo : tn > hi ? hi : tn;
+        if (fabs(tn - t) <= 1e-14 * (hi - lo))
+            break; /* converged */
+        t = tn;
         bez_eval(q, d, t, c, d1, d2);
-        dd = hypot(c[0] - x[0], c[1] - x[1]);
+        dd = (c[0] - x[0]) * (c[0] - x[0]) + (c[1] - x[1]) * (c[1] - x[1]);
         if (dd < bd) {
             bd = dd;
             best = t;
         }
     }
-    *dist = bd;
+    *dist = sqrt(bd);
     return best;
 }
 
-static double seg_dist(const double p[2], const double a[2], const double b[2])
+static double seg_dist2(const double p[2], const double a[2], const double b[2])
 {
     double ex = b[0] - a[0], ey = b[1] - a[1], px = p[0] - a[0], py = p[1] - a[1];
-    double l2 = ex * ex + ey * ey, t = l2 > 0 ? (px * ex + py * ey) / l2 : 0;
+    double l2 = ex * ex + ey * ey, t = l2 > 0 ? (px * ex + py * ey) / l2 : 0, dx, dy;
     t = t < 0 ? 0 : t > 1 ? 1 : t;
-    return hypot(px - t * ex, py - t * ey);
+    dx = px - t * ex;
+    dy = py - t * ey;
+    return dx * dx + dy * dy;
 }
 
-/* Compare the limit polyline v[0..m] (v[0], v[m] the samples at ta, tb) of
+static double dist2(const double *a, const double *b)
+{
+    double dx = a[0] - b[0], dy = a[1] - b[1];
+    return dx * dx + dy * dy;
+}
+
+/* Searches of the nearest dense point / chord look this far either side
+ * of where the other curve's index says, and widen while the best is at
+ * the window's edge (the correspondence is monotone; a miss can only
+ * over-state a distance). */
+#define PATH_WINDOW 3
+
+/*
+ * Compare the limit polyline v[0..m] (v[0], v[m] the samples at ta, tb) of
  * one sample edge with the segment on [ta, tb]: tau[i] gets each point's
  * parameter (may be NULL); returns the largest distance in either
- * direction, the chords' own bulge counted against us. */
+ * direction, the chords' own bulge counted against us.
+ */
 static double check_edge(const double *q, int d, double ta, double tb, const double *v, size_t m,
                          double *tau)
 {
     size_t M = 2 * m, i, j;
-    double worst = 0, wb = 0, sag = 0, dense[2 * 2 * 1024 + 2], *D = dense, *heap = NULL;
+    double worst2 = 0, wb2 = 0, sag = 0, dense[2 * (2 * 1024 + 1)], *D = dense, *heap = NULL;
     if (M + 1 > 2 * 1024 + 1) {
         heap = malloc(2 * (M + 1) * sizeof *heap);
         if (!heap)
@@ -931,44 +988,70 @@ static double check_edge(const double *q, int d, double ta, double tb, const dou
         tau[0] = ta;
         tau[m] = tb;
     }
+    /* limit points -> segment */
     for (i = 1; i < m; i++) {
-        size_t bj = 0;
-        double bd = INFINITY, dist, t0, lo, hi;
-        for (j = 0; j <= M; j++) {
-            double dd = hypot(D[2 * j] - v[2 * i], D[2 * j + 1] - v[2 * i + 1]);
-            if (dd < bd) {
-                bd = dd;
-                bj = j;
+        size_t c0 = 2 * i, lo = c0 > PATH_WINDOW ? c0 - PATH_WINDOW : 0, hi = c0 + PATH_WINDOW, bj;
+        double bd = INFINITY, dist, t0, tlo, thi, sx, sy;
+        hi = hi > M ? M : hi;
+        for (;;) {
+            for (j = lo, bj = lo; j <= hi; j++) {
+                double dd = dist2(D + 2 * j, v + 2 * i);
+                if (dd < bd) {
+                    bd = dd;
+                    bj = j;
+                }
             }
+            if ((bj == lo && lo > 0) || (bj == hi && hi < M)) {
+                lo = lo > 4 * PATH_WINDOW ? lo - 4 * PATH_WINDOW : 0;
+                hi = hi + 4 * PATH_WINDOW < M ? hi + 4 * PATH_WINDOW : M;
+                bd = INFINITY;
+                continue;
+            }
+            break;
         }
         t0 = ta + (tb - ta) * (double)bj / (double)M;
-        lo = ta + (tb - ta) * (double)(bj ? bj - 1 : 0) / (double)M;
-        hi = ta + (tb - ta) * (double)(bj < M ? bj + 1 : M) / (double)M;
-        t0 = project(q, d, v + 2 * i, t0, lo, hi, &dist);
+        tlo = ta + (tb - ta) * (double)(bj ? bj - 1 : 0) / (double)M;
+        thi = ta + (tb - ta) * (double)(bj < M ? bj + 1 : M) / (double)M;
+        t0 = project(q, d, v + 2 * i, t0, tlo, thi, &dist);
         if (tau)
             tau[i] = t0;
-        if (dist > worst)
-            worst = dist;
-        {
-            double sx = v[2 * i - 2] - 2 * v[2 * i] + v[2 * i + 2];
-            double sy = v[2 * i - 1] - 2 * v[2 * i + 1] + v[2 * i + 3];
-            double sg = 0.125 * hypot(sx, sy);
-            sag = sg > sag ? sg : sag;
-        }
+        worst2 = dist * dist > worst2 ? dist * dist : worst2;
+        sx = v[2 * i - 2] - 2 * v[2 * i] + v[2 * i + 2];
+        sy = v[2 * i - 1] - 2 * v[2 * i + 1] + v[2 * i + 3];
+        sx = sx * sx + sy * sy;
+        sag = sx > sag ? sx : sag;
     }
+    /* segment -> limit polyline */
     for (j = 0; j <= M; j++) {
+        size_t c0 = j / 2, lo = c0 > PATH_WINDOW ? c0 - PATH_WINDOW : 0, hi = c0 + PATH_WINDOW, bi;
         double bd = INFINITY;
-        for (i = 0; i < m; i++) {
-            double dd = seg_dist(D + 2 * j, v + 2 * i, v + 2 * i + 2);
-            bd = dd < bd ? dd : bd;
+        hi = hi > m - 1 ? m - 1 : hi;
+        for (;;) {
+            for (i = lo, bi = lo; i <= hi; i++) {
+                double dd = seg_dist2(D + 2 * j, v + 2 * i, v + 2 * i + 2);
+                if (dd < bd) {
+                    bd = dd;
+                    bi = i;
+                }
+            }
+            if ((bi == lo && lo > 0) || (bi == hi && hi < m - 1)) {
+                lo = lo > 4 * PATH_WINDOW ? lo - 4 * PATH_WINDOW : 0;
+                hi = hi + 4 * PATH_WINDOW < m - 1 ? hi + 4 * PATH_WINDOW : m - 1;
+                bd = INFINITY;
+                continue;
+            }
+            break;
         }
-        wb = bd > wb ? bd : wb;
+        wb2 = bd > wb2 ? bd : wb2;
     }
     free(heap);
     /* distance to a chord over-states the distance to the limit curve by
-     * at most the chord's bulge; the dense points' own bulge is a quarter */
-    wb += 1.6 * sag;
-    return wb > worst ? wb : worst;
+     * at most the chord's bulge (|second difference| / 8); the dense
+     * points' own bulge is a quarter of it */
+    {
+        double wb = sqrt(wb2) + 1.6 * 0.125 * sqrt(sag), wa = sqrt(worst2);
+        return wb > wa ? wb : wa;
+    }
 }
 
 /* Levels at which the limit polyline's chords of sample edges (chord len,
@@ -993,12 +1076,14 @@ static int levels_for(const double *xy, const double *nxy, size_t n, int closed,
 
 /* Subdivide an open or closed point-normal polygon. */
 static conica_code run_subdiv(ctx *c, const double *xy, const double *nxy, size_t n, int closed,
-                              int levels, double noise, conica_curve *out)
+                              int levels, double noise, conica_curve *out, size_t *ninfl)
 {
     conica_curve in;
     conica_subdiv_settings ss = conica_subdiv_defaults();
+    conica_subdiv_info info;
     conica_status est;
     conica_code rc;
+    conica_subdiv_info_init(&info);
     conica_curve_init(&in);
     rc = conica_curve_set(xy, nxy, n, closed, &in, &est);
     if (rc == CONICA_OK && !nxy)
@@ -1007,8 +1092,11 @@ static conica_code run_subdiv(ctx *c, const double *xy, const double *nxy, size_
         ss.levels = levels;
         ss.noise = noise;
         ss.max_points = c->budget + 2;
-        rc = conica_subdivide(&in, &ss, out, NULL, &est);
+        rc = conica_subdivide(&in, &ss, out, &info, &est);
     }
+    if (ninfl)
+        *ninfl = info.inflections;
+    conica_subdiv_info_free(&info);
     conica_curve_free(&in);
     if (rc == CONICA_ERR_LIMIT)
         return take(c, c->budget + 1);
@@ -1085,8 +1173,9 @@ static const double *edge_points(const conica_curve *o, size_t a, size_t b, doub
 static conica_code smooth_piece(ctx *c, const piece *P, double *deviation)
 {
     int ok = 0, round, lev, L = 0, d;
-    size_t ns = 0, cap, i, k, ne, *idx = NULL;
+    size_t ns = 0, cap, i, k, ne, *idx = NULL, ninfl = 0, step = 1;
     smp *S = NULL;
+    double *T = NULL; /* parameters of the check output's points */
     const double *q;
     double worst = 0;
     conica_curve out, fin;
@@ -1122,13 +1211,13 @@ static conica_code smooth_piece(ctx *c, const piece *P, double *deviation)
     for (;;) {
         size_t add = 0;
         if (2 * ns + 2 > cap) {
-            smp *T;
+            smp *grown;
             cap = 2 * ns + 2;
-            if (!(T = realloc(S, cap * sizeof *S))) {
+            if (!(grown = realloc(S, cap * sizeof *S))) {
                 free(S);
                 return fail_nomem(c);
             }
-            S = T;
+            S = grown;
         }
         ne = P->closed ? ns : ns - 1;
         for (i = ne; i-- > 0;) {
@@ -1193,9 +1282,15 @@ static conica_code smooth_piece(ctx *c, const piece *P, double *deviation)
         L = levels_for(c->sxy, c->snxy, ns, P->closed, PATH_CHECK_SAG * c->tol,
                        PATH_CHECK_MIN_LEVEL, PATH_CHECK_MAX_LEVEL);
         conica_curve_free(&out);
-        rc = run_subdiv(c, c->sxy, c->snxy, ns, P->closed, L, 0.0, &out);
+        rc = run_subdiv(c, c->sxy, c->snxy, ns, P->closed, L, 0.0, &out, &ninfl);
         if (rc == CONICA_ERR_LIMIT || rc == CONICA_ERR_NOMEM)
             break;
+        free(T);
+        T = malloc((out.n + 1) * sizeof *T);
+        if (!T) {
+            rc = fail_nomem(c);
+            break;
+        }
         if (rc != CONICA_OK || !locate(c->sxy, ns, &out, idx)) {
             rc = CONICA_OK; /* the samples defeat the subdivision: flatten */
             break;
@@ -1212,7 +1307,9 @@ static conica_code smooth_piece(ctx *c, const piece *P, double *deviation)
             }
             edge_range(S, ns, P->closed, i, &kk, &t0, &t1);
             q = piece_q(c, P, kk, &d);
-            e = check_edge(q, d, t0, t1, v, idx[i + 1] - idx[i], NULL);
+            /* tau[idx[i] + j]: parameters of the edge's points (its end
+             * point's is overwritten by the next edge's start) */
+            e = check_edge(q, d, t0, t1, v, idx[i + 1] - idx[i], T + idx[i]);
             free(buf);
             if (!(e <= c->tol)) {
                 bad[i] = 1;
@@ -1229,13 +1326,13 @@ static conica_code smooth_piece(ctx *c, const piece *P, double *deviation)
         if (ns + nbad > PATH_MAX_SEG_SAMPLES * P->m)
             break;
         if (ns + nbad > cap) {
-            smp *T;
+            smp *grown;
             cap = 2 * (ns + nbad);
-            if (!(T = realloc(S, cap * sizeof *S))) {
+            if (!(grown = realloc(S, cap * sizeof *S))) {
                 rc = fail_nomem(c);
                 break;
             }
-            S = T;
+            S = grown;
         }
         for (i = ne; i-- > 0;)
             if (bad[i]) {
@@ -1254,6 +1351,7 @@ static conica_code smooth_piece(ctx *c, const piece *P, double *deviation)
         free(idx);
         free(bad);
         free(S);
+        free(T);
         if (rc != CONICA_OK)
             return rc;
         /* written flattened, segment by segment (within the tolerance) */
@@ -1277,34 +1375,45 @@ static conica_code smooth_piece(ctx *c, const piece *P, double *deviation)
               ? levels_for(c->sxy, c->snxy, ns, P->closed, c->s.level_tolerance, 0,
                            PATH_LEVELS_MAX)
               : c->s.levels;
-    if (lev != L) {
-        rc = run_subdiv(c, c->sxy, c->snxy, ns, P->closed, lev, 0.0, &fin);
+    if (lev < L && ninfl == 0) {
+        /* The scheme keeps every point of a level in the next one, so with
+         * no inflection point inserted the level-lev points are every
+         * 2^(L - lev)-th of the check output: no second subdivision. */
+        step = (size_t)1 << (L - lev);
+        fin = out;
+        conica_curve_init(&out);
+    } else if (lev != L) {
+        rc = run_subdiv(c, c->sxy, c->snxy, ns, P->closed, lev, 0.0, &fin, NULL);
         if (rc == CONICA_OK && !locate(c->sxy, ns, &fin, idx))
             rc = conica__fail(c->st, CONICA_ERR_NUMERIC, 0, c->subpath,
                               "subpath %zu: the subdivision lost a sample", c->subpath + 1);
         idx[ns] = fin.n;
+        free(T);
+        T = NULL; /* parameters to be found again */
     } else {
         fin = out;
         conica_curve_init(&out);
     }
     if (rc == CONICA_OK)
-        rc = take(c, fin.n - (P->closed ? 0 : 1));
+        rc = take(c, (fin.n - (P->closed ? 0 : 1)) / step);
     for (i = 0; i < ne && rc == CONICA_OK; i++) {
         size_t kk, m = idx[i + 1] - idx[i], j;
         double t0, t1, tau_stack[1025], *tau, *buf;
         const double *v = edge_points(&fin, idx[i], idx[i + 1], &buf);
         edge_range(S, ns, P->closed, i, &kk, &t0, &t1);
         q = piece_q(c, P, kk, &d);
-        tau = m < 1025 ? tau_stack : malloc((m + 1) * sizeof *tau);
+        tau = T ? T + idx[i] : m < 1025 ? tau_stack : malloc((m + 1) * sizeof *tau);
         if (!tau || !v) {
-            if (tau != tau_stack)
+            if (!T && tau != tau_stack)
                 free(tau);
             free(buf);
             rc = fail_nomem(c);
             break;
         }
-        check_edge(q, d, t0, t1, v, m, tau);
-        for (j = 1; j <= m; j++) {
+        if (!T)
+            check_edge(q, d, t0, t1, v, m, tau);
+        tau[m] = t1;
+        for (j = step; j <= m; j += step) {
             size_t o = idx[i] + j;
             int is_end = !P->closed && i + 1 == ne && j == m;
             int is_vertex = j == m && (i + 1 == ns || S[i + 1].t == 0.0 || is_end);
@@ -1323,7 +1432,7 @@ static conica_code smooth_piece(ctx *c, const piece *P, double *deviation)
                 break;
             }
         }
-        if (tau != tau_stack)
+        if (!T && tau != tau_stack)
             free(tau);
         free(buf);
     }
@@ -1332,6 +1441,7 @@ static conica_code smooth_piece(ctx *c, const piece *P, double *deviation)
     free(idx);
     free(bad);
     free(S);
+    free(T);
     return rc;
 }
 
@@ -1539,6 +1649,7 @@ static conica_code samples_subpath(ctx *c, const conica_path_subpath *sp, int sm
     const conica_path *p = c->p;
     const double *S = p->smp + 4 * sp->first;
     size_t n = sp->n, i, nc = 0, *cor = NULL, start, done = 0, total;
+    unsigned char *isc = NULL; /* isc[i]: sample i is a corner */
     int have_n = 1, closed = sp->closed;
     double *xy = NULL, *nxy = NULL;
     conica_code rc = CONICA_OK;
@@ -1557,7 +1668,8 @@ static conica_code samples_subpath(ctx *c, const conica_path_subpath *sp, int sm
     xy = malloc(2 * (n + 1) * sizeof *xy);
     nxy = malloc(2 * (n + 1) * sizeof *nxy);
     cor = malloc((n + 1) * sizeof *cor);
-    if (!xy || !nxy || !cor) {
+    isc = calloc(n + 1, 1);
+    if (!xy || !nxy || !cor || !isc) {
         rc = fail_nomem(c);
         goto done;
     }
@@ -1570,8 +1682,10 @@ static conica_code samples_subpath(ctx *c, const conica_path_subpath *sp, int sm
             continue;
         if (unit2(S[4 * i] - S[4 * pv], S[4 * i + 1] - S[4 * pv + 1], a) &&
             unit2(S[4 * nx] - S[4 * i], S[4 * nx + 1] - S[4 * i + 1], b) &&
-            angle_between(a, b) > c->s.corner_angle)
+            angle_between(a, b) > c->s.corner_angle) {
             cor[nc++] = i;
+            isc[i] = 1;
+        }
     }
     c->r->corners += nc;
     if (closed && nc == 0) {
@@ -1582,7 +1696,6 @@ static conica_code samples_subpath(ctx *c, const conica_path_subpath *sp, int sm
         total = closed ? n : n - 1;
     }
     {
-        size_t ci = 0; /* next corner */
         int first = 1;
         while (done < total && rc == CONICA_OK) {
             size_t cnt = 1, k, from;
@@ -1597,19 +1710,8 @@ static conica_code samples_subpath(ctx *c, const conica_path_subpath *sp, int sm
                     cnt++;
                     if (done + cnt - 1 == total)
                         break;
-                    while (ci < nc && cor[ci] < v && closed == 0)
-                        ci++;
-                    {
-                        size_t z;
-                        int isc = 0;
-                        for (z = 0; z < nc; z++)
-                            if (cor[z] == v) {
-                                isc = 1;
-                                break;
-                            }
-                        if (isc)
-                            break;
-                    }
+                    if (isc[v])
+                        break;
                 }
             }
             for (k = 0; k < cnt; k++) {
@@ -1642,7 +1744,7 @@ static conica_code samples_subpath(ctx *c, const conica_path_subpath *sp, int sm
             if (!piece_closed && collinear(xy, cnt, c->s.precision))
                 lev = 0; /* a straight run between corners stays as it is */
             rc = run_subdiv(c, xy, have_n || nxy[0] != 0 || nxy[1] != 0 ? nxy : NULL, cnt,
-                            piece_closed, lev, c->s.precision, &o);
+                            piece_closed, lev, c->s.precision, &o, NULL);
             if (rc != CONICA_OK) {
                 conica_curve_free(&o);
                 if (rc != CONICA_ERR_LIMIT && rc != CONICA_ERR_NOMEM) {
@@ -1696,6 +1798,7 @@ done:
     free(xy);
     free(nxy);
     free(cor);
+    free(isc);
     return rc;
 }
 
