@@ -959,10 +959,9 @@ static double dist2(const double *a, const double *b)
     return dx * dx + dy * dy;
 }
 
-/* Searches of the nearest dense point / chord look this far either side
- * of where the other curve's index says, and widen while the best is at
- * the window's edge (the correspondence is monotone; a miss can only
- * over-state a distance). */
+/* Searches of the nearest dense point / chord start this far round the
+ * previous best and double while the best is on the window's edge (the
+ * correspondence is monotone; a miss can only over-state a distance). */
 #define PATH_WINDOW 3
 
 /*
@@ -974,7 +973,7 @@ static double dist2(const double *a, const double *b)
 static double check_edge(const double *q, int d, double ta, double tb, const double *v, size_t m,
                          double *tau)
 {
-    size_t M = 2 * m, i, j;
+    size_t M = 2 * m, i, j, prev;
     double worst2 = 0, wb2 = 0, sag = 0, dense[2 * (2 * 1024 + 1)], *D = dense, *heap = NULL;
     if (M + 1 > 2 * 1024 + 1) {
         heap = malloc(2 * (M + 1) * sizeof *heap);
@@ -988,12 +987,16 @@ static double check_edge(const double *q, int d, double ta, double tb, const dou
         tau[0] = ta;
         tau[m] = tb;
     }
-    /* limit points -> segment */
-    for (i = 1; i < m; i++) {
-        size_t c0 = 2 * i, lo = c0 > PATH_WINDOW ? c0 - PATH_WINDOW : 0, hi = c0 + PATH_WINDOW, bj;
-        double bd = INFINITY, dist, t0, tlo, thi, sx, sy;
-        hi = hi > M ? M : hi;
+    /* limit points -> segment: the nearest dense point, searched from the
+     * previous point's (the correspondence is monotone), the window doubled
+     * while the best lies on its edge */
+    for (i = 1, prev = 0; i < m; i++) {
+        size_t w = PATH_WINDOW, lo, hi, bj;
+        double bd, dist, t0, tlo, thi, sx, sy;
         for (;;) {
+            lo = prev > w ? prev - w : 0;
+            hi = prev + 2 * w < M ? prev + 2 * w : M;
+            bd = INFINITY;
             for (j = lo, bj = lo; j <= hi; j++) {
                 double dd = dist2(D + 2 * j, v + 2 * i);
                 if (dd < bd) {
@@ -1002,13 +1005,12 @@ static double check_edge(const double *q, int d, double ta, double tb, const dou
                 }
             }
             if ((bj == lo && lo > 0) || (bj == hi && hi < M)) {
-                lo = lo > 4 * PATH_WINDOW ? lo - 4 * PATH_WINDOW : 0;
-                hi = hi + 4 * PATH_WINDOW < M ? hi + 4 * PATH_WINDOW : M;
-                bd = INFINITY;
+                w *= 2;
                 continue;
             }
             break;
         }
+        prev = bj;
         t0 = ta + (tb - ta) * (double)bj / (double)M;
         tlo = ta + (tb - ta) * (double)(bj ? bj - 1 : 0) / (double)M;
         thi = ta + (tb - ta) * (double)(bj < M ? bj + 1 : M) / (double)M;
@@ -1021,12 +1023,14 @@ static double check_edge(const double *q, int d, double ta, double tb, const dou
         sx = sx * sx + sy * sy;
         sag = sx > sag ? sx : sag;
     }
-    /* segment -> limit polyline */
-    for (j = 0; j <= M; j++) {
-        size_t c0 = j / 2, lo = c0 > PATH_WINDOW ? c0 - PATH_WINDOW : 0, hi = c0 + PATH_WINDOW, bi;
-        double bd = INFINITY;
-        hi = hi > m - 1 ? m - 1 : hi;
+    /* segment -> limit polyline, likewise */
+    for (j = 0, prev = 0; j <= M; j++) {
+        size_t w = PATH_WINDOW, lo, hi, bi;
+        double bd;
         for (;;) {
+            lo = prev > w ? prev - w : 0;
+            hi = prev + 2 * w < m - 1 ? prev + 2 * w : m - 1;
+            bd = INFINITY;
             for (i = lo, bi = lo; i <= hi; i++) {
                 double dd = seg_dist2(D + 2 * j, v + 2 * i, v + 2 * i + 2);
                 if (dd < bd) {
@@ -1035,13 +1039,12 @@ static double check_edge(const double *q, int d, double ta, double tb, const dou
                 }
             }
             if ((bi == lo && lo > 0) || (bi == hi && hi < m - 1)) {
-                lo = lo > 4 * PATH_WINDOW ? lo - 4 * PATH_WINDOW : 0;
-                hi = hi + 4 * PATH_WINDOW < m - 1 ? hi + 4 * PATH_WINDOW : m - 1;
-                bd = INFINITY;
+                w *= 2;
                 continue;
             }
             break;
         }
+        prev = bi;
         wb2 = bd > wb2 ? bd : wb2;
     }
     free(heap);

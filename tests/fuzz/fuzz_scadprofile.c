@@ -147,8 +147,10 @@ static void load_svg(const char *buf, size_t len, size_t size, conica_scad_profi
     set.convert_shapes = 1;
     set.limits = lim;
     if (size % 3 == 0) {
+        /* scadprofile's own pipeline: flattened, open subpaths filled */
         set.mode = CONICA_SVG_FLATTEN;
         set.tolerance = tol;
+        set.close_open = 1;
     } else if (size % 3 == 1) {
         set.mode = CONICA_SVG_SMOOTH;
         set.levels = (int)(size % 4);
