@@ -271,6 +271,29 @@ TEST_CASE("conics stay exact: arcs, rational quadratics, a Bezier circle", "[pat
         CHECK_EQ_U(r.lines[0].n, 4 * 8); /* four samples, 2^3 each */
         CHECK_LE(r.worst_ratio, 1.0);
     }
+    SECTION("a rational NURBS circle (9 control points, degree 2) through conica_path_bspline")
+    {
+        const double w2 = sqrt(0.5);
+        double kn[12] = {0, 0, 0, 1, 1, 2, 2, 3, 3, 4, 4, 4};
+        double cp[18] = {1, 0, 1, 1, 0, 1, -1, 1, -1, 0, -1, -1, 0, -1, 1, -1, 1, 0};
+        double w[9] = {1, w2, 1, w2, 1, w2, 1, w2, 1};
+        conica_bspline bs;
+        int i;
+        for (i = 0; i < 18; i++)
+            cp[i] = 2.5 * cp[i] + (i % 2 ? -7e3 : 4e3);
+        conica_bspline_init(&bs);
+        REQUIRE(conica_bspline_set(2, 2, kn, 12, cp, 9, w, &bs, NULL) == CONICA_OK);
+        REQUIRE(conica_path_bspline(&p, &bs, 0, NULL) == CONICA_OK);
+        REQUIRE(conica_path_close(&p, NULL) == CONICA_OK);
+        REQUIRE_EQ_U(p.nseg, 4);
+        REQUIRE(conica_path_smooth(&p, NULL, &r, NULL) == CONICA_OK);
+        CHECK_LE(radial(&r, 4e3, -7e3, 2.5, 2.5), 1e-11);
+        CHECK_EQ_U(r.lines[0].n, 4 * 16);
+        conica_path_result_free(&r);
+        REQUIRE(conica_path_flatten(&p, NULL, &r, NULL) == CONICA_OK);
+        CHECK_LE(r.worst_ratio, 1.0);
+        conica_bspline_free(&bs);
+    }
     conica_path_result_free(&r);
     conica_path_free(&p);
 }
