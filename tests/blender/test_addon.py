@@ -29,7 +29,7 @@ F32 = 2.0 ** -24
 def report(name, ok, why=""):
     RESULTS.append((name, ok))
     if ok:
-        print("PASS %s" % name, flush=True)
+        print("PASS %s%s" % (name, ": " + why if why else ""), flush=True)
     else:
         print("FAIL %s: %s" % (name, why), flush=True)
 
