@@ -41,3 +41,12 @@ $(BENCH_FIDELITY): $(BUILD)/obj/bench/bench_fidelity.o $(BUILD)/lib/libconica_te
 	@mkdir -p $(@D)
 	$(CC) $(LDFLAGS) -o $@ $< $(BUILD)/lib/libconica_testsupport.a $(CORE_A) $(CORE_LIBS) $(FT_LIBS)
 BENCH_BINS += $(BENCH_FIDELITY)
+
+# ---- bench_scad_import: scadprofile beside OpenSCAD's import() on glyph outlines
+# (runs $(BUILD)/bin/scadprofile and openscad; CPU time and RSS per run)
+BENCH_SCAD_IMPORT := $(BUILD)/bench/bench_scad_import
+$(BUILD)/obj/bench/bench_scad_import.o: CPPFLAGS += -Itests/support
+$(BENCH_SCAD_IMPORT): $(BUILD)/obj/bench/bench_scad_import.o $(BUILD)/lib/libconica_testsupport.a $(CORE_A)
+	@mkdir -p $(@D)
+	$(CC) $(LDFLAGS) -o $@ $< $(BUILD)/lib/libconica_testsupport.a $(CORE_A) $(CORE_LIBS) $(FT_LIBS)
+BENCH_BINS += $(BENCH_SCAD_IMPORT)
