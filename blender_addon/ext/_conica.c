@@ -159,6 +159,11 @@ static int cx_float_format(const char *fmt, Py_ssize_t itemsize)
  * PyMem_Free). Buffers (array('f'/'d'), memoryviews of them, Blender's
  * foreach_get targets) are copied directly; any other sequence is read
  * item by item with float(). Returns 0 and sets an exception on failure.
+ *
+ * float() of an item may run Python (__float__, __index__) that changes
+ * the sequence: clearing or growing a list frees the item array that
+ * PySequence_Fast_ITEMS points into (issue 17). The items are therefore
+ * read from a tuple snapshot that owns a reference to each of them.
  */
 static int cx_read_doubles(PyObject *obj, const char *what, double **out, size_t *n)
 {
@@ -207,13 +212,22 @@ static int cx_read_doubles(PyObject *obj, const char *what, double **out, size_t
         PyErr_Format(PyExc_TypeError, "%s: expected a flat sequence of numbers, got str", what);
         return 0;
     }
-    PyObject *seq = PySequence_Fast(obj, "expected a flat sequence of numbers");
+    /* a list over the cap is refused before the snapshot copies it */
+    if (PyList_Check(obj) && (size_t)PyList_GET_SIZE(obj) > CX_MAX_INPUT_VALUES) {
+        PyErr_Format(PyExc_ValueError, "%s: %zd values exceed the limit of %zu", what,
+                     PyList_GET_SIZE(obj), CX_MAX_INPUT_VALUES);
+        return 0;
+    }
+    PyObject *seq = PySequence_Tuple(obj); /* a tuple is returned as itself */
     if (seq == NULL) {
+        if (PyErr_Occurred() && !PyErr_ExceptionMatches(PyExc_TypeError))
+            return 0; /* MemoryError, or an error raised by the sequence itself */
+        PyErr_Clear();
         PyErr_Format(PyExc_TypeError, "%s: expected a flat sequence of numbers, got %s", what,
                      Py_TYPE(obj)->tp_name);
         return 0;
     }
-    Py_ssize_t len = PySequence_Fast_GET_SIZE(seq);
+    Py_ssize_t len = PyTuple_GET_SIZE(seq);
     if ((size_t)len > CX_MAX_INPUT_VALUES) {
         Py_DECREF(seq);
         PyErr_Format(PyExc_ValueError, "%s: %zd values exceed the limit of %zu", what, len,
@@ -226,13 +240,13 @@ static int cx_read_doubles(PyObject *obj, const char *what, double **out, size_t
         PyErr_NoMemory();
         return 0;
     }
-    PyObject **items = PySequence_Fast_ITEMS(seq);
     for (Py_ssize_t i = 0; i < len; i++) {
-        double v = PyFloat_AsDouble(items[i]);
+        PyObject *item = PyTuple_GET_ITEM(seq, i); /* the tuple keeps it alive */
+        double v = PyFloat_AsDouble(item);
         if (v == -1.0 && PyErr_Occurred()) {
             PyErr_Clear();
             PyErr_Format(PyExc_TypeError, "%s[%zd]: expected a number, got %s", what, i,
-                         Py_TYPE(items[i])->tp_name);
+                         Py_TYPE(item)->tp_name);
             PyMem_Free(d);
             Py_DECREF(seq);
             return 0;
@@ -1461,7 +1475,7 @@ static PyObject *cx_plot(PyObject *self, PyObject *args, PyObject *kw)
     static char *kwlist[] = {"ctrl", "dim", "degree", "knots", "weights", "tolerance",
                              "attrs", "nattrs", "typecode", "max_points", "tangents", NULL};
     cx_state *S = cx_get_state(self);
-    PyObject *octrl, *oknots, *ow = Py_None, *oattrs = Py_None, *otype = NULL;
+    PyObject *octrl, *oknots = NULL, *ow = Py_None, *oattrs = Py_None, *otype = NULL;
     int dim = 3, degree = -1, nattrs = 0, want_tan = 0;
     double tol = -1.0;
     Py_ssize_t max_points = (Py_ssize_t)CX_DEFAULT_MAX_POINTS;
