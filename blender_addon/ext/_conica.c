@@ -284,6 +284,22 @@ static PyObject *cx_make_array(cx_state *s, char typecode, const double *v, size
 {
     size_t count = items * (size_t)stride;
     size_t esize = typecode == 'f' ? sizeof(float) : sizeof(double);
+    /* Callers make all the arrays of a result, then check them: after one
+     * failed, make no more (calling array() with an exception set is an
+     * error of its own). */
+    if (PyErr_Occurred())
+        return NULL;
+    if (typecode == 'f') {
+        /* a finite double beyond float32's range would become inf: refuse
+         * it rather than hand Blender an infinite coordinate */
+        for (size_t i = 0; i < items * (size_t)dim; i++)
+            if (isfinite(v[i]) && isinf((float)v[i])) {
+                return cx_raisef(s->limit_error,
+                                 "value %.17g (item %zu) is not representable in float32 "
+                                 "(largest %g); use typecode='d'",
+                                 v[i], i / (size_t)dim, (double)FLT_MAX);
+            }
+    }
     PyObject *bytes = PyBytes_FromStringAndSize(NULL, (Py_ssize_t)(count * esize));
     if (bytes == NULL)
         return NULL;
@@ -1525,8 +1541,8 @@ static PyObject *cx_plot(PyObject *self, PyObject *args, PyObject *kw)
     }
     size_t n = nc / (size_t)dim;
     if (n < (size_t)degree + 1) {
-        cx_raisef(S->degenerate, "a degree-%d spline needs at least %d control points, got %zu",
-                  degree, degree + 1, n);
+        cx_raisef(S->degenerate, "a degree-%d spline needs at least %zu control points, got %zu",
+                  degree, (size_t)degree + 1, n); /* degree + 1 overflows int at INT_MAX */
         goto done;
     }
     if (nk != n + (size_t)degree + 1) {
@@ -1646,11 +1662,30 @@ static PyObject *cx_fit_plane_py(PyObject *self, PyObject *arg)
         PyMem_Free(p);
         return cx_raisef(S->nonfinite, "point %zu has a non-finite coordinate", bad / 3);
     }
+    /* the covariance and the size overflow beyond this (NaN plane) */
+    if ((bad = cx_first_huge(p, nv)) < nv) {
+        PyMem_Free(p);
+        return cx_raisef(S->limit_error, "point %zu has a coordinate beyond +-%g", bad / 3,
+                         CX_MAX_ABS_COORD);
+    }
     cx_plane pl;
     Py_BEGIN_ALLOW_THREADS
     cx_fit_plane(p, nv / 3, &pl);
     Py_END_ALLOW_THREADS
     PyMem_Free(p);
+    if (pl.extent < CX_MIN_PLANE_SIZE)
+        return cx_raisef(S->degenerate,
+                         "no plane: the points' extent %.3g is below %.3g (coincident points)",
+                         pl.extent, CX_MIN_PLANE_SIZE);
+    {
+        const double *all[] = {pl.origin, pl.normal, pl.u, pl.v};
+        for (int q = 0; q < 4; q++)
+            for (int k = 0; k < 3; k++)
+                if (!isfinite(all[q][k]))
+                    return cx_raisef(S->numeric, "the plane fit did not give a finite plane");
+        if (!isfinite(pl.deviation) || !isfinite(pl.size))
+            return cx_raisef(S->numeric, "the plane fit did not give a finite plane");
+    }
     return Py_BuildValue("(ddd)(ddd)(ddd)(ddd)dd", pl.origin[0], pl.origin[1], pl.origin[2],
                          pl.normal[0], pl.normal[1], pl.normal[2], pl.u[0], pl.u[1], pl.u[2],
                          pl.v[0], pl.v[1], pl.v[2], pl.deviation, pl.size);

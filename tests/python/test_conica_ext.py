@@ -125,6 +125,45 @@ def plot_without_knots_is_an_error_every_time():
         assert msg == "knots must be given", msg
 
 
+# ---------------------------------------------------------------- issue 17.7
+
+@case
+def float32_output_beyond_its_range_is_refused():
+    c = conica()
+    big = [0.0, 0.0, 1e39, 0.0, 1e39, 1e39, 0.0, 1e39]
+    msg = expect(c.LimitError, c.subdivide, big, closed=True, levels=1, typecode="f")
+    assert "not representable in float32" in msg, msg
+    r = c.subdivide(big, closed=True, levels=1, typecode="d")  # double: fine
+    assert all(math.isfinite(v) for v in r[0])
+    ctrl = [0.0, 0.0, 1e39, 1e39, 2e39, 0.0]
+    msg = expect(c.LimitError, c.plot, ctrl, dim=2, degree=2, knots=[0, 0, 0, 1, 1, 1],
+                 tolerance=1e36, typecode="f")
+    assert "not representable in float32" in msg, msg
+    # within float32's range: still written as float32
+    r = c.subdivide([v * 1e-2 for v in big], closed=True, levels=1, typecode="f")
+    assert r[0].typecode == "f" and all(math.isfinite(v) for v in r[0])
+
+
+@case
+def fit_plane_refuses_what_has_no_finite_plane():
+    c = conica()
+    msg = expect(c.LimitError, c.fit_plane, [1e308, 0, 0, -1e308, 0, 0, 0, 1e308, 0])
+    assert "beyond" in msg, msg
+    msg = expect(c.DegenerateError, c.fit_plane, [2.0, 3.0, 4.0] * 3)
+    assert "coincident" in msg, msg
+    msg = expect(c.NonFiniteError, c.fit_plane, [0, 0, float("nan"), 1, 0, 0, 0, 1, 0])
+    o, nrm, u, v, dev, size = c.fit_plane([0, 0, 5, 1, 0, 5, 0, 1, 5, 1, 1, 5])
+    assert abs(abs(nrm[2]) - 1.0) < 1e-12 and dev < 1e-12 and abs(size - math.sqrt(2)) < 1e-12
+
+
+@case
+def huge_degree_message_does_not_overflow():
+    c = conica()
+    msg = expect(c.DegenerateError, c.plot, [0, 0, 0, 1, 1, 1, 2, 2, 2], degree=2 ** 31 - 1,
+                 knots=[0.0] * 6, tolerance=0.1)
+    assert "at least 2147483648 control points" in msg, msg
+
+
 # ---------------------------------------------------------------- driver
 
 def run_one(name):
