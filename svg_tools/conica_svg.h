@@ -161,7 +161,12 @@ typedef struct conica_svg_doc conica_svg_doc;
  *        references or markup: billion laughs; text over 1 KB) makes the
  *        load fail with CONICA_ERR_UNSUPPORTED, short plain-text entities
  *        (Illustrator's &ns_svg;) are kept; size, depth and element caps
- *        from *lim. Blank text, comments, namespaces and unknown nodes are
+ *        from *lim. Any error libxml2 reports fails the load, also those
+ *        after which libxml2 itself goes on or stops with the document
+ *        still "well-formed" (a text node over its 10 MB cap, an unbound
+ *        namespace prefix): st->message then starts with what was wrong and
+ *        quotes libxml2's first message; libxml2 prints nothing itself.
+ *        Blank text, comments, namespaces and unknown nodes are
  *        kept so a save reproduces them.
  * @param[in]  buf  document bytes
  * @param[in]  len  length

@@ -78,6 +78,12 @@ typedef struct load_state {
     size_t depth, elements;    /* open elements, elements seen */
     startElementNsSAX2Func start;
     endElementNsSAX2Func end;
+    /* libxml2's errors, through xml_error() instead of its stderr lines:
+     * the first one (what the failure reports) and how many there were */
+    size_t xml_errors;
+    int xml_code, xml_domain;  /* libxml2's xmlParserErrors code and domain of the first */
+    size_t xml_line;
+    char xml_msg[200];
 } load_state;
 
 /* Stop the parse; line is where the problem is (read before stopping:
@@ -127,6 +133,32 @@ static void entity_decl(void *ctx, const xmlChar *name, int type, const xmlChar 
         return;
     }
     xmlSAX2EntityDecl(ctx, name, type, publicId, systemId, content);
+}
+
+/* libxml2's structured error handler (sax->serror): every error and
+ * warning of the parse arrives here instead of on stderr (with
+ * XML_PARSE_NOERROR libxml2 still prints some, e.g. SAX2's "huge text
+ * node", through its validity channel). An error of any level but a
+ * warning fails the load even when libxml2 leaves wellFormed set: after
+ * "huge text node" it stops with wellFormed == 1 and a partial tree, and
+ * a save would silently drop the rest of the document (issue 17). */
+#if LIBXML_VERSION >= 21200
+static void xml_error(void *ctx, const xmlError *e)
+#else
+static void xml_error(void *ctx, xmlErrorPtr e)
+#endif
+{
+    xmlParserCtxtPtr ctxt = ctx;
+    load_state *ls = ctxt ? ctxt->_private : NULL;
+    if (!ls || !e || e->level == XML_ERR_WARNING || e->level == XML_ERR_NONE)
+        return;
+    if (ls->xml_errors++ == 0) {
+        ls->xml_code = e->code;
+        ls->xml_domain = e->domain;
+        ls->xml_line = e->line > 0 ? (size_t)e->line : 0;
+        snprintf(ls->xml_msg, sizeof ls->xml_msg, "%s",
+                 e->message ? e->message : "not well-formed XML");
+    }
 }
 
 /* Depth and element caps, counted as the parser goes: a document over a
@@ -264,12 +296,13 @@ conica_code conica_svg_doc_load(const char *buf, size_t len, const conica_svg_li
         memset(&ls, 0, sizeof ls);
         ls.lim = lim;
         ctxt->_private = &ls;
+        ctxt->sax->serror = xml_error; /* called with ctxt->userData, the context */
         ctxt->sax->entityDecl = entity_decl;
         ls.start = ctxt->sax->startElementNs;
         ls.end = ctxt->sax->endElementNs;
         ctxt->sax->startElementNs = start_element;
         ctxt->sax->endElementNs = end_element;
-        for (off = first; !ls.refused;) {
+        for (off = first; !ls.refused && !ls.xml_errors;) {
             size_t k = len - off < SVG_PARSE_CHUNK ? len - off : SVG_PARSE_CHUNK;
             int last = off + k == len;
             if (xmlParseChunk(ctxt, buf + off, (int)k, last) != 0 || last)
@@ -284,12 +317,22 @@ conica_code conica_svg_doc_load(const char *buf, size_t len, const conica_svg_li
         xmlFreeParserCtxt(ctxt);
         return conica__fail(st, ls.code, ls.line, 0, "%s", ls.why);
     }
-    if (!xml || !ctxt->wellFormed) {
+    if (!xml || !ctxt->wellFormed || ls.xml_errors) {
         const xmlError *e = xmlCtxtGetLastError(ctxt);
         char msg[200], text[400];
         size_t line = e ? (size_t)(e->line > 0 ? e->line : 0) : 0;
         int no_root = !xml || !xmlDocGetRootElement(xml);
-        snprintf(msg, sizeof msg, "%s", e && e->message ? e->message : "not well-formed XML");
+        conica_code code = CONICA_ERR_PARSE;
+        if (ls.xml_errors) {
+            /* the first error names the cause; later ones follow from it */
+            snprintf(msg, sizeof msg, "%s", ls.xml_msg);
+            line = ls.xml_line;
+            /* libxml2 files "huge text node" under XML_ERR_NO_MEMORY too */
+            if (ls.xml_code == XML_ERR_NO_MEMORY && !strstr(msg, "huge"))
+                code = CONICA_ERR_NOMEM;
+        } else {
+            snprintf(msg, sizeof msg, "%s", e && e->message ? e->message : "not well-formed XML");
+        }
         trim_newline(msg);
         if (no_root) {
             /* libxml2 says "Extra content at the end of the document" for
@@ -310,12 +353,19 @@ conica_code conica_svg_doc_load(const char *buf, size_t len, const conica_svg_li
                          "(no <svg> element)", msg);
             else
                 snprintf(text, sizeof text, "XML: no <svg> element (%s)", msg);
+        } else if (ls.xml_errors && ls.xml_domain == XML_FROM_NAMESPACE) {
+            snprintf(text, sizeof text, "XML: namespace error (libxml2: %s)", msg);
         } else {
             explain_xml_error(msg, huge, text, sizeof text);
         }
+        if (ls.xml_errors > 1) {
+            size_t k = strlen(text);
+            snprintf(text + k, sizeof text - k, " (and %zu more XML error%s after it)",
+                     ls.xml_errors - 1, ls.xml_errors > 2 ? "s" : "");
+        }
         xmlFreeDoc(xml);
         xmlFreeParserCtxt(ctxt);
-        return conica__fail(st, CONICA_ERR_PARSE, line, 0, "%s", text);
+        return conica__fail(st, code, line, 0, "%s", text);
     }
     xmlFreeParserCtxt(ctxt);
     root = xmlDocGetRootElement(xml);

@@ -707,6 +707,35 @@ TEST_CASE("hostile XML is refused", "[svg][doc][security]")
         CHECK(strstr(st.message, "longer than libxml2's limit of 10000000 bytes") != NULL);
         free(t);
     }
+    SECTION("a text node over libxml2's cap fails the load (no truncated tree)")
+    {
+        /* libxml2 stops at a text node over 10 MB with wellFormed still
+         * set; the load returned the tree up to there and a save lost the
+         * rest of the document (issue 17) */
+        size_t big = (size_t)10000100, i;
+        const char *head = "<svg xmlns=\"http://www.w3.org/2000/svg\"><text>";
+        const char *tail = "</text><path id=\"after\" d=\"M0 0L1 0L1 1Z\"/></svg>";
+        char *t = malloc(big + 200);
+        conica_svg_limits lim = conica_svg_limits_defaults();
+        strcpy(t, head);
+        i = strlen(t);
+        memset(t + i, 'a', big);
+        strcpy(t + i + big, tail);
+        lim.max_bytes = big + 1000;
+        CHECK(try_load(t, &lim, &st) == CONICA_ERR_PARSE);
+        CHECK(strstr(st.message, "longer than libxml2's limit of 10000000 bytes") != NULL);
+        CHECK(strstr(st.message, "huge text node") != NULL);
+        CHECK_EQ_U(st.line, 1);
+        free(t);
+    }
+    SECTION("an error libxml2 does not count as fatal still fails the load")
+    {
+        CHECK(try_load("<svg xmlns=\"http://www.w3.org/2000/svg\">\n<path xlink:href=\"#a\" "
+                       "d=\"M0 0L1 0L1 1Z\"/></svg>",
+                       NULL, &st) == CONICA_ERR_PARSE);
+        CHECK(strstr(st.message, "XML: namespace error (libxml2: Namespace prefix xlink") != NULL);
+        CHECK_EQ_U(st.line, 2);
+    }
     SECTION("a path data cap with a clear message")
     {
         const char *t = "<svg xmlns=\"http://www.w3.org/2000/svg\">\n<path id=\"p\" "
