@@ -51,6 +51,8 @@ conica_svg_limits conica_svg_limits_defaults(void)
     l.max_elements = CONICA_SVG_DEFAULT_MAX_ELEMENTS;
     l.max_path_bytes = CONICA_SVG_DEFAULT_MAX_PATH_BYTES;
     l.max_points = CONICA_SVG_DEFAULT_MAX_POINTS;
+    l.max_attributes = CONICA_SVG_DEFAULT_MAX_ATTRIBUTES;
+    l.max_namespaces = CONICA_SVG_DEFAULT_MAX_NAMESPACES;
     return l;
 }
 
@@ -252,6 +254,201 @@ static void explain_xml_error(const char *msg, int huge, char *out, size_t cap)
         snprintf(out, cap, "XML: %s", msg);
 }
 
+/* ------------------------------------------------------------ start-tag scan */
+
+/* Position of the first occurrence of the n-byte string `pat` in
+ * [p, end), or NULL. */
+static const char *scan_find(const char *p, const char *end, const char *pat, size_t n)
+{
+    while (p && (size_t)(end - p) >= n) {
+        p = memchr(p, pat[0], (size_t)(end - p) - n + 1);
+        if (!p || memcmp(p, pat, n) == 0)
+            return p;
+        p++;
+    }
+    return NULL;
+}
+
+static int scan_space(char c)
+{
+    return c == ' ' || c == '\t' || c == '\r' || c == '\n';
+}
+
+/* Past a <!DOCTYPE ...> (p after "<!"): quoted strings, comments and the
+ * internal subset's brackets skipped, so a '>' inside them does not end
+ * it. NULL when it does not end (libxml2 then says what is wrong). */
+static const char *scan_skip_decl(const char *p, const char *end)
+{
+    int brackets = 0;
+    while (p < end) {
+        char c = *p;
+        if (c == '"' || c == '\'') {
+            p = memchr(p + 1, c, (size_t)(end - p - 1));
+            if (!p)
+                return NULL;
+        } else if (c == '<' && end - p >= 4 && memcmp(p, "<!--", 4) == 0) {
+            p = scan_find(p + 4, end, "-->", 3);
+            if (!p)
+                return NULL;
+            p += 2;
+        } else if (c == '[') {
+            brackets++;
+        } else if (c == ']') {
+            brackets--;
+        } else if (c == '>' && brackets <= 0) {
+            return p + 1;
+        }
+        p++;
+    }
+    return NULL;
+}
+
+/* Line of byte `at` of buf (1-based). */
+static size_t scan_line(const char *buf, const char *at)
+{
+    const char *q;
+    size_t line = 1;
+    for (q = buf; (q = memchr(q, '\n', (size_t)(at - q))) != NULL; q++)
+        line++;
+    return line;
+}
+
+/* Elements that declare namespaces, innermost last: what is in scope. */
+typedef struct scan_scope {
+    size_t depth; /* nesting depth of the element */
+    size_t count; /* its declarations */
+} scan_scope;
+
+/* Count the attributes of every start tag and the namespace declarations
+ * in scope at it, in one linear pass, and refuse the first element over a
+ * cap before libxml2 parses anything. libxml2 appends each attribute by
+ * walking the element's list and checks it against all earlier ones
+ * (quadratic in the attributes of one element: 10^5 on a <path> took 17 s
+ * to minutes), and looks every prefix up through all declarations in scope
+ * (255 nested <g> with 64 declarations each made every element below cost
+ * 0.3 ms: minutes for a large document). Comments, CDATA sections,
+ * processing instructions and the DOCTYPE are skipped; a construct that
+ * does not end stops the scan without a verdict (libxml2 reports it).
+ * Returns 0, or 1 with ls filled. */
+static int scan_start_tags(const char *buf, size_t len, const conica_svg_limits *lim,
+                           load_state *ls)
+{
+    const char *p = buf, *end = buf + len;
+    scan_scope *scope = NULL;
+    size_t nscope = 0, cap = 0, depth = 0, in_scope = 0;
+    int verdict = 0;
+    while (!verdict && p < end && (p = memchr(p, '<', (size_t)(end - p))) != NULL) {
+        const char *tag = p, *name;
+        size_t natt = 0, nns = 0, nlen;
+        p++;
+        if (p == end)
+            break;
+        if (*p == '!') {
+            if (end - p >= 3 && memcmp(p, "!--", 3) == 0)
+                p = scan_find(p + 3, end, "-->", 3);
+            else if (end - p >= 8 && memcmp(p, "![CDATA[", 8) == 0)
+                p = scan_find(p + 8, end, "]]>", 3);
+            else
+                p = scan_skip_decl(p + 1, end);
+            if (!p)
+                break;
+            continue;
+        }
+        if (*p == '?') {
+            p = scan_find(p + 1, end, "?>", 2);
+            if (!p)
+                break;
+            continue;
+        }
+        if (*p == '/') {
+            /* an end tag holds no quotes: the next '<' is past it */
+            if (nscope && scope[nscope - 1].depth == depth)
+                in_scope -= scope[--nscope].count;
+            if (depth)
+                depth--;
+            continue;
+        }
+        name = p;
+        while (p < end && !scan_space(*p) && *p != '>' && *p != '/')
+            p++;
+        nlen = (size_t)(p - name);
+        if (nlen > 64)
+            nlen = 64;
+        for (;;) {
+            const char *an;
+            int is_ns;
+            while (p < end && scan_space(*p))
+                p++;
+            if (p == end)
+                goto out;
+            if (*p == '>' || *p == '/')
+                break;
+            an = p;
+            while (p < end && *p != '=' && !scan_space(*p) && *p != '>' && *p != '/')
+                p++;
+            /* xmlns="..." or xmlns:prefix="..." declares a namespace */
+            is_ns = p - an >= 5 && memcmp(an, "xmlns", 5) == 0 && (p - an == 5 || an[5] == ':');
+            while (p < end && scan_space(*p))
+                p++;
+            if (p == end || *p != '=')
+                goto out; /* not an attribute: libxml2's to report */
+            p++;
+            while (p < end && scan_space(*p))
+                p++;
+            if (p == end || (*p != '"' && *p != '\''))
+                goto out;
+            p = memchr(p + 1, *p, (size_t)(end - p - 1));
+            if (!p)
+                goto out;
+            p++;
+            if (is_ns ? in_scope + ++nns > lim->max_namespaces : ++natt > lim->max_attributes) {
+                if (is_ns)
+                    snprintf(ls->why, sizeof ls->why,
+                             "element <%.*s> has more than %zu namespace declarations in scope "
+                             "(--max-namespaces)",
+                             (int)nlen, name, lim->max_namespaces);
+                else
+                    snprintf(ls->why, sizeof ls->why,
+                             "element <%.*s> has more than %zu attributes (--max-attributes)",
+                             (int)nlen, name, lim->max_attributes);
+                ls->code = CONICA_ERR_LIMIT;
+                verdict = 1;
+                break;
+            }
+        }
+        if (verdict) {
+            ls->line = scan_line(buf, tag);
+            break;
+        }
+        if (*p == '/')
+            continue; /* <x/>: opens no scope */
+        depth++;
+        if (nns) {
+            if (nscope == cap) {
+                size_t nc = cap ? 2 * cap : 16;
+                scan_scope *t = realloc(scope, nc * sizeof *t);
+                if (!t) {
+                    snprintf(ls->why, sizeof ls->why, "out of memory");
+                    ls->code = CONICA_ERR_NOMEM;
+                    ls->line = 0;
+                    verdict = 1;
+                    break;
+                }
+                scope = t;
+                cap = nc;
+            }
+            scope[nscope].depth = depth;
+            scope[nscope++].count = nns;
+            in_scope += nns;
+        }
+    }
+out:
+    free(scope);
+    if (verdict)
+        ls->refused = 1;
+    return verdict;
+}
+
 conica_code conica_svg_doc_load(const char *buf, size_t len, const conica_svg_limits *lim,
                                 conica_svg_doc **out, conica_status *st)
 {
@@ -282,6 +479,9 @@ conica_code conica_svg_doc_load(const char *buf, size_t len, const conica_svg_li
      * lim->max_bytes, depth and elements by our own counts in
      * start_element(), entities by entity_decl() (none that can expand,
      * and none substituted), path data by lim->max_path_bytes. */
+    memset(&ls, 0, sizeof ls);
+    if (len && scan_start_tags(buf, len, lim, &ls))
+        return conica__fail(st, ls.code, ls.line, 0, "%s", ls.why);
     huge = lim->max_depth > (size_t)xmlParserMaxDepth;
     if (huge)
         opts |= XML_PARSE_HUGE;

@@ -736,6 +736,57 @@ TEST_CASE("hostile XML is refused", "[svg][doc][security]")
         CHECK(strstr(st.message, "XML: namespace error (libxml2: Namespace prefix xlink") != NULL);
         CHECK_EQ_U(st.line, 2);
     }
+    SECTION("attributes and namespace declarations are counted before libxml2 parses")
+    {
+        conica_svg_limits lim = conica_svg_limits_defaults();
+        char t[2048];
+        size_t i, k;
+        /* 5 attributes; '>' and '/' inside values and a comment, CDATA
+         * section, processing instruction and DOCTYPE with '>' and quotes
+         * inside are not start tags */
+        const char *doc = "<?xml version=\"1.0\"?>\n<!DOCTYPE svg [<!ENTITY e \"a>b\"> <!-- x=\"1\" > -->]>"
+                          "\n<svg xmlns=\"http://www.w3.org/2000/svg\" xmlns:a=\"urn:a\">"
+                          "<!-- <path a=\"1\" b=\"2\" c=\"3\" d=\"4\" e=\"5\" f=\"6\"/> -->"
+                          "<![CDATA[<g a=\"1\" b=\"2\" c=\"3\" d=\"4\" e=\"5\" f=\"6\">]]><?pi a=\"1\" b=\"2\" c=\"3\" d=\"4\" e=\"5\" f=\"6\"?>"
+                          "\n<path id='p' d=\"M0 0L1 0L1 1Z\" class=\"a>b/c\" a:x = \"1\" style=\"\"/>"
+                          "</svg>";
+        lim.max_attributes = 5;
+        lim.max_namespaces = 2;
+        CHECK(try_load(doc, &lim, &st) == CONICA_OK);
+        lim.max_attributes = 4;
+        CHECK(try_load(doc, &lim, &st) == CONICA_ERR_LIMIT);
+        CHECK(strstr(st.message, "element <path> has more than 4 attributes (--max-attributes)") !=
+              NULL);
+        CHECK_EQ_U(st.line, 4);
+        lim.max_attributes = 5;
+        lim.max_namespaces = 1;
+        CHECK(try_load(doc, &lim, &st) == CONICA_ERR_LIMIT);
+        CHECK(strstr(st.message, "element <svg> has more than 1 namespace declarations in scope "
+                                 "(--max-namespaces)") != NULL);
+        CHECK_EQ_U(st.line, 3);
+        /* in scope: an ancestor's declarations count, a closed sibling's
+         * do not (63 on the root: each <g> with one more is at 64, a <g>
+         * inside one of them with another is at 65) */
+        lim = conica_svg_limits_defaults();
+        k = (size_t)snprintf(t, sizeof t, "<svg xmlns=\"http://www.w3.org/2000/svg\"");
+        for (i = 1; i < 63; i++)
+            k += (size_t)snprintf(t + k, sizeof t - k, " xmlns:n%zu=\"u\"", i);
+        snprintf(t + k, sizeof t - k, "><g xmlns:b=\"u\"/><g xmlns:c=\"u\"></g><g><g "
+                                      "xmlns:d=\"u\"><g xmlns:e=\"u\"/></g></g></svg>");
+        CHECK(try_load(t, &lim, &st) == CONICA_ERR_LIMIT); /* 63 + d + e = 65 at <g xmlns:e> */
+        CHECK(strstr(st.message, "element <g> has more than 64 namespace declarations") != NULL);
+        snprintf(t + k, sizeof t - k, "><g xmlns:b=\"u\"/><g xmlns:c=\"u\"></g><g><g "
+                                      "xmlns:d=\"u\"></g><g xmlns:e=\"u\"/></g></svg>");
+        CHECK(try_load(t, &lim, &st) == CONICA_OK);
+        /* the defaults: 256 attributes and 64 declarations */
+        k = (size_t)snprintf(t, sizeof t, "<svg xmlns=\"http://www.w3.org/2000/svg\"><path");
+        for (i = 0; i < 257; i++)
+            k += (size_t)snprintf(t + k, sizeof t - k, " a%zu=''", i);
+        snprintf(t + k, sizeof t - k, "/></svg>");
+        REQUIRE(k < sizeof t - 16);
+        CHECK(try_load(t, NULL, &st) == CONICA_ERR_LIMIT);
+        CHECK(strstr(st.message, "more than 256 attributes") != NULL);
+    }
     SECTION("a path data cap with a clear message")
     {
         const char *t = "<svg xmlns=\"http://www.w3.org/2000/svg\">\n<path id=\"p\" "
