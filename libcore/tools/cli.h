@@ -61,7 +61,16 @@ int cli_read_file(const char *prog, const char *path, size_t max_bytes, char **b
  * set-id bits: a 0600 file stays 0600). A new file gets 0666 & ~umask, as fopen() would give it. A
  * symbolic link to nothing (dangling) is an error rather than replaced.
  * Not kept: the owner (only root could), hard links (rename makes a new
- * inode), extended attributes. */
+ * inode), extended attributes.
+ *
+ * The temporary is `.NAME.conica-tmp.XXXXXX` beside the target (hidden,
+ * and saying what it is). While it exists SIGINT, SIGTERM, SIGHUP, SIGPIPE
+ * and SIGXFSZ (a write past `ulimit -f`) remove it, print `prog: error:
+ * target: stopped by SIG...; output not written ...` and end the tool with
+ * status 128 + signo (by the signal itself, SIGXFSZ by _exit: its default
+ * would dump core); signals the tool was started with ignored stay
+ * ignored. SIGKILL leaves the hidden temporary and the target untouched.
+ * One output open at a time (the handler knows one temporary). */
 typedef struct cli_output {
     FILE *f;          /* where to write */
     char *path;       /* final path (symlinks resolved), NULL for stdout */
