@@ -796,12 +796,19 @@ static size_t read_num(const char *s, double *v)
     return i + used;
 }
 
-/* A CSS length: number and unit; 1 on success. */
+/* A CSS length: number and unit; 1 on success, 2 when the number is not
+ * finite (NaN, Inf, beyond DBL_MAX), 0 otherwise. */
 static int parse_length(const char *s, double *v, char unit[4])
 {
     size_t k = s ? read_num(s, v) : 0, u = 0;
-    if (!k)
-        return 0;
+    if (!k) {
+        size_t used = 0;
+        double x;
+        while (s && (*s == ' ' || *s == '\t' || *s == '\n' || *s == '\r'))
+            s++;
+        return s && conica__parse_double(s, strlen(s), &x, &used) == CONICA__NUM_NONFINITE ? 2
+                                                                                       : 0;
+    }
     s += k;
     while (u < 3 && ((*s >= 'a' && *s <= 'z') || (*s >= 'A' && *s <= 'Z') || *s == '%'))
         unit[u++] = *s++;
@@ -1045,22 +1052,27 @@ static void pb_close(pbuild *b)
 }
 
 /* A user-space length attribute: number with no unit or px. 1 ok, 0 absent
- * (value untouched), -1 unusable. */
-static int len_attr(xmlNodePtr n, const char *name, double *v)
+ * (value untouched), -1 unusable (another unit, not a length), -3 not a
+ * finite number (*bad = name). */
+static int len_attr(xmlNodePtr n, const char *name, double *v, const char **bad)
 {
     char unit[4];
     char *a = get_attr(n, name);
     int r;
     if (!a)
         return 0;
-    r = parse_length(a, v, unit) && (!unit[0] || !strcmp(unit, "px")) ? 1 : -1;
+    r = parse_length(a, v, unit);
+    r = r == 2 ? -3 : r && (!unit[0] || !strcmp(unit, "px")) ? 1 : -1;
+    if (r == -3)
+        *bad = name;
     xmlFree(a);
     return r;
 }
 
 /* rect/circle/ellipse/line as path segments (SVG 2, 10.2-10.5).
- * Returns 1 built, 0 nothing to draw, -1 unusable attributes, -2 no memory. */
-static int shape_path(xmlNodePtr n, conica_svg_path *p)
+ * Returns 1 built, 0 nothing to draw, -1 unusable attributes, -2 no memory,
+ * -3 an attribute that is not a finite number (*bad names it). */
+static int shape_path(xmlNodePtr n, conica_svg_path *p, const char **bad)
 {
     const char *tag = (const char *)n->name;
     pbuild b;
@@ -1073,8 +1085,8 @@ static int shape_path(xmlNodePtr n, conica_svg_path *p)
         static const char *names[6] = {"x", "y", "width", "height", "rx", "ry"};
         double x, y, w, h, rx, ry;
         for (i = 0; i < 6; i++)
-            if ((r[i] = len_attr(n, names[i], &v[i])) < 0)
-                return -1;
+            if ((r[i] = len_attr(n, names[i], &v[i], bad)) < 0)
+                return r[i];
         x = v[0], y = v[1], w = v[2], h = v[3];
         if (!(w > 0.0) || !(h > 0.0))
             return 0;
@@ -1102,17 +1114,20 @@ static int shape_path(xmlNodePtr n, conica_svg_path *p)
     } else if (!strcmp(tag, "circle") || !strcmp(tag, "ellipse")) {
         double cx, cy, rx, ry;
         int circle = tag[0] == 'c';
-        if (len_attr(n, "cx", &v[0]) < 0 || len_attr(n, "cy", &v[1]) < 0)
-            return -1;
+        if ((r[0] = len_attr(n, "cx", &v[0], bad)) < 0 ||
+            (r[1] = len_attr(n, "cy", &v[1], bad)) < 0)
+            return r[0] < 0 ? r[0] : r[1];
         if (circle) {
-            if (len_attr(n, "r", &v[2]) < 0)
-                return -1;
+            if ((r[2] = len_attr(n, "r", &v[2], bad)) < 0)
+                return r[2];
             v[3] = v[2];
         } else {
-            r[2] = len_attr(n, "rx", &v[2]);
-            r[3] = len_attr(n, "ry", &v[3]);
-            if (r[2] < 0 || r[3] < 0)
-                return -1;
+            r[2] = len_attr(n, "rx", &v[2], bad);
+            if (r[2] < 0)
+                return r[2];
+            r[3] = len_attr(n, "ry", &v[3], bad);
+            if (r[3] < 0)
+                return r[3];
             if (!r[2])
                 v[2] = v[3];
             if (!r[3])
@@ -1130,8 +1145,8 @@ static int shape_path(xmlNodePtr n, conica_svg_path *p)
     } else if (!strcmp(tag, "line")) {
         static const char *names[4] = {"x1", "y1", "x2", "y2"};
         for (i = 0; i < 4; i++)
-            if (len_attr(n, names[i], &v[i]) < 0)
-                return -1;
+            if ((r[i] = len_attr(n, names[i], &v[i], bad)) < 0)
+                return r[i];
         pb_move(&b, v[0], v[1]);
         pb_line(&b, v[2], v[3]);
     } else {
@@ -1359,7 +1374,11 @@ static int element_path(const conica_svg_settings *s, xmlNodePtr n, int kind, co
         return np > 0;
     }
     {
-        int r = shape_path(n, p);
+        const char *bad = "";
+        int r = shape_path(n, p, &bad);
+        if (r == -3)
+            warn(s, line, "%s: geometry attribute '%s' is not a finite number (NaN, Inf or "
+                 "beyond +-1.8e308); left unchanged", what, bad);
         if (r == -2) {
             *rc = conica__fail(st, CONICA_ERR_NOMEM, 0, 0, "out of memory");
             return 0;

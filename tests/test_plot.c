@@ -616,6 +616,38 @@ TEST_CASE("limits and bad settings", "[plot][limits]")
     conica_bspline_free(&s);
 }
 
+TEST_CASE("control points near +-DBL_MAX: too large, not 'tolerance is zero'", "[plot][limits]")
+{
+    /* the extent's squares overflowed, so the relative tolerance came out
+     * infinite and was reported as zero (issue 17) */
+    const double k[] = {0, 0, 0, 1, 1, 1};
+    const double huge[] = {-1e308, 0, 1e308, 1, 2, 0};
+    const double big[] = {0, 0, 1e200, 1, 2, 0};
+    const double flat[] = {1, 1, 1, 1, 1, 1};
+    conica_bspline s;
+    conica_polyline pl;
+    conica_status st;
+    conica_plot_settings set = conica_plot_defaults();
+    conica_bspline_init(&s);
+    conica_polyline_init(&pl);
+    REQUIRE_EQ(conica_bspline_set(2, 2, k, 6, huge, 3, NULL, &s, NULL), CONICA_OK);
+    CHECK_EQ(conica_plot(&s, &set, &pl, NULL, &st), CONICA_ERR_LIMIT);
+    CHECK(strstr(st.message, "the control point values are too large") != NULL);
+    CHECK(strstr(st.message, "tolerance is zero") == NULL);
+    /* 1e200 is finite and so is its extent: plotted, finite points */
+    REQUIRE_EQ(conica_bspline_set(2, 2, k, 6, big, 3, NULL, &s, NULL), CONICA_OK);
+    CHECK_REL(conica_plot_extent(&s), 1e200, 1e-12); /* (1e200, 1) box */
+    REQUIRE_EQ(conica_plot(&s, &set, &pl, NULL, &st), CONICA_OK);
+    for (size_t i = 0; i < 2 * pl.n; i++)
+        CHECK(isfinite(pl.xy[i]));
+    /* a genuinely zero extent is still "tolerance is zero" */
+    REQUIRE_EQ(conica_bspline_set(2, 2, k, 6, flat, 3, NULL, &s, NULL), CONICA_OK);
+    CHECK_EQ(conica_plot(&s, &set, &pl, NULL, &st), CONICA_ERR_DEGENERATE);
+    CHECK(strstr(st.message, "tolerance is zero") != NULL);
+    conica_polyline_free(&pl);
+    conica_bspline_free(&s);
+}
+
 TEST_CASE("surface: two-phase quad grid (Section 4.1.2)", "[plot][surface]")
 {
     conica_bspline_surface s;

@@ -952,6 +952,31 @@ static void log_warning(void *ctx, size_t line, const char *msg)
     w->count++;
 }
 
+TEST_CASE("shapes with NaN or infinite geometry: warned as not a number", "[svg][doc]")
+{
+    /* said "units other than user units" before (issue 17) */
+    const char *t = "<svg xmlns=\"http://www.w3.org/2000/svg\"><rect id=\"r\" width=\"NaN\" "
+                    "height=\"5\"/><circle id=\"c\" r=\"1e999\"/><ellipse id=\"e\" rx=\"1\" "
+                    "ry=\"inf\"/><line id=\"l\" x2=\"-nan\"/><rect id=\"u\" width=\"3mm\" "
+                    "height=\"1\"/></svg>";
+    conica_svg_doc *doc = load(t);
+    conica_svg_settings s = conica_svg_defaults();
+    warn_log w;
+    memset(&w, 0, sizeof w);
+    s.convert_shapes = 1;
+    s.warn = log_warning;
+    s.warn_ctx = &w;
+    REQUIRE(conica_svg_process(doc, &s, NULL, NULL) == CONICA_OK);
+    INFO("%s", w.text);
+    CHECK_EQ_U(w.count, 5);
+    CHECK(strstr(w.text, "rect 'r': geometry attribute 'width' is not a finite number") != NULL);
+    CHECK(strstr(w.text, "circle 'c': geometry attribute 'r' is not a finite number") != NULL);
+    CHECK(strstr(w.text, "ellipse 'e': geometry attribute 'ry' is not a finite number") != NULL);
+    CHECK(strstr(w.text, "line 'l': geometry attribute 'x2' is not a finite number") != NULL);
+    CHECK(strstr(w.text, "rect 'u': geometry attributes in units other than user units") != NULL);
+    conica_svg_doc_free(doc);
+}
+
 TEST_CASE("--select ids that name no element are warned about", "[svg][doc]")
 {
     const char *t = "<svg xmlns=\"http://www.w3.org/2000/svg\"><g id=\"g\">"

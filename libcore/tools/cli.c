@@ -496,6 +496,53 @@ int cli_parse_double(const char *s, double *out)
     return 0;
 }
 
+/* A subdivision whose output overflowed: the input point of the largest
+ * coordinate when that is beyond CLI_HUGE_COORD (its index in *index and
+ * the coordinate in *value), else 0. */
+static int huge_input_point(const char *buf, size_t len, conica_code code,
+                            const conica_status *st, size_t *index, double *value)
+{
+    conica_curve c;
+    size_t i, best = 0;
+    double big = 0.0;
+    if (code != CONICA_ERR_NUMERIC || !strstr(st->message, "of the output is not finite"))
+        return 0;
+    conica_curve_init(&c);
+    if (conica_curve_parse(buf, len, &c, NULL) != CONICA_OK) {
+        conica_curve_free(&c);
+        return 0;
+    }
+    for (i = 0; i < 2 * c.n; i++)
+        if (fabs(c.xy[i]) > big) {
+            big = fabs(c.xy[i]);
+            best = i;
+        }
+    if (big > CLI_HUGE_COORD)
+        *value = c.xy[best];
+    conica_curve_free(&c);
+    if (!(big > CLI_HUGE_COORD))
+        return 0;
+    *index = best / 2;
+    return 1;
+}
+
+size_t cli_point_failure(const char *buf, size_t len, conica_code code, const conica_status *st,
+                         char *msg, size_t cap)
+{
+    size_t index = 0;
+    double value = 0.0;
+    const char *what = st->message[0] ? st->message : conica_strerror(code);
+    if (huge_input_point(buf, len, code, st, &index, &value)) {
+        snprintf(msg, cap,
+                 "coordinate %g of point %zu is too large for the subdivision (its squares "
+                 "overflow: keep coordinates within +-%g); %s",
+                 value, index + 1, CLI_HUGE_COORD, what);
+        return conica_curve_line_of_point(buf, len, index, 0);
+    }
+    snprintf(msg, cap, "%s", what);
+    return cli_point_line(buf, len, code, st);
+}
+
 size_t cli_point_line(const char *buf, size_t len, conica_code code, const conica_status *st)
 {
     if (code != CONICA_ERR_DEGENERATE && code != CONICA_ERR_NONFINITE)

@@ -41,6 +41,18 @@ int cli_usage_error(const char *prog, const char *fmt, ...) CLI_PRINTF(2, 3);
  * failure names no point. */
 size_t cli_point_line(const char *buf, size_t len, conica_code code, const conica_status *st);
 
+/* Coordinates beyond this make the subdivision's squared distances
+ * overflow (1e150^2 = 1e300 < DBL_MAX); the _conica extension refuses
+ * them up front, the tools name them when the output comes out non-finite. */
+#define CLI_HUGE_COORD 1e150
+
+/* As cli_point_line(), and the message to print into msg: the engine's,
+ * or, when the output came out non-finite (CONICA_ERR_NUMERIC) and an
+ * input point has a coordinate beyond CLI_HUGE_COORD, one that names that
+ * coordinate, with the returned line being that point's. */
+size_t cli_point_failure(const char *buf, size_t len, conica_code code, const conica_status *st,
+                         char *msg, size_t cap);
+
 /* Read all of path ("-" or NULL = stdin) into a new NUL-terminated buffer
  * (*len excludes the NUL). Fails with a message (file name included) when
  * the file cannot be read or is larger than max_bytes. Caller frees *buf.
