@@ -291,6 +291,12 @@ static const char *scan_skip_decl(const char *p, const char *end)
             if (!p)
                 return NULL;
             p += 2;
+        } else if (c == '<' && end - p >= 2 && p[1] == '?') {
+            /* a processing instruction: its text may hold a lone quote */
+            p = scan_find(p + 2, end, "?>", 2);
+            if (!p)
+                return NULL;
+            p++;
         } else if (c == '[') {
             brackets++;
         } else if (c == ']') {
@@ -383,6 +389,7 @@ static int scan_start_tags(const char *buf, size_t len, const conica_svg_limits 
                 goto out;
             if (*p == '>' || *p == '/')
                 break;
+            /* not an attribute (libxml2 reports it): on to the next tag */
             an = p;
             while (p < end && *p != '=' && !scan_space(*p) && *p != '>' && *p != '/')
                 p++;
@@ -391,15 +398,15 @@ static int scan_start_tags(const char *buf, size_t len, const conica_svg_limits 
             while (p < end && scan_space(*p))
                 p++;
             if (p == end || *p != '=')
-                goto out; /* not an attribute: libxml2's to report */
+                break;
             p++;
             while (p < end && scan_space(*p))
                 p++;
             if (p == end || (*p != '"' && *p != '\''))
-                goto out;
+                break;
             p = memchr(p + 1, *p, (size_t)(end - p - 1));
             if (!p)
-                goto out;
+                goto out; /* an attribute value that never ends */
             p++;
             if (is_ns ? in_scope + ++nns > lim->max_namespaces : ++natt > lim->max_attributes) {
                 if (is_ns)
@@ -420,6 +427,8 @@ static int scan_start_tags(const char *buf, size_t len, const conica_svg_limits 
             ls->line = scan_line(buf, tag);
             break;
         }
+        if (p == end || (*p != '>' && *p != '/'))
+            continue; /* a malformed tag: counted so far, opens no scope */
         if (*p == '/')
             continue; /* <x/>: opens no scope */
         depth++;

@@ -739,7 +739,7 @@ TEST_CASE("hostile XML is refused", "[svg][doc][security]")
     SECTION("attributes and namespace declarations are counted before libxml2 parses")
     {
         conica_svg_limits lim = conica_svg_limits_defaults();
-        char t[2048];
+        char t[4096];
         size_t i, k;
         /* 5 attributes; '>' and '/' inside values and a comment, CDATA
          * section, processing instruction and DOCTYPE with '>' and quotes
@@ -778,6 +778,16 @@ TEST_CASE("hostile XML is refused", "[svg][doc][security]")
         snprintf(t + k, sizeof t - k, "><g xmlns:b=\"u\"/><g xmlns:c=\"u\"></g><g><g "
                                       "xmlns:d=\"u\"></g><g xmlns:e=\"u\"/></g></svg>");
         CHECK(try_load(t, &lim, &st) == CONICA_OK);
+        /* the scan cannot be thrown off by a lone quote in a DTD
+         * processing instruction or a malformed tag before the flood */
+        k = (size_t)snprintf(t, sizeof t, "<!DOCTYPE svg [<?pi don't ?>]><svg xmlns=\"http://"
+                                          "www.w3.org/2000/svg\"><g x><path");
+        for (i = 0; i < 300; i++)
+            k += (size_t)snprintf(t + k, sizeof t - k, " a%zu=''", i);
+        snprintf(t + k, sizeof t - k, "/></g></svg>");
+        REQUIRE(k < sizeof t - 16);
+        CHECK(try_load(t, NULL, &st) != CONICA_OK);
+        CHECK(strstr(st.message, "more than 256 attributes") != NULL);
         /* the defaults: 256 attributes and 64 declarations */
         k = (size_t)snprintf(t, sizeof t, "<svg xmlns=\"http://www.w3.org/2000/svg\"><path");
         for (i = 0; i < 257; i++)
