@@ -76,6 +76,7 @@ typedef struct conica_scad_contour {
 typedef struct conica_scad_profile {
     size_t ncontours, ccap;
     conica_scad_contour *contours;
+    size_t npoints; /**< points over all contours (kept by conica_scad_add_contour) */
     size_t ngroups, gcap;
     conica_scad_group *groups;
 } conica_scad_profile;

@@ -60,15 +60,16 @@ conica_code conica_scad_add_group(conica_scad_profile *p, const char *name, coni
 conica_code conica_scad_add_contour(conica_scad_profile *p, size_t group, const double *xy,
                                     size_t n, conica_status *st)
 {
-    size_t total = 0;
+    size_t total;
     if (!p || !xy || n == 0 || group >= p->ngroups)
         return conica__fail(st, CONICA_ERR_ARG, 0, 0, "invalid argument");
     for (size_t i = 0; i < 2 * n; i++)
         if (!isfinite(xy[i]))
             return conica__fail(st, CONICA_ERR_NONFINITE, 0, i / 2,
                                      "point %zu is not finite", i / 2 + 1);
-    for (size_t i = 0; i < p->ncontours; i++)
-        total += p->contours[i].n;
+    /* a running count: summing the contours here made n additions
+     * quadratic (160 000 small paths: seconds in this loop alone) */
+    total = p->npoints;
     if (p->ncontours >= CONICA_SCAD_MAX_CONTOURS || n > CONICA_SCAD_MAX_POINTS - total)
         return conica__fail(st, CONICA_ERR_LIMIT, 0, 0,
                                  "profile larger than %zu contours or %zu points",
@@ -89,6 +90,7 @@ conica_code conica_scad_add_contour(conica_scad_profile *p, size_t group, const 
     p->contours[p->ncontours].n = n;
     p->contours[p->ncontours].xy = copy;
     p->ncontours++;
+    p->npoints += n;
     conica__ok(st);
     return CONICA_OK;
 }

@@ -198,6 +198,8 @@ static int parse_args(int argc, char **argv, options *o, int *exit_now)
             o->stats = 1;
         } else if (strcmp(a, "-o") == 0 || strcmp(a, "--output") == 0) {
             NEED_ARG();
+            if (!*next)
+                return cli_usage_error(PROG, "%s needs a file name", a);
             o->out = next;
         } else if (strcmp(a, "--") == 0) {
             if (i + 1 < argc && !o->in)
@@ -307,12 +309,12 @@ static int status_error(const char *file, const conica_status *st)
  * cli_point_line), as `conica subdivide` does. */
 static int point_error(const char *file, const char *buf, size_t len, const conica_status *st)
 {
-    size_t line = cli_point_line(buf, len, st->code, st);
+    char msg[sizeof st->message + 200];
+    size_t line = cli_point_failure(buf, len, st->code, st, msg, sizeof msg);
     if (line > 0) {
         char where[1024];
         snprintf(where, sizeof where, "%s:%zu", file, line);
-        return cli_error(PROG, where, "%s",
-                         st->message[0] ? st->message : conica_strerror(st->code));
+        return cli_error(PROG, where, "%s", msg);
     }
     return status_error(file, st);
 }

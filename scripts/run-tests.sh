@@ -64,11 +64,12 @@ run_all() { # build-dir label
         if [ -n "$2" ]; then
             # The sanitizer pass repeats the suites that exercise our own
             # binaries. Left out: Blender loads its own build of the
-            # extension; the fuzzers are sanitizer builds already; install
+            # extension (python_ext: the extension is built without them); the
+            # fuzzers are sanitizer builds already; install
             # would relink without the sanitizer flags; the runner and
             # cgal_broken suites test the runner, not the library.
             case "$(basename "$s")" in
-                blender.sh|cgal_broken.sh|runner.sh|fuzz_smoke.sh|install.sh) continue ;;
+                blender.sh|python_ext.sh|cgal_broken.sh|runner.sh|fuzz_smoke.sh|install.sh) continue ;;
             esac
         fi
         run_suite "$2cli/$(basename "$s" .sh)" sh "$s" "$1"

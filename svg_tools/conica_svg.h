@@ -51,6 +51,14 @@ extern "C" {
 #define CONICA_SVG_DEFAULT_MAX_ELEMENTS ((size_t)1 << 20)   /**< XML elements */
 #define CONICA_SVG_DEFAULT_MAX_PATH_BYTES ((size_t)8 << 20) /**< one d/points attribute */
 #define CONICA_SVG_DEFAULT_MAX_POINTS ((size_t)1 << 26)     /**< output points, whole document */
+/** Attributes of one element (xmlns declarations not counted): libxml2's
+ * duplicate-attribute check is quadratic in this (10^5 attributes on one
+ * <path> took minutes); SVG elements carry a few dozen at most. */
+#define CONICA_SVG_DEFAULT_MAX_ATTRIBUTES ((size_t)256)
+/** Namespace declarations (xmlns, xmlns:p) in scope at one element, its
+ * own and its ancestors': libxml2 looks every prefix up through all of
+ * them; Inkscape and Illustrator declare about ten, on the root. */
+#define CONICA_SVG_DEFAULT_MAX_NAMESPACES ((size_t)64)
 
 /** Caps applied while loading and processing a document. */
 typedef struct conica_svg_limits {
@@ -59,6 +67,8 @@ typedef struct conica_svg_limits {
     size_t max_elements;    /**< number of elements */
     size_t max_path_bytes;  /**< length of one `d` or `points` attribute */
     size_t max_points;      /**< output points over the whole document */
+    size_t max_attributes;  /**< attributes of one element (xmlns declarations apart) */
+    size_t max_namespaces;  /**< namespace declarations in scope at one element */
 } conica_svg_limits;
 
 /** @brief The CONICA_SVG_DEFAULT_* values. */
@@ -161,7 +171,18 @@ typedef struct conica_svg_doc conica_svg_doc;
  *        references or markup: billion laughs; text over 1 KB) makes the
  *        load fail with CONICA_ERR_UNSUPPORTED, short plain-text entities
  *        (Illustrator's &ns_svg;) are kept; size, depth and element caps
- *        from *lim. Blank text, comments, namespaces and unknown nodes are
+ *        from *lim; the attributes of each element and the namespace
+ *        declarations in scope at it are counted by a linear scan of the
+ *        start tags before libxml2 sees them (its work per element grows
+ *        with the product of those counts), so an element over
+ *        lim->max_attributes or lim->max_namespaces fails the load with
+ *        CONICA_ERR_LIMIT and its line before any parsing.
+ *        Any error libxml2 reports fails the load, also those
+ *        after which libxml2 itself goes on or stops with the document
+ *        still "well-formed" (a text node over its 10 MB cap, an unbound
+ *        namespace prefix): st->message then starts with what was wrong and
+ *        quotes libxml2's first message; libxml2 prints nothing itself.
+ *        Blank text, comments, namespaces and unknown nodes are
  *        kept so a save reproduces them.
  * @param[in]  buf  document bytes
  * @param[in]  len  length

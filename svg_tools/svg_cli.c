@@ -22,6 +22,10 @@ int conica_svg__cli_limit(const char *prog, const char *flag, const char *value,
         dst = &lim->max_elements;
     else if (!strcmp(flag, "--max-path-bytes"))
         dst = &lim->max_path_bytes;
+    else if (!strcmp(flag, "--max-attributes"))
+        dst = &lim->max_attributes;
+    else if (!strcmp(flag, "--max-namespaces"))
+        dst = &lim->max_namespaces;
     else
         return 0;
     if (!value || cli_parse_int(value, 1, SVG_CLI_LIMIT_MAX, &x)) {

@@ -6,19 +6,23 @@
 
 #include "conica_svg.h"
 
-/* Help lines for --max-depth, --max-elements and --max-path-bytes
+/* Help lines for --max-depth, --max-elements, --max-path-bytes,
+ * --max-attributes and --max-namespaces
  * (--max-input-bytes is described by each tool: its default differs). */
 #define CONICA_SVG_CLI_LIMITS_HELP                                                           \
     "  --max-depth N         XML element nesting cap (default 256; above 256 libxml2's\n"    \
     "                        own caps are lifted: XML_PARSE_HUGE)\n"                         \
     "  --max-elements N      XML element cap (default 1048576)\n"                            \
-    "  --max-path-bytes N    cap on one d/points attribute (default 8 MiB)\n"
+    "  --max-path-bytes N    cap on one d/points attribute (default 8 MiB)\n"              \
+    "  --max-attributes N    cap on the attributes of one element (default 256)\n"         \
+    "  --max-namespaces N    cap on the xmlns declarations in scope at one element\n"       \
+    "                        (its own and its ancestors', default 64)\n"
 
-/* If flag is --max-input-bytes, --max-depth, --max-elements or
- * --max-path-bytes, read value (a whole number in 1..2147483647) into the
- * matching field of *lim. Returns 1 when the flag was one of these and the
- * value is good, 0 when the flag is none of these (nothing changed), -1
- * after printing `prog: usage error: ...` for a missing or bad value. */
+/* If flag is --max-input-bytes, --max-depth, --max-elements,
+ * --max-path-bytes, --max-attributes or --max-namespaces, read value (a
+ * whole number in 1..2147483647) into the matching field of *lim. Returns
+ * 1 when the flag was one of these and the value is good, 0 when the flag
+ * is none of these (nothing changed), -1 after printing `prog: usage error: ...` for a missing or bad value. */
 int conica_svg__cli_limit(const char *prog, const char *flag, const char *value,
                           conica_svg_limits *lim);
 

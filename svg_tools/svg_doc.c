@@ -51,6 +51,8 @@ conica_svg_limits conica_svg_limits_defaults(void)
     l.max_elements = CONICA_SVG_DEFAULT_MAX_ELEMENTS;
     l.max_path_bytes = CONICA_SVG_DEFAULT_MAX_PATH_BYTES;
     l.max_points = CONICA_SVG_DEFAULT_MAX_POINTS;
+    l.max_attributes = CONICA_SVG_DEFAULT_MAX_ATTRIBUTES;
+    l.max_namespaces = CONICA_SVG_DEFAULT_MAX_NAMESPACES;
     return l;
 }
 
@@ -78,6 +80,12 @@ typedef struct load_state {
     size_t depth, elements;    /* open elements, elements seen */
     startElementNsSAX2Func start;
     endElementNsSAX2Func end;
+    /* libxml2's errors, through xml_error() instead of its stderr lines:
+     * the first one (what the failure reports) and how many there were */
+    size_t xml_errors;
+    int xml_code, xml_domain;  /* libxml2's xmlParserErrors code and domain of the first */
+    size_t xml_line;
+    char xml_msg[200];
 } load_state;
 
 /* Stop the parse; line is where the problem is (read before stopping:
@@ -127,6 +135,32 @@ static void entity_decl(void *ctx, const xmlChar *name, int type, const xmlChar 
         return;
     }
     xmlSAX2EntityDecl(ctx, name, type, publicId, systemId, content);
+}
+
+/* libxml2's structured error handler (sax->serror): every error and
+ * warning of the parse arrives here instead of on stderr (with
+ * XML_PARSE_NOERROR libxml2 still prints some, e.g. SAX2's "huge text
+ * node", through its validity channel). An error of any level but a
+ * warning fails the load even when libxml2 leaves wellFormed set: after
+ * "huge text node" it stops with wellFormed == 1 and a partial tree, and
+ * a save would silently drop the rest of the document (issue 17). */
+#if LIBXML_VERSION >= 21200
+static void xml_error(void *ctx, const xmlError *e)
+#else
+static void xml_error(void *ctx, xmlErrorPtr e)
+#endif
+{
+    xmlParserCtxtPtr ctxt = ctx;
+    load_state *ls = ctxt ? ctxt->_private : NULL;
+    if (!ls || !e || e->level == XML_ERR_WARNING || e->level == XML_ERR_NONE)
+        return;
+    if (ls->xml_errors++ == 0) {
+        ls->xml_code = e->code;
+        ls->xml_domain = e->domain;
+        ls->xml_line = e->line > 0 ? (size_t)e->line : 0;
+        snprintf(ls->xml_msg, sizeof ls->xml_msg, "%s",
+                 e->message ? e->message : "not well-formed XML");
+    }
 }
 
 /* Depth and element caps, counted as the parser goes: a document over a
@@ -220,6 +254,210 @@ static void explain_xml_error(const char *msg, int huge, char *out, size_t cap)
         snprintf(out, cap, "XML: %s", msg);
 }
 
+/* ------------------------------------------------------------ start-tag scan */
+
+/* Position of the first occurrence of the n-byte string `pat` in
+ * [p, end), or NULL. */
+static const char *scan_find(const char *p, const char *end, const char *pat, size_t n)
+{
+    while (p && (size_t)(end - p) >= n) {
+        p = memchr(p, pat[0], (size_t)(end - p) - n + 1);
+        if (!p || memcmp(p, pat, n) == 0)
+            return p;
+        p++;
+    }
+    return NULL;
+}
+
+static int scan_space(char c)
+{
+    return c == ' ' || c == '\t' || c == '\r' || c == '\n';
+}
+
+/* Past a <!DOCTYPE ...> (p after "<!"): quoted strings, comments and the
+ * internal subset's brackets skipped, so a '>' inside them does not end
+ * it. NULL when it does not end (libxml2 then says what is wrong). */
+static const char *scan_skip_decl(const char *p, const char *end)
+{
+    int brackets = 0;
+    while (p < end) {
+        char c = *p;
+        if (c == '"' || c == '\'') {
+            p = memchr(p + 1, c, (size_t)(end - p - 1));
+            if (!p)
+                return NULL;
+        } else if (c == '<' && end - p >= 4 && memcmp(p, "<!--", 4) == 0) {
+            p = scan_find(p + 4, end, "-->", 3);
+            if (!p)
+                return NULL;
+            p += 2;
+        } else if (c == '<' && end - p >= 2 && p[1] == '?') {
+            /* a processing instruction: its text may hold a lone quote */
+            p = scan_find(p + 2, end, "?>", 2);
+            if (!p)
+                return NULL;
+            p++;
+        } else if (c == '[') {
+            brackets++;
+        } else if (c == ']') {
+            brackets--;
+        } else if (c == '>' && brackets <= 0) {
+            return p + 1;
+        }
+        p++;
+    }
+    return NULL;
+}
+
+/* Line of byte `at` of buf (1-based). */
+static size_t scan_line(const char *buf, const char *at)
+{
+    const char *q;
+    size_t line = 1;
+    for (q = buf; (q = memchr(q, '\n', (size_t)(at - q))) != NULL; q++)
+        line++;
+    return line;
+}
+
+/* Elements that declare namespaces, innermost last: what is in scope. */
+typedef struct scan_scope {
+    size_t depth; /* nesting depth of the element */
+    size_t count; /* its declarations */
+} scan_scope;
+
+/* Count the attributes of every start tag and the namespace declarations
+ * in scope at it, in one linear pass, and refuse the first element over a
+ * cap before libxml2 parses anything. libxml2 appends each attribute by
+ * walking the element's list and checks it against all earlier ones
+ * (quadratic in the attributes of one element: 10^5 on a <path> took 17 s
+ * to minutes), and looks every prefix up through all declarations in scope
+ * (255 nested <g> with 64 declarations each made every element below cost
+ * 0.3 ms: minutes for a large document). Comments, CDATA sections,
+ * processing instructions and the DOCTYPE are skipped; a construct that
+ * does not end stops the scan without a verdict (libxml2 reports it).
+ * Returns 0, or 1 with ls filled. */
+static int scan_start_tags(const char *buf, size_t len, const conica_svg_limits *lim,
+                           load_state *ls)
+{
+    const char *p = buf, *end = buf + len;
+    scan_scope *scope = NULL;
+    size_t nscope = 0, cap = 0, depth = 0, in_scope = 0;
+    int verdict = 0;
+    while (!verdict && p < end && (p = memchr(p, '<', (size_t)(end - p))) != NULL) {
+        const char *tag = p, *name;
+        size_t natt = 0, nns = 0, nlen;
+        p++;
+        if (p == end)
+            break;
+        if (*p == '!') {
+            if (end - p >= 3 && memcmp(p, "!--", 3) == 0)
+                p = scan_find(p + 3, end, "-->", 3);
+            else if (end - p >= 8 && memcmp(p, "![CDATA[", 8) == 0)
+                p = scan_find(p + 8, end, "]]>", 3);
+            else
+                p = scan_skip_decl(p + 1, end);
+            if (!p)
+                break;
+            continue;
+        }
+        if (*p == '?') {
+            p = scan_find(p + 1, end, "?>", 2);
+            if (!p)
+                break;
+            continue;
+        }
+        if (*p == '/') {
+            /* an end tag holds no quotes: the next '<' is past it */
+            if (nscope && scope[nscope - 1].depth == depth)
+                in_scope -= scope[--nscope].count;
+            if (depth)
+                depth--;
+            continue;
+        }
+        name = p;
+        while (p < end && !scan_space(*p) && *p != '>' && *p != '/')
+            p++;
+        nlen = (size_t)(p - name);
+        if (nlen > 64)
+            nlen = 64;
+        for (;;) {
+            const char *an;
+            int is_ns;
+            while (p < end && scan_space(*p))
+                p++;
+            if (p == end)
+                goto out;
+            if (*p == '>' || *p == '/')
+                break;
+            /* not an attribute (libxml2 reports it): on to the next tag */
+            an = p;
+            while (p < end && *p != '=' && !scan_space(*p) && *p != '>' && *p != '/')
+                p++;
+            /* xmlns="..." or xmlns:prefix="..." declares a namespace */
+            is_ns = p - an >= 5 && memcmp(an, "xmlns", 5) == 0 && (p - an == 5 || an[5] == ':');
+            while (p < end && scan_space(*p))
+                p++;
+            if (p == end || *p != '=')
+                break;
+            p++;
+            while (p < end && scan_space(*p))
+                p++;
+            if (p == end || (*p != '"' && *p != '\''))
+                break;
+            p = memchr(p + 1, *p, (size_t)(end - p - 1));
+            if (!p)
+                goto out; /* an attribute value that never ends */
+            p++;
+            if (is_ns ? in_scope + ++nns > lim->max_namespaces : ++natt > lim->max_attributes) {
+                if (is_ns)
+                    snprintf(ls->why, sizeof ls->why,
+                             "element <%.*s> has more than %zu namespace declarations in scope "
+                             "(--max-namespaces)",
+                             (int)nlen, name, lim->max_namespaces);
+                else
+                    snprintf(ls->why, sizeof ls->why,
+                             "element <%.*s> has more than %zu attributes (--max-attributes)",
+                             (int)nlen, name, lim->max_attributes);
+                ls->code = CONICA_ERR_LIMIT;
+                verdict = 1;
+                break;
+            }
+        }
+        if (verdict) {
+            ls->line = scan_line(buf, tag);
+            break;
+        }
+        if (p == end || (*p != '>' && *p != '/'))
+            continue; /* a malformed tag: counted so far, opens no scope */
+        if (*p == '/')
+            continue; /* <x/>: opens no scope */
+        depth++;
+        if (nns) {
+            if (nscope == cap) {
+                size_t nc = cap ? 2 * cap : 16;
+                scan_scope *t = realloc(scope, nc * sizeof *t);
+                if (!t) {
+                    snprintf(ls->why, sizeof ls->why, "out of memory");
+                    ls->code = CONICA_ERR_NOMEM;
+                    ls->line = 0;
+                    verdict = 1;
+                    break;
+                }
+                scope = t;
+                cap = nc;
+            }
+            scope[nscope].depth = depth;
+            scope[nscope++].count = nns;
+            in_scope += nns;
+        }
+    }
+out:
+    free(scope);
+    if (verdict)
+        ls->refused = 1;
+    return verdict;
+}
+
 conica_code conica_svg_doc_load(const char *buf, size_t len, const conica_svg_limits *lim,
                                 conica_svg_doc **out, conica_status *st)
 {
@@ -250,6 +488,9 @@ conica_code conica_svg_doc_load(const char *buf, size_t len, const conica_svg_li
      * lim->max_bytes, depth and elements by our own counts in
      * start_element(), entities by entity_decl() (none that can expand,
      * and none substituted), path data by lim->max_path_bytes. */
+    memset(&ls, 0, sizeof ls);
+    if (len && scan_start_tags(buf, len, lim, &ls))
+        return conica__fail(st, ls.code, ls.line, 0, "%s", ls.why);
     huge = lim->max_depth > (size_t)xmlParserMaxDepth;
     if (huge)
         opts |= XML_PARSE_HUGE;
@@ -264,12 +505,13 @@ conica_code conica_svg_doc_load(const char *buf, size_t len, const conica_svg_li
         memset(&ls, 0, sizeof ls);
         ls.lim = lim;
         ctxt->_private = &ls;
+        ctxt->sax->serror = xml_error; /* called with ctxt->userData, the context */
         ctxt->sax->entityDecl = entity_decl;
         ls.start = ctxt->sax->startElementNs;
         ls.end = ctxt->sax->endElementNs;
         ctxt->sax->startElementNs = start_element;
         ctxt->sax->endElementNs = end_element;
-        for (off = first; !ls.refused;) {
+        for (off = first; !ls.refused && !ls.xml_errors;) {
             size_t k = len - off < SVG_PARSE_CHUNK ? len - off : SVG_PARSE_CHUNK;
             int last = off + k == len;
             if (xmlParseChunk(ctxt, buf + off, (int)k, last) != 0 || last)
@@ -284,12 +526,22 @@ conica_code conica_svg_doc_load(const char *buf, size_t len, const conica_svg_li
         xmlFreeParserCtxt(ctxt);
         return conica__fail(st, ls.code, ls.line, 0, "%s", ls.why);
     }
-    if (!xml || !ctxt->wellFormed) {
+    if (!xml || !ctxt->wellFormed || ls.xml_errors) {
         const xmlError *e = xmlCtxtGetLastError(ctxt);
         char msg[200], text[400];
         size_t line = e ? (size_t)(e->line > 0 ? e->line : 0) : 0;
         int no_root = !xml || !xmlDocGetRootElement(xml);
-        snprintf(msg, sizeof msg, "%s", e && e->message ? e->message : "not well-formed XML");
+        conica_code code = CONICA_ERR_PARSE;
+        if (ls.xml_errors) {
+            /* the first error names the cause; later ones follow from it */
+            snprintf(msg, sizeof msg, "%s", ls.xml_msg);
+            line = ls.xml_line;
+            /* libxml2 files "huge text node" under XML_ERR_NO_MEMORY too */
+            if (ls.xml_code == XML_ERR_NO_MEMORY && !strstr(msg, "huge"))
+                code = CONICA_ERR_NOMEM;
+        } else {
+            snprintf(msg, sizeof msg, "%s", e && e->message ? e->message : "not well-formed XML");
+        }
         trim_newline(msg);
         if (no_root) {
             /* libxml2 says "Extra content at the end of the document" for
@@ -310,12 +562,19 @@ conica_code conica_svg_doc_load(const char *buf, size_t len, const conica_svg_li
                          "(no <svg> element)", msg);
             else
                 snprintf(text, sizeof text, "XML: no <svg> element (%s)", msg);
+        } else if (ls.xml_errors && ls.xml_domain == XML_FROM_NAMESPACE) {
+            snprintf(text, sizeof text, "XML: namespace error (libxml2: %s)", msg);
         } else {
             explain_xml_error(msg, huge, text, sizeof text);
         }
+        if (ls.xml_errors > 1) {
+            size_t k = strlen(text);
+            snprintf(text + k, sizeof text - k, " (and %zu more XML error%s after it)",
+                     ls.xml_errors - 1, ls.xml_errors > 2 ? "s" : "");
+        }
         xmlFreeDoc(xml);
         xmlFreeParserCtxt(ctxt);
-        return conica__fail(st, CONICA_ERR_PARSE, line, 0, "%s", text);
+        return conica__fail(st, code, line, 0, "%s", text);
     }
     xmlFreeParserCtxt(ctxt);
     root = xmlDocGetRootElement(xml);
@@ -546,12 +805,19 @@ static size_t read_num(const char *s, double *v)
     return i + used;
 }
 
-/* A CSS length: number and unit; 1 on success. */
+/* A CSS length: number and unit; 1 on success, 2 when the number is not
+ * finite (NaN, Inf, beyond DBL_MAX), 0 otherwise. */
 static int parse_length(const char *s, double *v, char unit[4])
 {
     size_t k = s ? read_num(s, v) : 0, u = 0;
-    if (!k)
-        return 0;
+    if (!k) {
+        size_t used = 0;
+        double x;
+        while (s && (*s == ' ' || *s == '\t' || *s == '\n' || *s == '\r'))
+            s++;
+        return s && conica__parse_double(s, strlen(s), &x, &used) == CONICA__NUM_NONFINITE ? 2
+                                                                                       : 0;
+    }
     s += k;
     while (u < 3 && ((*s >= 'a' && *s <= 'z') || (*s >= 'A' && *s <= 'Z') || *s == '%'))
         unit[u++] = *s++;
@@ -795,22 +1061,27 @@ static void pb_close(pbuild *b)
 }
 
 /* A user-space length attribute: number with no unit or px. 1 ok, 0 absent
- * (value untouched), -1 unusable. */
-static int len_attr(xmlNodePtr n, const char *name, double *v)
+ * (value untouched), -1 unusable (another unit, not a length), -3 not a
+ * finite number (*bad = name). */
+static int len_attr(xmlNodePtr n, const char *name, double *v, const char **bad)
 {
     char unit[4];
     char *a = get_attr(n, name);
     int r;
     if (!a)
         return 0;
-    r = parse_length(a, v, unit) && (!unit[0] || !strcmp(unit, "px")) ? 1 : -1;
+    r = parse_length(a, v, unit);
+    r = r == 2 ? -3 : r && (!unit[0] || !strcmp(unit, "px")) ? 1 : -1;
+    if (r == -3)
+        *bad = name;
     xmlFree(a);
     return r;
 }
 
 /* rect/circle/ellipse/line as path segments (SVG 2, 10.2-10.5).
- * Returns 1 built, 0 nothing to draw, -1 unusable attributes, -2 no memory. */
-static int shape_path(xmlNodePtr n, conica_svg_path *p)
+ * Returns 1 built, 0 nothing to draw, -1 unusable attributes, -2 no memory,
+ * -3 an attribute that is not a finite number (*bad names it). */
+static int shape_path(xmlNodePtr n, conica_svg_path *p, const char **bad)
 {
     const char *tag = (const char *)n->name;
     pbuild b;
@@ -823,8 +1094,8 @@ static int shape_path(xmlNodePtr n, conica_svg_path *p)
         static const char *names[6] = {"x", "y", "width", "height", "rx", "ry"};
         double x, y, w, h, rx, ry;
         for (i = 0; i < 6; i++)
-            if ((r[i] = len_attr(n, names[i], &v[i])) < 0)
-                return -1;
+            if ((r[i] = len_attr(n, names[i], &v[i], bad)) < 0)
+                return r[i];
         x = v[0], y = v[1], w = v[2], h = v[3];
         if (!(w > 0.0) || !(h > 0.0))
             return 0;
@@ -852,17 +1123,20 @@ static int shape_path(xmlNodePtr n, conica_svg_path *p)
     } else if (!strcmp(tag, "circle") || !strcmp(tag, "ellipse")) {
         double cx, cy, rx, ry;
         int circle = tag[0] == 'c';
-        if (len_attr(n, "cx", &v[0]) < 0 || len_attr(n, "cy", &v[1]) < 0)
-            return -1;
+        if ((r[0] = len_attr(n, "cx", &v[0], bad)) < 0 ||
+            (r[1] = len_attr(n, "cy", &v[1], bad)) < 0)
+            return r[0] < 0 ? r[0] : r[1];
         if (circle) {
-            if (len_attr(n, "r", &v[2]) < 0)
-                return -1;
+            if ((r[2] = len_attr(n, "r", &v[2], bad)) < 0)
+                return r[2];
             v[3] = v[2];
         } else {
-            r[2] = len_attr(n, "rx", &v[2]);
-            r[3] = len_attr(n, "ry", &v[3]);
-            if (r[2] < 0 || r[3] < 0)
-                return -1;
+            r[2] = len_attr(n, "rx", &v[2], bad);
+            if (r[2] < 0)
+                return r[2];
+            r[3] = len_attr(n, "ry", &v[3], bad);
+            if (r[3] < 0)
+                return r[3];
             if (!r[2])
                 v[2] = v[3];
             if (!r[3])
@@ -880,8 +1154,8 @@ static int shape_path(xmlNodePtr n, conica_svg_path *p)
     } else if (!strcmp(tag, "line")) {
         static const char *names[4] = {"x1", "y1", "x2", "y2"};
         for (i = 0; i < 4; i++)
-            if (len_attr(n, names[i], &v[i]) < 0)
-                return -1;
+            if ((r[i] = len_attr(n, names[i], &v[i], bad)) < 0)
+                return r[i];
         pb_move(&b, v[0], v[1]);
         pb_line(&b, v[2], v[3]);
     } else {
@@ -1112,7 +1386,11 @@ static int element_path(const conica_svg_settings *s, xmlNodePtr n, int kind, co
         return np > 0;
     }
     {
-        int r = shape_path(n, p);
+        const char *bad = "";
+        int r = shape_path(n, p, &bad);
+        if (r == -3)
+            warn(s, line, "%s: geometry attribute '%s' is not a finite number (NaN, Inf or "
+                 "beyond +-1.8e308); left unchanged", what, bad);
         if (r == -2) {
             *rc = conica__fail(st, CONICA_ERR_NOMEM, 0, 0, "out of memory");
             return 0;

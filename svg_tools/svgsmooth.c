@@ -190,7 +190,7 @@ int main(int argc, char **argv)
         } else if (!strcmp(a, "--in-place")) {
             in_place = 1;
         } else if (!strcmp(a, "-o")) {
-            if (!v)
+            if (!v || !*v)
                 return cli_usage_error(PROG, "-o needs a file name");
             out_path = v;
             i++;

@@ -492,6 +492,153 @@ TEST_CASE("adaptive loop: thesis behaviour on sptest1 (REFERENCE.md section 5)",
     conica_bspline_free(&s);
 }
 
+/* The adaptive loop on plain arrays, as the thesis code runs it (every
+ * insertion shifts the later points, every iteration scans every feature):
+ * the naive reference for plot_adaptive.c's chunked storage. Non-rational
+ * 2-D splines, midpoint rule, budget stop, control polygon output; the
+ * base-line (point) and length (segment) criteria. */
+typedef struct ref_loop {
+    size_t n, p;
+    double k[4096], P[2 * 4096], f[4096];
+    int segment;
+} ref_loop;
+
+static double ref_feature(const ref_loop *w, size_t i)
+{
+    if (w->segment) {
+        if (i + 1 >= w->n)
+            return -1;
+        double dx = w->P[2 * i + 2] - w->P[2 * i], dy = w->P[2 * i + 3] - w->P[2 * i + 1];
+        return sqrt(dx * dx + dy * dy);
+    }
+    if (i == 0 || i + 1 >= w->n)
+        return -1;
+    const double *a = &w->P[2 * i - 2], *q = &w->P[2 * i], *b = &w->P[2 * i + 2];
+    double ab2 = 0, t = 0, qa2 = 0;
+    for (int c = 0; c < 2; c++) {
+        ab2 += (b[c] - a[c]) * (b[c] - a[c]);
+        t += (q[c] - a[c]) * (b[c] - a[c]);
+        qa2 += (q[c] - a[c]) * (q[c] - a[c]);
+    }
+    if (t <= 0 || ab2 <= 0)
+        return qa2;
+    if (t >= ab2)
+        return (q[0] - b[0]) * (q[0] - b[0]) + (q[1] - b[1]) * (q[1] - b[1]);
+    double r = qa2 - t * t / ab2;
+    return r > 0 ? r : 0;
+}
+
+static size_t ref_mult(const ref_loop *w, double z)
+{
+    size_t m = 0;
+    for (size_t j = 0; j < w->n + w->p + 1; j++)
+        m += w->k[j] == z;
+    return m;
+}
+
+static void ref_adaptive(ref_loop *w, size_t budget)
+{
+    size_t p = w->p;
+    for (size_t i = 0; i < w->n; i++)
+        w->f[i] = ref_feature(w, i);
+    while (budget > 0) {
+        size_t best = 0;
+        double fb = -1, a = w->k[p], b = w->k[w->n], z;
+        for (size_t i = 0; i < w->n; i++)
+            if (w->f[i] > fb) {
+                fb = w->f[i];
+                best = i;
+            }
+        if (fb < 0)
+            break;
+        z = w->segment ? w->k[best + 1] + 0.5 * (w->k[best + p + 1] - w->k[best + 1])
+                       : w->k[best] + 0.5 * (w->k[best + p] - w->k[best]);
+        if (!(z > a && z < b && ref_mult(w, z) + 1 <= p - 1 + (p == 1))) {
+            double len = 0;
+            z = NAN;
+            for (size_t q = best; q < best + p + 1 + (size_t)w->segment && q + 1 < w->n + p + 1;
+                 q++) {
+                double l0 = w->k[q] > a ? w->k[q] : a, l1 = w->k[q + 1] < b ? w->k[q + 1] : b;
+                if (l1 - l0 > len && 0.5 * (l0 + l1) > l0 && 0.5 * (l0 + l1) < l1) {
+                    len = l1 - l0;
+                    z = 0.5 * (l0 + l1);
+                }
+            }
+            if (!(len > 0)) {
+                w->f[best] = -1;
+                continue;
+            }
+        }
+        size_t mu = p;
+        while (mu + 1 < w->n && w->k[mu + 1] <= z)
+            mu++;
+        double nh[2 * 16];
+        for (size_t j = mu - p + 1; j <= mu; j++) {
+            double al = (z - w->k[j]) / (w->k[j + p] - w->k[j]);
+            for (int c = 0; c < 2; c++)
+                nh[2 * (j - (mu - p + 1)) + (size_t)c] =
+                    w->P[2 * (j - 1) + (size_t)c] + al * (w->P[2 * j + (size_t)c] - w->P[2 * (j - 1) + (size_t)c]);
+        }
+        memmove(&w->P[2 * (mu + 1)], &w->P[2 * mu], 2 * (w->n - mu) * sizeof *w->P);
+        memmove(&w->f[mu + 1], &w->f[mu], (w->n - mu) * sizeof *w->f);
+        memmove(&w->k[mu + 2], &w->k[mu + 1], (w->n + p - mu) * sizeof *w->k);
+        w->k[mu + 1] = z;
+        memcpy(&w->P[2 * (mu - p + 1)], nh, 2 * p * sizeof *nh);
+        w->n++;
+        budget--;
+        size_t lo = mu >= p + 2 ? mu - p - 2 : 0, hi = mu + 3 < w->n ? mu + 3 : w->n;
+        for (size_t i = lo; i < hi; i++)
+            w->f[i] = ref_feature(w, i);
+    }
+}
+
+TEST_CASE("adaptive loop: the chunked storage inserts what plain arrays insert",
+          "[plot][adaptive]")
+{
+    /* 3000 insertions: every chunk of 256 records splits several times */
+    static ref_loop w;
+    ct_rng r;
+    ct_rng_init(&r, 23);
+    for (int trial = 0; trial < 6; trial++) {
+        size_t p = 2 + (size_t)trial % 4, n = 8 + (size_t)ct_rng_below(&r, 40); /* C1 or more: one piece */
+        double knots[64], ctrl[2 * 64];
+        conica_bspline s;
+        conica_polyline pl;
+        conica_plot_settings set = conica_plot_defaults();
+        INFO("trial %d: degree %zu, %zu control points", trial, p, n);
+        for (size_t j = 0; j < n + p + 1; j++)
+            knots[j] = j <= p ? 0.0 : j >= n ? (double)(n - p) : (double)(j - p);
+        for (size_t j = 0; j < n; j++) {
+            ctrl[2 * j] = (double)j + ct_rng_range(&r, -0.4, 0.4);
+            ctrl[2 * j + 1] = ct_rng_range(&r, -3, 3);
+        }
+        conica_bspline_init(&s);
+        conica_polyline_init(&pl);
+        REQUIRE_EQ(conica_bspline_set((int)p, 2, knots, n + p + 1, ctrl, n, NULL, &s, NULL),
+                   CONICA_OK);
+        set.method = CONICA_PLOT_ADAPTIVE;
+        set.criterion = trial % 2 ? CONICA_CRIT_LENGTH : CONICA_CRIT_BASE_LINE;
+        set.rule = CONICA_RULE_MIDPOINT;
+        set.stop = CONICA_STOP_BUDGET;
+        set.knot_budget = 3000;
+        set.output = CONICA_OUTPUT_CONTROL_POLYGON;
+        REQUIRE_EQ(conica_plot(&s, &set, &pl, NULL, NULL), CONICA_OK);
+        w.n = n;
+        w.p = p;
+        w.segment = trial % 2;
+        memcpy(w.k, knots, (n + p + 1) * sizeof *knots);
+        memcpy(w.P, ctrl, 2 * n * sizeof *ctrl);
+        ref_adaptive(&w, set.knot_budget);
+        REQUIRE_EQ_U(pl.n, w.n);
+        size_t same = 0;
+        for (size_t i = 0; i < 2 * w.n; i++)
+            same += pl.xy[i] == w.P[i];
+        CHECK_EQ_U(same, 2 * w.n); /* bit for bit */
+        conica_polyline_free(&pl);
+        conica_bspline_free(&s);
+    }
+}
+
 TEST_CASE("baselines: counts and end points", "[plot][baselines]")
 {
     conica_bspline s;
@@ -612,6 +759,38 @@ TEST_CASE("limits and bad settings", "[plot][limits]")
     CHECK_EQ(conica_plot_criterion_from_name("extended-base-line"),
              CONICA_CRIT_EXTENDED_BASE_LINE);
     CHECK_EQ(conica_plot_rule_from_name("nope"), -1);
+    conica_polyline_free(&pl);
+    conica_bspline_free(&s);
+}
+
+TEST_CASE("control points near +-DBL_MAX: too large, not 'tolerance is zero'", "[plot][limits]")
+{
+    /* the extent's squares overflowed, so the relative tolerance came out
+     * infinite and was reported as zero (issue 17) */
+    const double k[] = {0, 0, 0, 1, 1, 1};
+    const double huge[] = {-1e308, 0, 1e308, 1, 2, 0};
+    const double big[] = {0, 0, 1e200, 1, 2, 0};
+    const double flat[] = {1, 1, 1, 1, 1, 1};
+    conica_bspline s;
+    conica_polyline pl;
+    conica_status st;
+    conica_plot_settings set = conica_plot_defaults();
+    conica_bspline_init(&s);
+    conica_polyline_init(&pl);
+    REQUIRE_EQ(conica_bspline_set(2, 2, k, 6, huge, 3, NULL, &s, NULL), CONICA_OK);
+    CHECK_EQ(conica_plot(&s, &set, &pl, NULL, &st), CONICA_ERR_LIMIT);
+    CHECK(strstr(st.message, "the control point values are too large") != NULL);
+    CHECK(strstr(st.message, "tolerance is zero") == NULL);
+    /* 1e200 is finite and so is its extent: plotted, finite points */
+    REQUIRE_EQ(conica_bspline_set(2, 2, k, 6, big, 3, NULL, &s, NULL), CONICA_OK);
+    CHECK_REL(conica_plot_extent(&s), 1e200, 1e-12); /* (1e200, 1) box */
+    REQUIRE_EQ(conica_plot(&s, &set, &pl, NULL, &st), CONICA_OK);
+    for (size_t i = 0; i < 2 * pl.n; i++)
+        CHECK(isfinite(pl.xy[i]));
+    /* a genuinely zero extent is still "tolerance is zero" */
+    REQUIRE_EQ(conica_bspline_set(2, 2, k, 6, flat, 3, NULL, &s, NULL), CONICA_OK);
+    CHECK_EQ(conica_plot(&s, &set, &pl, NULL, &st), CONICA_ERR_DEGENERATE);
+    CHECK(strstr(st.message, "tolerance is zero") != NULL);
     conica_polyline_free(&pl);
     conica_bspline_free(&s);
 }

@@ -284,6 +284,153 @@ TEST_CASE("arrange: identical contours (an invalid profile, as --force) terminat
     conica_scad_profile_free(&p);
 }
 
+/* The arrangement as it was first written, pair by pair: each contour's
+ * parent is the smallest larger one (|area|, then lower index) whose
+ * winding around its first vertex is not 0; the fill states walk the
+ * parent chain. The naive reference for the grid and forest walk of
+ * scad_arrange.c. */
+static int ref_winding(const conica_scad_contour *k, const double *q)
+{
+    int w = 0;
+    for (size_t i = 0; i < k->n; i++) {
+        const double *a = &k->xy[2 * i], *b = &k->xy[2 * ((i + 1) % k->n)];
+        if (a[1] <= q[1]) {
+            if (b[1] > q[1] && conica__scad_orient(a, b, q) > 0)
+                w++;
+        } else if (b[1] <= q[1] && conica__scad_orient(a, b, q) < 0) {
+            w--;
+        }
+    }
+    return w;
+}
+
+static int ref_filled(const conica_scad_profile *p, const size_t *par, const double *area,
+                      size_t c, int with_self)
+{
+    for (size_t a = with_self ? c : par[c]; a != SIZE_MAX; a = par[a]) {
+        size_t g = p->contours[a].group;
+        int w = 0, seen = 0;
+        for (size_t b = with_self ? c : par[c]; b != a; b = par[b])
+            seen |= p->contours[b].group == g;
+        if (seen)
+            continue;
+        for (size_t b = a; b != SIZE_MAX; b = par[b])
+            if (p->contours[b].group == g)
+                w += area[b] > 0 ? 1 : -1;
+        if (p->groups[g].fill == CONICA_SCAD_FILL_EVENODD ? (w & 1) != 0 : w != 0)
+            return 1;
+    }
+    return 0;
+}
+
+/* Per contour: -1 dropped, else 2 * hole + reversed, and the kept parent. */
+static void ref_arrange(const conica_scad_profile *p, int *kind, size_t *kept_parent)
+{
+    size_t n = p->ncontours;
+    size_t *par = malloc(n * sizeof *par);
+    double *area = malloc(n * sizeof *area);
+    int *in = malloc(n * sizeof *in), *out = malloc(n * sizeof *out);
+    REQUIRE(par && area && in && out);
+    for (size_t c = 0; c < n; c++)
+        area[c] = 0.5 * conica__scad_area2(p->contours[c].xy, p->contours[c].n);
+    for (size_t c = 0; c < n; c++) {
+        double best = INFINITY, ac = fabs(area[c]);
+        par[c] = SIZE_MAX;
+        for (size_t d = 0; d < n; d++) {
+            double ad = fabs(area[d]);
+            if ((ad > ac || (ad == ac && d < c)) && ad < best &&
+                ref_winding(&p->contours[d], p->contours[c].xy) != 0) {
+                best = ad;
+                par[c] = d;
+            }
+        }
+    }
+    for (size_t c = 0; c < n; c++) {
+        in[c] = ref_filled(p, par, area, c, 1);
+        out[c] = ref_filled(p, par, area, c, 0);
+    }
+    for (size_t c = 0; c < n; c++) {
+        size_t q = par[c];
+        if (in[c] == out[c]) {
+            kind[c] = -1;
+            continue;
+        }
+        kind[c] = 2 * !in[c] + (!in[c] ? area[c] > 0 : area[c] < 0);
+        while (q != SIZE_MAX && in[q] == out[q])
+            q = par[q];
+        kept_parent[c] = q;
+    }
+    free(par);
+    free(area);
+    free(in);
+    free(out);
+}
+
+TEST_CASE("arrange agrees with the pairwise reference on random overlapping profiles",
+          "[scad][arrange]")
+{
+    ct_rng r;
+    ct_rng_init(&r, 17);
+    for (int trial = 0; trial < 60; trial++) {
+        conica_scad_profile p;
+        conica_scad_layout l;
+        size_t ng = 1 + (size_t)ct_rng_below(&r, 4), n = 1 + (size_t)ct_rng_below(&r, 300);
+        double span = trial % 3 == 0 ? 10.0 : 100.0; /* dense piles and sparse fields */
+        conica_scad_profile_init(&p);
+        conica_scad_layout_init(&l);
+        for (size_t g = 0; g < ng; g++)
+            group(&p, "g", (size_t)ct_rng_below(&r, 2) ? CONICA_SCAD_FILL_EVENODD
+                                               : CONICA_SCAD_FILL_NONZERO);
+        for (size_t c = 0; c < n; c++) {
+            double xy[2 * 12];
+            size_t m = 3 + (size_t)ct_rng_below(&r, 10);
+            double cx = ct_rng_range(&r, 0, span), cy = ct_rng_range(&r, 0, span);
+            double rad = trial % 5 == 0 && c % 7 == 0 ? ct_rng_range(&r, 20, 80)
+                                                     : ct_rng_range(&r, 0.5, 8);
+            if (trial % 4 == 1) { /* concentric: deep nesting */
+                cx = cy = 50;
+                rad = 1 + (double)c * 0.25;
+            }
+            circle(xy, m, cx, cy, rad, (int)((size_t)ct_rng_below(&r, 2)));
+            REQUIRE_EQ(conica_scad_add_contour(&p, (size_t)ct_rng_below(&r, ng), xy, m, NULL),
+                       CONICA_OK);
+        }
+        {
+            size_t total = 0;
+            for (size_t c = 0; c < n; c++)
+                total += p.contours[c].n;
+            CHECK_EQ_U(p.npoints, total); /* kept by add_contour */
+        }
+        int *kind = malloc(n * sizeof *kind);
+        size_t *kp = malloc(n * sizeof *kp), seen = 0;
+        REQUIRE(kind && kp);
+        ref_arrange(&p, kind, kp);
+        conica_code rc = conica_scad_arrange(&p, &l, NULL);
+        INFO("trial %d: %zu contours in %zu groups", trial, n, ng);
+        if (rc != CONICA_OK) {
+            for (size_t c = 0; c < n; c++)
+                CHECK_EQ(kind[c], -1); /* nothing filled */
+        }
+        for (size_t i = 0; rc == CONICA_OK && i < l.npaths; i++) {
+            size_t c = l.paths[i].contour;
+            INFO("contour %zu", c);
+            CHECK_EQ(kind[c], 2 * l.paths[i].hole + l.paths[i].reversed);
+            CHECK_EQ_U(kp[c], l.paths[i].parent);
+            seen++;
+        }
+        {
+            size_t kept = 0;
+            for (size_t c = 0; c < n; c++)
+                kept += kind[c] >= 0;
+            CHECK_EQ_U(seen, kept);
+        }
+        free(kind);
+        free(kp);
+        conica_scad_layout_free(&l);
+        conica_scad_profile_free(&p);
+    }
+}
+
 TEST_CASE("holes by containment and fill rule", "[scad][arrange]")
 {
     conica_scad_profile p;

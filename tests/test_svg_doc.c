@@ -715,6 +715,96 @@ TEST_CASE("hostile XML is refused", "[svg][doc][security]")
         CHECK(strstr(st.message, "longer than libxml2's limit of 10000000 bytes") != NULL);
         free(t);
     }
+    SECTION("a text node over libxml2's cap fails the load (no truncated tree)")
+    {
+        /* libxml2 stops at a text node over 10 MB with wellFormed still
+         * set; the load returned the tree up to there and a save lost the
+         * rest of the document (issue 17) */
+        size_t big = (size_t)10000100, i;
+        const char *head = "<svg xmlns=\"http://www.w3.org/2000/svg\"><text>";
+        const char *tail = "</text><path id=\"after\" d=\"M0 0L1 0L1 1Z\"/></svg>";
+        char *t = malloc(big + 200);
+        conica_svg_limits lim = conica_svg_limits_defaults();
+        strcpy(t, head);
+        i = strlen(t);
+        memset(t + i, 'a', big);
+        strcpy(t + i + big, tail);
+        lim.max_bytes = big + 1000;
+        CHECK(try_load(t, &lim, &st) == CONICA_ERR_PARSE);
+        CHECK(strstr(st.message, "longer than libxml2's limit of 10000000 bytes") != NULL);
+        CHECK(strstr(st.message, "huge text node") != NULL);
+        CHECK_EQ_U(st.line, 1);
+        free(t);
+    }
+    SECTION("an error libxml2 does not count as fatal still fails the load")
+    {
+        CHECK(try_load("<svg xmlns=\"http://www.w3.org/2000/svg\">\n<path xlink:href=\"#a\" "
+                       "d=\"M0 0L1 0L1 1Z\"/></svg>",
+                       NULL, &st) == CONICA_ERR_PARSE);
+        CHECK(strstr(st.message, "XML: namespace error (libxml2: Namespace prefix xlink") != NULL);
+        CHECK_EQ_U(st.line, 2);
+    }
+    SECTION("attributes and namespace declarations are counted before libxml2 parses")
+    {
+        conica_svg_limits lim = conica_svg_limits_defaults();
+        char t[4096];
+        size_t i, k;
+        /* 5 attributes; '>' and '/' inside values and a comment, CDATA
+         * section, processing instruction and DOCTYPE with '>' and quotes
+         * inside are not start tags */
+        const char *doc = "<?xml version=\"1.0\"?>\n<!DOCTYPE svg [<!ENTITY e \"a>b\"> <!-- x=\"1\" > -->]>"
+                          "\n<svg xmlns=\"http://www.w3.org/2000/svg\" xmlns:a=\"urn:a\">"
+                          "<!-- <path a=\"1\" b=\"2\" c=\"3\" d=\"4\" e=\"5\" f=\"6\"/> -->"
+                          "<![CDATA[<g a=\"1\" b=\"2\" c=\"3\" d=\"4\" e=\"5\" f=\"6\">]]><?pi a=\"1\" b=\"2\" c=\"3\" d=\"4\" e=\"5\" f=\"6\"?>"
+                          "\n<path id='p' d=\"M0 0L1 0L1 1Z\" class=\"a>b/c\" a:x = \"1\" style=\"\"/>"
+                          "</svg>";
+        lim.max_attributes = 5;
+        lim.max_namespaces = 2;
+        CHECK(try_load(doc, &lim, &st) == CONICA_OK);
+        lim.max_attributes = 4;
+        CHECK(try_load(doc, &lim, &st) == CONICA_ERR_LIMIT);
+        CHECK(strstr(st.message, "element <path> has more than 4 attributes (--max-attributes)") !=
+              NULL);
+        CHECK_EQ_U(st.line, 4);
+        lim.max_attributes = 5;
+        lim.max_namespaces = 1;
+        CHECK(try_load(doc, &lim, &st) == CONICA_ERR_LIMIT);
+        CHECK(strstr(st.message, "element <svg> has more than 1 namespace declarations in scope "
+                                 "(--max-namespaces)") != NULL);
+        CHECK_EQ_U(st.line, 3);
+        /* in scope: an ancestor's declarations count, a closed sibling's
+         * do not (63 on the root: each <g> with one more is at 64, a <g>
+         * inside one of them with another is at 65) */
+        lim = conica_svg_limits_defaults();
+        k = (size_t)snprintf(t, sizeof t, "<svg xmlns=\"http://www.w3.org/2000/svg\"");
+        for (i = 1; i < 63; i++)
+            k += (size_t)snprintf(t + k, sizeof t - k, " xmlns:n%zu=\"u\"", i);
+        snprintf(t + k, sizeof t - k, "><g xmlns:b=\"u\"/><g xmlns:c=\"u\"></g><g><g "
+                                      "xmlns:d=\"u\"><g xmlns:e=\"u\"/></g></g></svg>");
+        CHECK(try_load(t, &lim, &st) == CONICA_ERR_LIMIT); /* 63 + d + e = 65 at <g xmlns:e> */
+        CHECK(strstr(st.message, "element <g> has more than 64 namespace declarations") != NULL);
+        snprintf(t + k, sizeof t - k, "><g xmlns:b=\"u\"/><g xmlns:c=\"u\"></g><g><g "
+                                      "xmlns:d=\"u\"></g><g xmlns:e=\"u\"/></g></svg>");
+        CHECK(try_load(t, &lim, &st) == CONICA_OK);
+        /* the scan cannot be thrown off by a lone quote in a DTD
+         * processing instruction or a malformed tag before the flood */
+        k = (size_t)snprintf(t, sizeof t, "<!DOCTYPE svg [<?pi don't ?>]><svg xmlns=\"http://"
+                                          "www.w3.org/2000/svg\"><g x><path");
+        for (i = 0; i < 300; i++)
+            k += (size_t)snprintf(t + k, sizeof t - k, " a%zu=''", i);
+        snprintf(t + k, sizeof t - k, "/></g></svg>");
+        REQUIRE(k < sizeof t - 16);
+        CHECK(try_load(t, NULL, &st) != CONICA_OK);
+        CHECK(strstr(st.message, "more than 256 attributes") != NULL);
+        /* the defaults: 256 attributes and 64 declarations */
+        k = (size_t)snprintf(t, sizeof t, "<svg xmlns=\"http://www.w3.org/2000/svg\"><path");
+        for (i = 0; i < 257; i++)
+            k += (size_t)snprintf(t + k, sizeof t - k, " a%zu=''", i);
+        snprintf(t + k, sizeof t - k, "/></svg>");
+        REQUIRE(k < sizeof t - 16);
+        CHECK(try_load(t, NULL, &st) == CONICA_ERR_LIMIT);
+        CHECK(strstr(st.message, "more than 256 attributes") != NULL);
+    }
     SECTION("a path data cap with a clear message")
     {
         const char *t = "<svg xmlns=\"http://www.w3.org/2000/svg\">\n<path id=\"p\" "
@@ -878,6 +968,31 @@ static void log_warning(void *ctx, size_t line, const char *msg)
     (void)line;
     snprintf(w->text + n, sizeof w->text - n, "%s\n", msg);
     w->count++;
+}
+
+TEST_CASE("shapes with NaN or infinite geometry: warned as not a number", "[svg][doc]")
+{
+    /* said "units other than user units" before (issue 17) */
+    const char *t = "<svg xmlns=\"http://www.w3.org/2000/svg\"><rect id=\"r\" width=\"NaN\" "
+                    "height=\"5\"/><circle id=\"c\" r=\"1e999\"/><ellipse id=\"e\" rx=\"1\" "
+                    "ry=\"inf\"/><line id=\"l\" x2=\"-nan\"/><rect id=\"u\" width=\"3mm\" "
+                    "height=\"1\"/></svg>";
+    conica_svg_doc *doc = load(t);
+    conica_svg_settings s = conica_svg_defaults();
+    warn_log w;
+    memset(&w, 0, sizeof w);
+    s.convert_shapes = 1;
+    s.warn = log_warning;
+    s.warn_ctx = &w;
+    REQUIRE(conica_svg_process(doc, &s, NULL, NULL) == CONICA_OK);
+    INFO("%s", w.text);
+    CHECK_EQ_U(w.count, 5);
+    CHECK(strstr(w.text, "rect 'r': geometry attribute 'width' is not a finite number") != NULL);
+    CHECK(strstr(w.text, "circle 'c': geometry attribute 'r' is not a finite number") != NULL);
+    CHECK(strstr(w.text, "ellipse 'e': geometry attribute 'ry' is not a finite number") != NULL);
+    CHECK(strstr(w.text, "line 'l': geometry attribute 'x2' is not a finite number") != NULL);
+    CHECK(strstr(w.text, "rect 'u': geometry attributes in units other than user units") != NULL);
+    conica_svg_doc_free(doc);
 }
 
 TEST_CASE("--select ids that name no element are warned about", "[svg][doc]")

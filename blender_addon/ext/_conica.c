@@ -166,6 +166,11 @@ static int cx_float_format(const char *fmt, Py_ssize_t itemsize)
  * PyMem_Free). Buffers (array('f'/'d'), memoryviews of them, Blender's
  * foreach_get targets) are copied directly; any other sequence is read
  * item by item with float(). Returns 0 and sets an exception on failure.
+ *
+ * float() of an item may run Python (__float__, __index__) that changes
+ * the sequence: clearing or growing a list frees the item array that
+ * PySequence_Fast_ITEMS points into (issue 17). The items are therefore
+ * read from a tuple snapshot that owns a reference to each of them.
  */
 static int cx_read_doubles(PyObject *obj, const char *what, double **out, size_t *n)
 {
@@ -214,13 +219,22 @@ static int cx_read_doubles(PyObject *obj, const char *what, double **out, size_t
         PyErr_Format(PyExc_TypeError, "%s: expected a flat sequence of numbers, got str", what);
         return 0;
     }
-    PyObject *seq = PySequence_Fast(obj, "expected a flat sequence of numbers");
+    /* a list over the cap is refused before the snapshot copies it */
+    if (PyList_Check(obj) && (size_t)PyList_GET_SIZE(obj) > CX_MAX_INPUT_VALUES) {
+        PyErr_Format(PyExc_ValueError, "%s: %zd values exceed the limit of %zu", what,
+                     PyList_GET_SIZE(obj), CX_MAX_INPUT_VALUES);
+        return 0;
+    }
+    PyObject *seq = PySequence_Tuple(obj); /* a tuple is returned as itself */
     if (seq == NULL) {
+        if (PyErr_Occurred() && !PyErr_ExceptionMatches(PyExc_TypeError))
+            return 0; /* MemoryError, or an error raised by the sequence itself */
+        PyErr_Clear();
         PyErr_Format(PyExc_TypeError, "%s: expected a flat sequence of numbers, got %s", what,
                      Py_TYPE(obj)->tp_name);
         return 0;
     }
-    Py_ssize_t len = PySequence_Fast_GET_SIZE(seq);
+    Py_ssize_t len = PyTuple_GET_SIZE(seq);
     if ((size_t)len > CX_MAX_INPUT_VALUES) {
         Py_DECREF(seq);
         PyErr_Format(PyExc_ValueError, "%s: %zd values exceed the limit of %zu", what, len,
@@ -233,13 +247,13 @@ static int cx_read_doubles(PyObject *obj, const char *what, double **out, size_t
         PyErr_NoMemory();
         return 0;
     }
-    PyObject **items = PySequence_Fast_ITEMS(seq);
     for (Py_ssize_t i = 0; i < len; i++) {
-        double v = PyFloat_AsDouble(items[i]);
+        PyObject *item = PyTuple_GET_ITEM(seq, i); /* the tuple keeps it alive */
+        double v = PyFloat_AsDouble(item);
         if (v == -1.0 && PyErr_Occurred()) {
             PyErr_Clear();
             PyErr_Format(PyExc_TypeError, "%s[%zd]: expected a number, got %s", what, i,
-                         Py_TYPE(items[i])->tp_name);
+                         Py_TYPE(item)->tp_name);
             PyMem_Free(d);
             Py_DECREF(seq);
             return 0;
@@ -277,6 +291,22 @@ static PyObject *cx_make_array(cx_state *s, char typecode, const double *v, size
 {
     size_t count = items * (size_t)stride;
     size_t esize = typecode == 'f' ? sizeof(float) : sizeof(double);
+    /* Callers make all the arrays of a result, then check them: after one
+     * failed, make no more (calling array() with an exception set is an
+     * error of its own). */
+    if (PyErr_Occurred())
+        return NULL;
+    if (typecode == 'f') {
+        /* a finite double beyond float32's range would become inf: refuse
+         * it rather than hand Blender an infinite coordinate */
+        for (size_t i = 0; i < items * (size_t)dim; i++)
+            if (isfinite(v[i]) && isinf((float)v[i])) {
+                return cx_raisef(s->limit_error,
+                                 "value %.17g (item %zu) is not representable in float32 "
+                                 "(largest %g); use typecode='d'",
+                                 v[i], i / (size_t)dim, (double)FLT_MAX);
+            }
+    }
     PyObject *bytes = PyBytes_FromStringAndSize(NULL, (Py_ssize_t)(count * esize));
     if (bytes == NULL)
         return NULL;
@@ -1248,7 +1278,7 @@ static PyObject *cx_plot(PyObject *self, PyObject *args, PyObject *kw)
     static char *kwlist[] = {"ctrl", "dim", "degree", "knots", "weights", "tolerance",
                              "attrs", "nattrs", "typecode", "max_points", "tangents", NULL};
     cx_state *S = cx_get_state(self);
-    PyObject *octrl, *oknots, *ow = Py_None, *oattrs = Py_None, *otype = NULL;
+    PyObject *octrl, *oknots = NULL, *ow = Py_None, *oattrs = Py_None, *otype = NULL;
     int dim = 3, degree = -1, nattrs = 0, want_tan = 0;
     double tol = -1.0;
     Py_ssize_t max_points = (Py_ssize_t)CX_DEFAULT_MAX_POINTS;
@@ -1298,8 +1328,8 @@ static PyObject *cx_plot(PyObject *self, PyObject *args, PyObject *kw)
     }
     size_t n = nc / (size_t)dim;
     if (n < (size_t)degree + 1) {
-        cx_raisef(S->degenerate, "a degree-%d spline needs at least %d control points, got %zu",
-                  degree, degree + 1, n);
+        cx_raisef(S->degenerate, "a degree-%d spline needs at least %zu control points, got %zu",
+                  degree, (size_t)degree + 1, n); /* degree + 1 overflows int at INT_MAX */
         goto done;
     }
     if (nk != n + (size_t)degree + 1) {
@@ -2190,11 +2220,30 @@ static PyObject *cx_fit_plane_py(PyObject *self, PyObject *arg)
         PyMem_Free(p);
         return cx_raisef(S->nonfinite, "point %zu has a non-finite coordinate", bad / 3);
     }
+    /* the covariance and the size overflow beyond this (NaN plane) */
+    if ((bad = cx_first_huge(p, nv)) < nv) {
+        PyMem_Free(p);
+        return cx_raisef(S->limit_error, "point %zu has a coordinate beyond +-%g", bad / 3,
+                         CX_MAX_ABS_COORD);
+    }
     cx_plane pl;
     Py_BEGIN_ALLOW_THREADS
     cx_fit_plane(p, nv / 3, &pl);
     Py_END_ALLOW_THREADS
     PyMem_Free(p);
+    if (pl.extent < CX_MIN_PLANE_SIZE)
+        return cx_raisef(S->degenerate,
+                         "no plane: the points' extent %.3g is below %.3g (coincident points)",
+                         pl.extent, CX_MIN_PLANE_SIZE);
+    {
+        const double *all[] = {pl.origin, pl.normal, pl.u, pl.v};
+        for (int q = 0; q < 4; q++)
+            for (int k = 0; k < 3; k++)
+                if (!isfinite(all[q][k]))
+                    return cx_raisef(S->numeric, "the plane fit did not give a finite plane");
+        if (!isfinite(pl.deviation) || !isfinite(pl.size))
+            return cx_raisef(S->numeric, "the plane fit did not give a finite plane");
+    }
     return Py_BuildValue("(ddd)(ddd)(ddd)(ddd)dd", pl.origin[0], pl.origin[1], pl.origin[2],
                          pl.normal[0], pl.normal[1], pl.normal[2], pl.u[0], pl.u[1], pl.u[2],
                          pl.v[0], pl.v[1], pl.v[2], pl.deviation, pl.size);

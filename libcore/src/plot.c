@@ -328,10 +328,16 @@ double conica__ctrl_diagonal(const conica_bspline *s)
             hi[c] = pt[c] > hi[c] ? pt[c] : hi[c];
         }
     }
-    double d2 = 0.0;
+    /* scaled by the largest side: the squares of sides beyond 1.3e154
+     * would overflow although the diagonal itself is finite */
+    double m = 0.0, d2 = 0.0;
     for (int c = 0; c < pd; c++)
-        d2 += (hi[c] - lo[c]) * (hi[c] - lo[c]);
-    return sqrt(d2);
+        m = hi[c] - lo[c] > m ? hi[c] - lo[c] : m;
+    if (!(m > 0.0) || !isfinite(m))
+        return m;
+    for (int c = 0; c < pd; c++)
+        d2 += ((hi[c] - lo[c]) / m) * ((hi[c] - lo[c]) / m);
+    return m * sqrt(d2);
 }
 
 double conica_plot_extent(const conica_bspline *s)
@@ -410,7 +416,13 @@ conica_code conica_plot(const conica_bspline *s, const conica_plot_settings *set
     sx.tolerance = tol;
     conica__out o;
     conica__out_init(&o, conica_bspline_point_dim(s), set->max_points);
-    if (!(tol > 0) || !isfinite(tol)) {
+    if (!isfinite(tol) || (!(tol > 0) && !isfinite(conica__ctrl_diagonal(s)))) {
+        /* the extent overflowed: control points near +-DBL_MAX */
+        rc = conica__fail(st, CONICA_ERR_LIMIT, 0, 0,
+                          "the control point values are too large: the extent of the control "
+                          "polygon overflows (%g); scale the spline down",
+                          conica__ctrl_diagonal(s));
+    } else if (!(tol > 0)) {
         rc = conica__fail(st, CONICA_ERR_DEGENERATE, 0, 0,
                           "tolerance is zero: the control points span no area "
                           "(give an absolute tolerance)");

@@ -6,6 +6,7 @@
 #include <errno.h>
 #include <limits.h>
 #include <math.h>
+#include <signal.h>
 #include <stdarg.h>
 #include <stdlib.h>
 #include <string.h>
@@ -128,13 +129,155 @@ int cli_read_file(const char *prog, const char *path, size_t max_bytes, char **b
     return 0;
 }
 
+/* ------------------------------------------------------------ signals */
+
+/* The signals that remove the temporary before the tool dies: the terminal
+ * and session ones (Ctrl-C, kill, timeout(1), a closed terminal), a broken
+ * pipe, and the file-size limit (ulimit -f) that writing the temporary can
+ * hit. SIGKILL cannot be caught: it leaves the hidden temporary. */
+static const int cli_sig_list[] = {SIGINT, SIGTERM, SIGHUP, SIGPIPE, SIGXFSZ};
+static const char *const cli_sig_names[] = {"SIGINT", "SIGTERM", "SIGHUP", "SIGPIPE",
+                                            "SIGXFSZ (file size limit exceeded)"};
+#define CLI_NSIG (sizeof cli_sig_list / sizeof cli_sig_list[0])
+
+/* The one piece of global state of the tools (STYLE.md allows it for a
+ * signal handler): what the handler needs to remove the open temporary and
+ * say so, and the dispositions to restore. Set and cleared with the
+ * signals blocked; the handler only reads it. One output at a time. */
+static struct {
+    const char *volatile tmp; /* the temporary to unlink, NULL when none */
+    const char *prog;         /* for the message */
+    const char *target;       /* the output it stands for */
+    struct sigaction old[CLI_NSIG];
+    int installed[CLI_NSIG];
+} cli_sig;
+
+static void cli_sig_write(const char *s)
+{
+    size_t n = strlen(s);
+    while (n > 0) {
+        ssize_t k = write(STDERR_FILENO, s, n);
+        if (k <= 0)
+            return;
+        s += k;
+        n -= (size_t)k;
+    }
+}
+
+/* Async-signal-safe only: unlink, write, sigaction, sigprocmask, raise, _exit. */
+static void cli_sig_handler(int signo)
+{
+    const char *tmp = cli_sig.tmp;
+    const char *name = "a signal";
+    size_t i;
+    int saved = errno;
+    for (i = 0; i < CLI_NSIG; i++)
+        if (cli_sig_list[i] == signo)
+            name = cli_sig_names[i];
+    if (tmp) {
+        cli_sig.tmp = NULL;
+        unlink(tmp);
+        cli_sig_write(cli_sig.prog);
+        cli_sig_write(": error: ");
+        cli_sig_write(cli_sig.target);
+        cli_sig_write(": stopped by ");
+        cli_sig_write(name);
+        cli_sig_write("; output not written (the temporary file was removed)\n");
+    }
+    errno = saved;
+    if (signo == SIGXFSZ)
+        _exit(128 + signo); /* its default action would dump core */
+    /* Die of the signal itself, so a calling shell sees what happened
+     * (a loop in a script stops at Ctrl-C): status 128 + signo. */
+    {
+        struct sigaction dfl;
+        sigset_t set;
+        memset(&dfl, 0, sizeof dfl);
+        dfl.sa_handler = SIG_DFL;
+        sigemptyset(&dfl.sa_mask);
+        sigaction(signo, &dfl, NULL);
+        sigemptyset(&set);
+        sigaddset(&set, signo);
+        sigprocmask(SIG_UNBLOCK, &set, NULL);
+        raise(signo);
+    }
+    _exit(128 + signo);
+}
+
+static void cli_sig_block(sigset_t *old)
+{
+    sigset_t set;
+    size_t i;
+    sigemptyset(&set);
+    for (i = 0; i < CLI_NSIG; i++)
+        sigaddset(&set, cli_sig_list[i]);
+    sigprocmask(SIG_BLOCK, &set, old);
+}
+
+/* Register tmp (signals blocked by the caller) and catch the signals,
+ * except those the tool was started with ignored (nohup, a background
+ * job's SIGINT): they stay ignored. */
+static void cli_sig_arm(const char *prog, const char *target, const char *tmp)
+{
+    struct sigaction sa;
+    size_t i;
+    memset(&sa, 0, sizeof sa);
+    sa.sa_handler = cli_sig_handler;
+    sigemptyset(&sa.sa_mask);
+    for (i = 0; i < CLI_NSIG; i++)
+        sigaddset(&sa.sa_mask, cli_sig_list[i]); /* one handler runs at a time */
+    cli_sig.prog = prog;
+    cli_sig.target = target;
+    cli_sig.tmp = tmp;
+    for (i = 0; i < CLI_NSIG; i++) {
+        cli_sig.installed[i] = 0;
+        if (sigaction(cli_sig_list[i], NULL, &cli_sig.old[i]) != 0 ||
+            cli_sig.old[i].sa_handler == SIG_IGN)
+            continue;
+        cli_sig.installed[i] = sigaction(cli_sig_list[i], &sa, NULL) == 0;
+    }
+}
+
+/* Forget the temporary and restore the dispositions (signals blocked). */
+static void cli_sig_disarm(void)
+{
+    size_t i;
+    cli_sig.tmp = NULL;
+    for (i = 0; i < CLI_NSIG; i++)
+        if (cli_sig.installed[i]) {
+            sigaction(cli_sig_list[i], &cli_sig.old[i], NULL);
+            cli_sig.installed[i] = 0;
+        }
+}
+
+/* ------------------------------------------------------------ output */
+
+/* The temporary beside target: ".NAME.conica-tmp.XXXXXX" in the same
+ * directory (rename() within one file system is atomic), hidden so that
+ * the one that SIGKILL or a crash can leave behind does not show up in
+ * listings and globs, and named so that it says what it is. */
+static char *temp_name(const char *target)
+{
+    static const char suffix[] = ".conica-tmp.XXXXXX";
+    const char *slash = strrchr(target, '/');
+    size_t dlen = slash ? (size_t)(slash - target) + 1 : 0;
+    size_t blen = strlen(target + dlen);
+    char *t = malloc(dlen + 1 + blen + sizeof suffix);
+    if (!t)
+        return NULL;
+    memcpy(t, target, dlen);
+    t[dlen] = '.';
+    memcpy(t + dlen + 1, target + dlen, blen);
+    memcpy(t + dlen + 1 + blen, suffix, sizeof suffix);
+    return t;
+}
+
 int cli_output_open(const char *prog, const char *path, cli_output *out)
 {
-    static const char suffix[] = ".tmpXXXXXX";
     struct stat sb, lsb;
     char *target = NULL;
-    size_t plen;
-    int fd;
+    sigset_t held;
+    int fd, e;
 
     out->f = NULL;
     out->path = NULL;
@@ -179,20 +322,22 @@ int cli_output_open(const char *prog, const char *path, cli_output *out)
             return cli_error(prog, path, "out of memory");
         memcpy(target, path, strlen(path) + 1);
     }
-    plen = strlen(target);
     out->path = target;
-    out->tmp = malloc(plen + sizeof suffix);
+    out->tmp = temp_name(target);
     if (!out->tmp) {
         free(out->path);
         out->path = NULL;
         return cli_error(prog, path, "out of memory");
     }
-    memcpy(out->tmp, target, plen);
-    memcpy(out->tmp + plen, suffix, sizeof suffix);
-    /* The temporary lives beside the (resolved) target so rename() is atomic. */
+    /* The temporary lives beside the (resolved) target so rename() is
+     * atomic; from its creation on, a signal removes it (cli_sig_*). */
+    cli_sig_block(&held);
     fd = mkstemp(out->tmp);
+    e = errno;
+    if (fd >= 0)
+        cli_sig_arm(prog, out->path, out->tmp);
+    sigprocmask(SIG_SETMASK, &held, NULL);
     if (fd < 0) {
-        int e = errno;
         free(out->path);
         free(out->tmp);
         out->path = out->tmp = NULL;
@@ -200,12 +345,9 @@ int cli_output_open(const char *prog, const char *path, cli_output *out)
     }
     out->f = fdopen(fd, "wb");
     if (!out->f) {
-        int e = errno;
+        e = errno;
         close(fd);
-        unlink(out->tmp);
-        free(out->path);
-        free(out->tmp);
-        out->path = out->tmp = NULL;
+        cli_output_abort(out);
         return cli_error(prog, path, "cannot open output: %s", strerror(e));
     }
     return 0;
@@ -247,16 +389,22 @@ int cli_output_commit(const char *prog, cli_output *out)
         e = errno;
     }
     out->f = NULL;
-    if (!failed) {
-        if (rename(out->tmp, out->path) != 0) {
+    {
+        /* rename or unlink, and forget the temporary, with the signals
+         * held: a handler then never removes a name already renamed */
+        sigset_t mask;
+        cli_sig_block(&mask);
+        if (!failed && rename(out->tmp, out->path) != 0) {
             failed = 1;
             e = errno;
         }
+        if (failed)
+            unlink(out->tmp);
+        cli_sig_disarm();
+        sigprocmask(SIG_SETMASK, &mask, NULL);
     }
-    if (failed) {
-        unlink(out->tmp);
+    if (failed)
         cli_error(prog, out->path, "cannot write output: %s", strerror(e));
-    }
     free(out->tmp);
     free(out->path);
     out->tmp = out->path = NULL;
@@ -267,8 +415,13 @@ void cli_output_abort(cli_output *out)
 {
     if (out->f && out->f != stdout)
         fclose(out->f);
-    if (out->tmp)
+    if (out->tmp) {
+        sigset_t mask;
+        cli_sig_block(&mask);
         unlink(out->tmp);
+        cli_sig_disarm();
+        sigprocmask(SIG_SETMASK, &mask, NULL);
+    }
     free(out->tmp);
     free(out->path);
     out->f = NULL;
@@ -341,6 +494,53 @@ int cli_parse_double(const char *s, double *out)
         return 1;
     *out = v;
     return 0;
+}
+
+/* A subdivision whose output overflowed: the input point of the largest
+ * coordinate when that is beyond CLI_HUGE_COORD (its index in *index and
+ * the coordinate in *value), else 0. */
+static int huge_input_point(const char *buf, size_t len, conica_code code,
+                            const conica_status *st, size_t *index, double *value)
+{
+    conica_curve c;
+    size_t i, best = 0;
+    double big = 0.0;
+    if (code != CONICA_ERR_NUMERIC || !strstr(st->message, "of the output is not finite"))
+        return 0;
+    conica_curve_init(&c);
+    if (conica_curve_parse(buf, len, &c, NULL) != CONICA_OK) {
+        conica_curve_free(&c);
+        return 0;
+    }
+    for (i = 0; i < 2 * c.n; i++)
+        if (fabs(c.xy[i]) > big) {
+            big = fabs(c.xy[i]);
+            best = i;
+        }
+    if (big > CLI_HUGE_COORD)
+        *value = c.xy[best];
+    conica_curve_free(&c);
+    if (!(big > CLI_HUGE_COORD))
+        return 0;
+    *index = best / 2;
+    return 1;
+}
+
+size_t cli_point_failure(const char *buf, size_t len, conica_code code, const conica_status *st,
+                         char *msg, size_t cap)
+{
+    size_t index = 0;
+    double value = 0.0;
+    const char *what = st->message[0] ? st->message : conica_strerror(code);
+    if (huge_input_point(buf, len, code, st, &index, &value)) {
+        snprintf(msg, cap,
+                 "coordinate %g of point %zu is too large for the subdivision (its squares "
+                 "overflow: keep coordinates within +-%g); %s",
+                 value, index + 1, CLI_HUGE_COORD, what);
+        return conica_curve_line_of_point(buf, len, index, 0);
+    }
+    snprintf(msg, cap, "%s", what);
+    return cli_point_line(buf, len, code, st);
 }
 
 size_t cli_point_line(const char *buf, size_t len, conica_code code, const conica_status *st)

@@ -41,6 +41,18 @@ int cli_usage_error(const char *prog, const char *fmt, ...) CLI_PRINTF(2, 3);
  * failure names no point. */
 size_t cli_point_line(const char *buf, size_t len, conica_code code, const conica_status *st);
 
+/* Coordinates beyond this make the subdivision's squared distances
+ * overflow (1e150^2 = 1e300 < DBL_MAX); the _conica extension refuses
+ * them up front, the tools name them when the output comes out non-finite. */
+#define CLI_HUGE_COORD 1e150
+
+/* As cli_point_line(), and the message to print into msg: the engine's,
+ * or, when the output came out non-finite (CONICA_ERR_NUMERIC) and an
+ * input point has a coordinate beyond CLI_HUGE_COORD, one that names that
+ * coordinate, with the returned line being that point's. */
+size_t cli_point_failure(const char *buf, size_t len, conica_code code, const conica_status *st,
+                         char *msg, size_t cap);
+
 /* Read all of path ("-" or NULL = stdin) into a new NUL-terminated buffer
  * (*len excludes the NUL). Fails with a message (file name included) when
  * the file cannot be read or is larger than max_bytes. Caller frees *buf.
@@ -61,7 +73,16 @@ int cli_read_file(const char *prog, const char *path, size_t max_bytes, char **b
  * set-id bits: a 0600 file stays 0600). A new file gets 0666 & ~umask, as fopen() would give it. A
  * symbolic link to nothing (dangling) is an error rather than replaced.
  * Not kept: the owner (only root could), hard links (rename makes a new
- * inode), extended attributes. */
+ * inode), extended attributes.
+ *
+ * The temporary is `.NAME.conica-tmp.XXXXXX` beside the target (hidden,
+ * and saying what it is). While it exists SIGINT, SIGTERM, SIGHUP, SIGPIPE
+ * and SIGXFSZ (a write past `ulimit -f`) remove it, print `prog: error:
+ * target: stopped by SIG...; output not written ...` and end the tool with
+ * status 128 + signo (by the signal itself, SIGXFSZ by _exit: its default
+ * would dump core); signals the tool was started with ignored stay
+ * ignored. SIGKILL leaves the hidden temporary and the target untouched.
+ * One output open at a time (the handler knows one temporary). */
 typedef struct cli_output {
     FILE *f;          /* where to write */
     char *path;       /* final path (symlinks resolved), NULL for stdout */

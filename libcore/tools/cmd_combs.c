@@ -84,6 +84,8 @@ int conica_cmd_combs(int argc, char **argv)
                                        COMBS_MAX_WIDTH, argv[i]);
         } else if (!strcmp(a, "-o") && has_next) {
             out_path = argv[++i];
+            if (!*out_path)
+                return cli_usage_error(prog, "-o needs a file name");
         } else if (!strcmp(a, "--signed")) {
             signed_comb = 1;
         } else if (!strcmp(a, "--stats")) {

@@ -145,6 +145,11 @@ int conica_cmd_errors(int argc, char **argv)
             if (parse_conic(argv[++i], &q))
                 return cli_usage_error(prog, "--conic wants six numbers Q20,Q02,Q11,Q10,Q01,Q00,"
                                        " got '%s'", argv[i]);
+            /* the error of eq. (13) divides by the gradient: with only Q00
+             * left the gradient is 0 everywhere and there is no curve */
+            if (q.q20 == 0 && q.q02 == 0 && q.q11 == 0 && q.q10 == 0 && q.q01 == 0)
+                return cli_usage_error(prog, "--conic '%s' is not a curve: Q20, Q02, Q11, Q10 "
+                                       "and Q01 are all zero", argv[i]);
             have_conic = 1;
         } else if (!strcmp(a, "--variant") && has_next) {
             variant = argv[++i];
@@ -153,6 +158,8 @@ int conica_cmd_errors(int argc, char **argv)
                                        " got '%s'", variant);
         } else if (!strcmp(a, "--plot") && has_next) {
             plot_path = argv[++i];
+            if (!*plot_path)
+                return cli_usage_error(prog, "--plot needs a file name");
         } else if (plotsvg_common_arg(prog, "errors", a, has_next, &closed, &in_path)) {
             return CLI_EXIT_USAGE;
         }
@@ -168,6 +175,14 @@ int conica_cmd_errors(int argc, char **argv)
         set.levels = k;
         if (plotsvg_measure(&in, &set, have_conic ? &q : NULL, &e[k], &st) != CONICA_OK) {
             cli_error(prog, in_path, "subdivision to level %d failed: %s", k, st.message);
+            goto done;
+        }
+        if (have_conic && (!isfinite(e[k].e_mean) || !isfinite(e[k].e_max))) {
+            /* a point where the conic's gradient vanishes (its centre when
+             * it degenerates to a point, a line pair's crossing) */
+            cli_error(prog, in_path,
+                      "the conic error at level %d is not finite: the gradient of the conic "
+                      "vanishes at a point of the curve (a degenerate conic?)", k);
             goto done;
         }
     }

@@ -298,14 +298,14 @@ int conica_cmd_subdivide(int argc, char **argv)
     }
     conica_curve_free(&in);
     if (code != CONICA_OK) {
-        char where[4096];
-        size_t line = cli_point_line(buf, len, code, &st);
+        char where[4096], msg[sizeof st.message + 200];
+        size_t line = cli_point_failure(buf, len, code, &st, msg, sizeof msg);
         if (line > 0)
             snprintf(where, sizeof where, "%s:%zu", name, line);
         else
             snprintf(where, sizeof where, "%s", name);
         free(buf);
-        cli_error(PROG, where, "%s", st.message[0] ? st.message : conica_strerror(code));
+        cli_error(PROG, where, "%s", msg);
         cli_output_abort(&co);
         conica_curve_free(&out);
         conica_curvel_free(&outl);

@@ -98,6 +98,32 @@ begin_case "huge attribute value (12 MB id): refused by the parser's own limit"
 } >"$tmp/hugeattr.svg"
 both_refuse "$tmp/hugeattr.svg" "XML: an attribute value, text node or comment is longer than libxml2's limit of 10000000 bytes"
 
+begin_case "huge text node (10000100 bytes): refused, nothing after it lost"
+# libxml2 stops at the node with wellFormed still 1; the tools used to go on
+# with the partial tree (svgsmooth --in-place exit 0, everything after the
+# node gone) and libxml2 printed its own lines on stderr.
+{
+    printf '<svg %s>%s<text>' "$svgns" "$tri"
+    head -c 10000100 /dev/zero | tr '\0' 'a'
+    printf '</text><path id="after" d="M0 0L20 0L20 20Z"/></svg>\n'
+} >"$tmp/hugetext.svg"
+both_refuse "$tmp/hugetext.svg" "hugetext.svg:1: XML: an attribute value, text node or comment is longer than libxml2's limit of 10000000 bytes \(libxml2: xmlSAX2Characters: huge text node\)"
+for tool in "$svgsmooth" "$scad"; do
+    name=$(basename "$tool")
+    check_exit 1 "$name on the huge text node" "$tool" -o "$tmp/o.out" "$tmp/hugetext.svg"
+    check_true "$name: every stderr line is '$name: error: ...' (no raw libxml2 lines)" \
+        sh -c '! grep -v -E "^$1: error: " "$2"' sh "$name" "$err"
+    check_count 1 '.' "$err" "$name: one message"
+done
+cp "$tmp/hugetext.svg" "$tmp/inplace.svg"
+check_exit 1 "svgsmooth --in-place refuses it" "$svgsmooth" --in-place "$tmp/inplace.svg"
+check_true "the input is byte-identical" cmp -s "$tmp/hugetext.svg" "$tmp/inplace.svg"
+rm -f "$tmp/hugetext.svg" "$tmp/inplace.svg"
+
+begin_case "an error libxml2 does not count as fatal (unbound prefix): refused"
+printf '<svg %s>\n<path xlink:href="#t" d="M0 0L10 0L10 10Z"/></svg>\n' "$svgns" >"$tmp/unbound.svg"
+both_refuse "$tmp/unbound.svg" "unbound.svg:2: XML: namespace error \(libxml2: Namespace prefix xlink for href on path is not defined\)"
+
 begin_case "huge path data (12 MB d): refused"
 {
     printf '<svg %s><path d="M0 0' "$svgns"

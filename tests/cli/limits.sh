@@ -195,6 +195,50 @@ check "300 elements pass the default cap" "$svgsmooth" --levels 1 -o "$tmp/ok.sv
 refused 1 'more than 100 elements \(--max-elements\)' "$tmp/o.svg" \
     "$svgsmooth" --max-elements 100 -o "$tmp/o.svg" "$tmp/many.svg"
 
+begin_case "XML: attributes of one element (--max-attributes, default 256)"
+# libxml2's work on one start tag is quadratic in its attributes (10^5 on
+# one <path> took 17 s to minutes): they are counted before it parses.
+attrs_svg() { # N FILE
+    awk -v n="$1" 'BEGIN {
+        printf "<svg xmlns=\"http://www.w3.org/2000/svg\">\n<path d=\"M0 0L1 0L1 1Z\""
+        for (i = 1; i < n; i++) printf " a%d=\"1\"", i
+        printf "/></svg>\n" }' >"$2"
+}
+attrs_svg 256 "$tmp/attrs256.svg"
+attrs_svg 100000 "$tmp/attrs100k.svg"
+for tool in "$svgsmooth" "$scad"; do
+    name=$(basename "$tool")
+    check "$name: 256 attributes pass the default cap" "$tool" -o "$tmp/ok.out" "$tmp/attrs256.svg"
+    refused 1 "^$name: error: .*attrs256.svg:2: element <path> has more than 255 attributes \(--max-attributes\)" \
+        "$tmp/o.out" "$tool" --max-attributes 255 -o "$tmp/o.out" "$tmp/attrs256.svg"
+    refused 1 "^$name: error: .*attrs100k.svg:2: element <path> has more than 256 attributes \(--max-attributes\)" \
+        "$tmp/o.out" "$tool" -o "$tmp/o.out" "$tmp/attrs100k.svg"
+done
+
+begin_case "XML: namespace declarations in scope (--max-namespaces, default 64)"
+ns_svg() { # N-ON-ROOT N-ON-G FILE
+    awk -v r="$1" -v g="$2" 'BEGIN {
+        printf "<svg xmlns=\"http://www.w3.org/2000/svg\""
+        for (i = 1; i < r; i++) printf " xmlns:r%d=\"urn:r%d\"", i, i
+        printf ">\n<g"
+        for (i = 0; i < g; i++) printf " xmlns:g%d=\"urn:g%d\"", i, i
+        printf "><path d=\"M0 0L1 0L1 1Z\"/></g>\n<g xmlns:h=\"urn:h\"/></svg>\n" }' >"$3"
+}
+ns_svg 32 32 "$tmp/ns64.svg"       # 64 in scope at the <g>
+ns_svg 32 33 "$tmp/ns65.svg"       # 65
+ns_svg 50000 0 "$tmp/ns50k.svg"    # the issue's 50 000 declarations on one element
+for tool in "$svgsmooth" "$scad"; do
+    name=$(basename "$tool")
+    check "$name: 64 declarations in scope pass" "$tool" -o "$tmp/ok.out" "$tmp/ns64.svg"
+    refused 1 "^$name: error: .*ns65.svg:2: element <g> has more than 64 namespace declarations in scope \(--max-namespaces\)" \
+        "$tmp/o.out" "$tool" -o "$tmp/o.out" "$tmp/ns65.svg"
+    check "$name --max-namespaces 65 reads it" "$tool" --max-namespaces 65 -o "$tmp/ok.out" "$tmp/ns65.svg"
+    refused 1 "^$name: error: .*ns50k.svg:1: element <svg> has more than 64 namespace declarations in scope" \
+        "$tmp/o.out" "$tool" -o "$tmp/o.out" "$tmp/ns50k.svg"
+done
+refused 2 "^svgsmooth: usage error: --max-attributes needs a whole number in 1\.\.2147483647, not '0'" \
+    "$tmp/o.out" "$svgsmooth" --max-attributes 0 -o "$tmp/o.out" "$tmp/ns64.svg"
+
 begin_case "path data length (--max-path-bytes, default 8 MiB)"
 refused 1 "path 'R': path data exceeds the limit of 10 bytes \(--max-path-bytes\)" "$tmp/o.svg" \
     "$svgsmooth" --max-path-bytes 10 -o "$tmp/o.svg" "$ex/letter-R.svg"

@@ -113,7 +113,7 @@ else
         fi
         check_true "conica $c -k 3 answers within 20 s with exit 0 or 1 (got $st)" test "$st" -le 1
         if [ "$st" -eq 1 ]; then
-            check_grep 'far\.txt: .*point [0-9]+ of the output is not finite' "$err" \
+            check_grep 'far\.txt(:[0-9]+)?: .*point [0-9]+ of the output is not finite' "$err" \
                 "conica $c: the error names the non-finite point"
             check_true "conica $c: nothing written" test ! -e far.out
         elif [ "$st" -eq 0 ]; then
@@ -121,6 +121,42 @@ else
         fi
     done
 fi
+
+begin_case "an empty output name is a usage error in every tool"
+row 2 "^conica subdivide: usage error: -o needs a file name" "$conica" subdivide -o '' one.txt
+row 2 "^conica plot: usage error: -o needs a file name" "$conica" plot -o '' nan.spl
+row 2 "^conica: usage error: -o needs a file name" "$conica" combs -o '' one.txt
+row 2 "^conica: usage error: --plot needs a file name" "$conica" errors --plot '' one.txt
+row 2 "^svgsmooth: usage error: -o needs a file name" "$svgsmooth" -o '' badpath.svg
+row 2 "^scadprofile: usage error: -o needs a file name" "$scad" -o '' one.txt
+
+begin_case "conica errors: a conic without a gradient is an error, not inf"
+printf 'v 3 0\nv 0 2\nv -3 0\nv 0 -2\n' >ell.txt
+row 2 "^conica: usage error: --conic '0,0,0,0,0,0' is not a curve" \
+    "$conica" errors --conic 0,0,0,0,0,0 ell.txt
+check_true "no table on stdout" test ! -s "$out"
+row 2 "is not a curve" "$conica" errors --conic 0,0,0,0,0,7 ell.txt
+check "a real conic still measures" "$conica" errors -k 2 --conic 0.1111111111111111,0.25,0,0,0,-1 ell.txt
+check_no_grep 'inf|nan' "$out" "finite conic errors"
+
+begin_case "a coordinate near DBL_MAX on a v line: the line is named"
+printf 'v 10 0\nv 7.0710678118654755 7.071067811865475\nv 0 10\nv -7.071067811865475 7.0710678118654755\nv -10 0\nv 1e308 -7.071067811865477\nv 0 -10\nv 7.071067811865474 -7.071067811865477\n' >far308.txt
+row 1 "^conica: error: far308\.txt:6: coordinate 1e\+308 of point 6 is too large for the subdivision" \
+    "$conica" subdivide -k 3 -o far.out far308.txt
+row 1 "^scadprofile: error: far308\.txt:6: coordinate 1e\+308 of point 6 is too large" \
+    "$scad" --levels 3 -o far.scad far308.txt
+
+begin_case "NaN geometry attributes in shapes: not a number, not 'units'"
+printf '<svg xmlns="http://www.w3.org/2000/svg"><rect id="r" width="NaN" height="5"/><circle id="c" cx="0" cy="0" r="1e999"/></svg>\n' >nanshape.svg
+check "svgsmooth --convert-shapes keeps them (exit 0)" "$svgsmooth" --convert-shapes -o nanshape.out nanshape.svg
+check_grep "^svgsmooth: warning: nanshape\.svg:1: rect 'r': geometry attribute 'width' is not a finite number" "$err"
+check_grep "circle 'c': geometry attribute 'r' is not a finite number" "$err"
+check_no_grep 'units other than user units' "$err"
+
+begin_case "spline values near DBL_MAX: too large, not 'tolerance is zero'"
+printf 'degree 2\nknots 0 0 0 1 1 1\nc -1e308 0\nc 1e308 1\nc 2 0\n' >huge.spl
+row 1 "^conica: error: huge\.spl: the control point values are too large" "$conica" plot huge.spl
+check_no_grep 'tolerance is zero' "$err"
 
 begin_case "conica plot: hostile numbers give finite points or an error"
 if ! "$conica" plot --help >/dev/null 2>&1; then
