@@ -85,7 +85,14 @@ def every_sequence_argument_survives_mutation():
         assert r[4]["points"] == 8, r[4]
         normals = [0.0, -1.0, 1.0, 0.0, 0.0, 1.0, -1.0, 0.0]
         r = c.subdivide(sq, hostile(normals, grow), closed=True, levels=1)
-        r = c.subdivide(sq, normals, normals_out=hostile(normals, grow), closed=True, levels=1)
+        # curve(): points, handles and attrs go through the same reader
+        p3 = [0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 1.0, 1.0, 0.0, 0.0, 1.0, 0.0]
+        h3 = [0.1, 0.0, 0.0, 1.0, 0.1, 0.0, 0.9, 1.0, 0.0, 0.0, 0.9, 0.0]
+        r = c.curve("POLY", hostile(p3, grow), closed=True, levels=1, corner_angle=math.pi)
+        assert len(r[0]) == 3 * 8, len(r[0])
+        c.curve("BEZIER", p3, hostile(h3, grow), h3, closed=True, levels=1)
+        c.curve("BEZIER", p3, h3, hostile(h3, grow), closed=True, levels=1)
+        c.curve("POLY", p3, closed=True, levels=1, attrs=hostile([1.0, 0.0] * 4, grow), nattrs=2)
         r = c.subdivide(sq, closed=True, levels=1, attrs=hostile([1.0, 2.0, 3.0, 4.0], grow),
                         nattrs=1)
         assert len(r[2]) == 8, r[2]
