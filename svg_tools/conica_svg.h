@@ -288,6 +288,9 @@ typedef struct conica_svg_settings {
     /** Non-zero: open subpaths are closed with a straight edge, as SVG
      *  fills them (for tools that need regions). */
     int close_open;
+    /** FLATTEN: side the chords of closed subpaths keep to (a
+     *  conica_path_fit: 0 inside, 1 outside, 2 middle; conica/path.h). */
+    int fit;
     int convert_shapes;     /**< non-zero: also rect/circle/ellipse/line (rewritten as paths) */
     const char *const *select; /**< ids of the elements (or of groups: all inside) to process, or NULL for all */
     size_t nselect;

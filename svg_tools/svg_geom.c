@@ -231,6 +231,7 @@ conica_code conica_svg__path_polylines(const conica_svg_path *p, const conica_sv
     ps.max_points = *budget;
     if (s->mode == CONICA_SVG_FLATTEN) {
         ps.tolerance = s->tolerance;
+        ps.fit = (conica_path_fit)s->fit;
         rc = conica_path_flatten(&cp, &ps, &r, st);
     } else if (s->mode == CONICA_SVG_SMOOTH) {
         ps.tolerance = s->fidelity;

@@ -115,6 +115,15 @@ typedef struct conica_path {
     double cur[2], start[2];
 } conica_path;
 
+/** Which side of a closed curve conica_path_flatten()'s chords keep to. */
+typedef enum conica_path_fit {
+    CONICA_PATH_FIT_INSIDE = 0, /**< vertices on the curve, chords inside a convex part (OpenSCAD's circle()) */
+    CONICA_PATH_FIT_OUTSIDE,    /**< chords on or outside the curve (the polygon contains what the
+                                     subpath encloses), vertices at most the tolerance off it */
+    CONICA_PATH_FIT_MIDDLE      /**< chords straddle the curve: within the tolerance both ways,
+                                     fewer points (about 1/sqrt(2) of INSIDE for a circle) */
+} conica_path_fit;
+
 /** Settings; start from conica_path_defaults(). */
 typedef struct conica_path_settings {
     /** Absolute fidelity tolerance (> 0), or 0: rel_tolerance times each
@@ -133,6 +142,11 @@ typedef struct conica_path_settings {
      *  whose chords stay within this distance of the limit curve. */
     double level_tolerance;
     size_t max_points;     /**< cap on the points of the whole result */
+    /** Flattening of closed DRAWN subpaths: which side the chords keep to
+     *  (default CONICA_PATH_FIT_INSIDE; open subpaths and samples always
+     *  INSIDE). The side is the subpath's own: OUTSIDE grows what a
+     *  contour encloses, whichever way it runs (a hole gets bigger). */
+    conica_path_fit fit;
 } conica_path_settings;
 
 /** Output point flags. */
