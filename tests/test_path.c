@@ -429,3 +429,106 @@ TEST_CASE("nothing drawn is dropped: open subpaths, lone points, loops", "[path]
     conica_path_result_free(&r);
     conica_path_free(&p);
 }
+
+TEST_CASE("fit modes: outside contains the drawn region, middle straddles it, both within T",
+          "[path][fit]")
+{
+    ts_outline o;
+    ts_code rc;
+    int f;
+    size_t n_inside = 0;
+    ts_outline_init(&o);
+    rc = ts_glyph_outline(TS_FONT_SANS, 'O', &o, NULL);
+    if (rc == TS_ERR_NO_FONT || rc == TS_ERR_NO_FREETYPE)
+        SKIP("%s (install libfreetype-dev fonts-dejavu-core)", ts_strerror(rc));
+    REQUIRE_EQ(rc, TS_OK);
+    for (f = 0; f < 3; f++) {
+        conica_path p;
+        conica_path_result r;
+        conica_path_settings s = conica_path_defaults();
+        size_t i, pts = 0;
+        INFO("fit %d", f);
+        conica_path_init(&p);
+        conica_path_result_init(&r);
+        for (i = 0; i < o.n; i++)
+            add_contour(&p, &o.c[i], 0.01, 0, 0); /* 'O' about 15 units tall */
+        s.tolerance = 0.01;
+        s.fit = (conica_path_fit)f;
+        REQUIRE(conica_path_flatten(&p, &s, &r, NULL) == CONICA_OK);
+        for (i = 0; i < r.n; i++) {
+            ts_contour c = scaled(&o.c[i], 0.01, 0, 0);
+            ts_poly poly = {r.lines[i].xy, r.lines[i].n, 1};
+            ts_hausdorff h;
+            double a_in = ts_contour_area(&c), a_out = ts_poly_area(poly.xy, poly.n);
+            REQUIRE(ts_hausdorff_measure(&c, 1, &poly, 1, NULL, &h) == TS_OK);
+            CAPTURE_D(h.max);
+            CHECK_LE(h.max, 0.01 * (1 + 1e-9));
+            if (f == CONICA_PATH_FIT_OUTSIDE) {
+                /* each contour encloses at least what it drew, whichever way
+                 * it runs (the counter gets bigger too) */
+                CHECK(fabs(a_out) >= fabs(a_in));
+                CHECK(a_out * a_in > 0);
+            } else if (f == CONICA_PATH_FIT_INSIDE) {
+                CHECK(fabs(a_out) <= fabs(a_in));
+            }
+            free(c.seg);
+            pts += r.lines[i].n;
+        }
+        if (f == CONICA_PATH_FIT_INSIDE)
+            n_inside = pts;
+        else if (f == CONICA_PATH_FIT_MIDDLE)
+            CHECK(pts * 10 < n_inside * 8); /* about 1/sqrt(2) */
+        conica_path_result_free(&r);
+        conica_path_free(&p);
+    }
+    ts_outline_free(&o);
+}
+
+TEST_CASE("fit modes on a circle: outside vertices in [r, r + T], chords outside; middle +-T",
+          "[path][fit]")
+{
+    int f, rev;
+    for (rev = 0; rev < 2; rev++)
+        for (f = 1; f < 3; f++) {
+            conica_path p;
+            conica_path_result r;
+            conica_path_settings s = conica_path_defaults();
+            double R = 50, sg = rev ? -1 : 1, vmin = INFINITY, vmax = -INFINITY, cmin = INFINITY;
+            size_t k, n;
+            INFO("fit %d, %s", f, rev ? "clockwise" : "counter-clockwise");
+            conica_path_init(&p);
+            conica_path_result_init(&r);
+            REQUIRE(conica_path_move_to(&p, R, 0, 0, NULL) == CONICA_OK);
+            REQUIRE(conica_path_arc_to(&p, 0, 0, R, R, 0, 0, sg * M_PI, -R, 0, 0, NULL) ==
+                    CONICA_OK);
+            REQUIRE(conica_path_arc_to(&p, 0, 0, R, R, 0, sg * M_PI, sg * M_PI, R, 0, 0, NULL) ==
+                    CONICA_OK);
+            REQUIRE(conica_path_close(&p, NULL) == CONICA_OK);
+            s.tolerance = 0.01;
+            s.fit = (conica_path_fit)f;
+            REQUIRE(conica_path_flatten(&p, &s, &r, NULL) == CONICA_OK);
+            n = r.lines[0].n;
+            for (k = 0; k < n; k++) {
+                const double *a = r.lines[0].xy + 2 * k, *b = r.lines[0].xy + 2 * ((k + 1) % n);
+                double t;
+                vmin = fmin(vmin, hypot(a[0], a[1]) - R);
+                vmax = fmax(vmax, hypot(a[0], a[1]) - R);
+                /* the chord's nearest point to the centre */
+                t = -(a[0] * (b[0] - a[0]) + a[1] * (b[1] - a[1])) /
+                    ((b[0] - a[0]) * (b[0] - a[0]) + (b[1] - a[1]) * (b[1] - a[1]));
+                t = t < 0 ? 0 : t > 1 ? 1 : t;
+                cmin = fmin(cmin, hypot(a[0] + t * (b[0] - a[0]), a[1] + t * (b[1] - a[1])) - R);
+            }
+            CHECK_LE(vmax, 0.01);
+            if (f == CONICA_PATH_FIT_OUTSIDE) {
+                CHECK(vmin >= 0);
+                CHECK(cmin >= -1e-9);
+                CHECK(n <= 158 * 12 / 10); /* the minimum is 157 */
+            } else {
+                CHECK(cmin >= -0.01);
+                CHECK(n <= 111 * 12 / 10); /* the minimum is 111 */
+            }
+            conica_path_result_free(&r);
+            conica_path_free(&p);
+        }
+}

@@ -66,6 +66,13 @@
 #define PATH_CHECK_SAG 0.05
 /* Newton steps when projecting a point onto a segment. */
 #define PATH_NEWTON_STEPS 6
+/* Fit modes: dense samples per chord when measuring how far the curve
+ * bulges from it, and the flattening tolerance as a fraction of the
+ * fidelity tolerance (OUTSIDE: the shifted vertices sit about a chord's
+ * bulge off the curve; MIDDLE: half of it either way). */
+#define PATH_FIT_SAMPLES 16
+#define PATH_FIT_OUTSIDE_FRACTION 0.99
+#define PATH_FIT_MIDDLE_FRACTION 1.98
 /* Samples of settings.precision handed to the subdivision as noise. */
 #define PATH_LEVELS_MAX 16
 
@@ -678,6 +685,7 @@ typedef struct ctx {
     size_t budget;   /* points left */
     size_t subpath;  /* index of the subpath at work */
     double tol;      /* its fidelity tolerance */
+    double flat_fraction; /* flattening tolerance / tol (the fit mode's) */
     conica_path_polyline *L; /* its polyline */
     size_t lcap;     /* capacity of L's arrays */
     /* one segment's samples */
@@ -873,7 +881,7 @@ static conica_code flatten_seg(ctx *c, size_t s, const double nend[2], unsigned 
     rc = conica_bspline_from_bezier(d, 2, ctrl, p->seg[s].rational ? w : NULL, &bs, &est);
     if (rc == CONICA_OK) {
         ps.method = CONICA_PLOT_GUARANTEED;
-        ps.abs_tolerance = c->tol;
+        ps.abs_tolerance = c->tol * c->flat_fraction;
         ps.max_points = c->budget + 1;
         rc = conica_plot(&bs, &ps, &pl, &pst, &est);
     }
@@ -1448,6 +1456,129 @@ static conica_code smooth_piece(ctx *c, const piece *P, double *deviation)
     return rc;
 }
 
+/* ------------------------------------------------------------ fit */
+
+/* Largest signed distance (along unit normal n) of segment s on [ta, tb]
+ * from the line through a: dense samples, then golden section round the
+ * best one. */
+static double bulge(const conica_path *p, size_t s, double ta, double tb, const double a[2],
+                    const double n[2], int sign)
+{
+    const double *q = seg_pts(p, s);
+    int d = p->seg[s].degree, k, it;
+    double best = 0, bt = ta, pt[2];
+    if (d == 1 || !(tb > ta))
+        return 0.0;
+    for (k = 0; k <= PATH_FIT_SAMPLES; k++) {
+        double t = ta + (tb - ta) * k / PATH_FIT_SAMPLES, v;
+        bez_eval(q, d, t, pt, NULL, NULL);
+        v = sign * ((pt[0] - a[0]) * n[0] + (pt[1] - a[1]) * n[1]);
+        if (v > best) {
+            best = v;
+            bt = t;
+        }
+    }
+    {
+        double h = (tb - ta) / PATH_FIT_SAMPLES, lo = fmax(ta, bt - h), hi = fmin(tb, bt + h);
+        const double g = 0.6180339887498949;
+        for (it = 0; it < 40; it++) {
+            double m1 = hi - g * (hi - lo), m2 = lo + g * (hi - lo), v1, v2;
+            bez_eval(q, d, m1, pt, NULL, NULL);
+            v1 = sign * ((pt[0] - a[0]) * n[0] + (pt[1] - a[1]) * n[1]);
+            bez_eval(q, d, m2, pt, NULL, NULL);
+            v2 = sign * ((pt[0] - a[0]) * n[0] + (pt[1] - a[1]) * n[1]);
+            if (v1 > v2)
+                hi = m2;
+            else
+                lo = m1;
+            best = fmax(best, fmax(v1, v2));
+        }
+    }
+    return best;
+}
+
+/* Move the chords of the closed polyline L (flattened within tol_plot)
+ * outward by their own bulge (OUTSIDE) or half way (MIDDLE): each chord's
+ * line is shifted along its outer normal and the vertices become the
+ * intersections of consecutive shifted lines (a bevel where they meet too
+ * far away). Returns the largest deviation it leaves (chords and vertices). */
+static int apply_fit(ctx *c, conica_path_polyline *L, conica_path_fit fit, double *dev)
+{
+    const conica_path *p = c->p;
+    size_t n = L->n, k, i;
+    double area = 0, *sh = NULL, *nrm = NULL, worst = 0;
+    int orient;
+    if (n < 3)
+        return 1;
+    for (k = 0; k < n; k++) {
+        size_t j = (k + 1) % n;
+        area += L->xy[2 * k] * L->xy[2 * j + 1] - L->xy[2 * j] * L->xy[2 * k + 1];
+    }
+    orient = area > 0 ? 1 : -1; /* +1: the enclosed side is to the left */
+    sh = malloc(n * sizeof *sh);
+    nrm = malloc(2 * n * sizeof *nrm);
+    if (!sh || !nrm) {
+        free(sh);
+        free(nrm);
+        return 0;
+    }
+    for (k = 0; k < n; k++) {
+        size_t j = (k + 1) % n, s = L->seg[j];
+        const double *a = L->xy + 2 * k, *b = L->xy + 2 * j;
+        double ta, tb = L->t[j], out, in, dx = b[0] - a[0], dy = b[1] - a[1],
+                   len = hypot(dx, dy);
+        if (tb == 0.0) {
+            /* the chord ends where segment seg[j] starts: it runs along
+             * the segment the chord starts on, to its end */
+            s = L->seg[k];
+            tb = 1.0;
+        }
+        ta = L->seg[k] == s && L->t[k] < 1.0 ? L->t[k] : 0.0;
+        nrm[2 * k] = len > 0 ? orient * dy / len : 0;
+        nrm[2 * k + 1] = len > 0 ? -orient * dx / len : 0;
+        out = bulge(p, s, ta, tb, a, nrm + 2 * k, 1);
+        in = bulge(p, s, ta, tb, a, nrm + 2 * k, -1);
+        sh[k] = fit == CONICA_PATH_FIT_OUTSIDE ? out : 0.5 * (out - in);
+        worst = fmax(worst, fit == CONICA_PATH_FIT_OUTSIDE ? out + in : 0.5 * (out + in));
+    }
+    {
+        /* Each vertex moves along the bisector m of its two chords' outer
+         * normals; a chord whose both ends moved by d has moved by d (m.n)
+         * along its own normal, so d = shift / (m.n) covers it (OUTSIDE:
+         * the larger need of its two chords, so a short chord next to a
+         * long one cannot leave the long one short of its shift). */
+        double *nv = malloc(2 * n * sizeof *nv);
+        if (!nv) {
+            free(sh);
+            free(nrm);
+            return 0;
+        }
+        for (i = 0; i < n; i++) {
+            size_t pv = (i + n - 1) % n;
+            const double *n0 = nrm + 2 * pv, *n1 = nrm + 2 * i;
+            double m[2], c0, c1, d0, d1, dd;
+            if (!unit2(n0[0] + n1[0], n0[1] + n1[1], m))
+                m[0] = n1[0], m[1] = n1[1];
+            c0 = m[0] * n0[0] + m[1] * n0[1];
+            c1 = m[0] * n1[0] + m[1] * n1[1];
+            d0 = c0 > 0.1 ? sh[pv] / c0 : sh[pv];
+            d1 = c1 > 0.1 ? sh[i] / c1 : sh[i];
+            dd = fmax(d0, d1);
+            if (dd > c->tol)
+                dd = c->tol; /* an acute curved corner: stay within the tolerance */
+            worst = fmax(worst, fabs(dd));
+            nv[2 * i] = L->xy[2 * i] + dd * m[0];
+            nv[2 * i + 1] = L->xy[2 * i + 1] + dd * m[1];
+        }
+        memcpy(L->xy, nv, 2 * n * sizeof *nv);
+        free(nv);
+    }
+    free(sh);
+    free(nrm);
+    *dev = worst;
+    return 1;
+}
+
 /* ------------------------------------------------------------ drivers */
 
 static double seg_extent_all(const conica_path *p, const conica_path_subpath *sp)
@@ -1603,6 +1734,12 @@ static conica_code drawn_subpath(ctx *c, const conica_path_subpath *sp, int smoo
     if (rc == CONICA_OK && sp->closed && c->L->n > 1) {
         c->L->n--; /* the last point is the first */
         c->budget++;
+    }
+    if (rc == CONICA_OK && !smooth && sp->closed && c->s.fit != CONICA_PATH_FIT_INSIDE) {
+        double fdev = 0;
+        if (!apply_fit(c, c->L, c->s.fit, &fdev))
+            rc = fail_nomem(c);
+        dev = fdev;
     }
     if (rc == CONICA_OK && start != 0) {
         /* start the polyline where the subpath starts: the end of its last segment */
@@ -1855,6 +1992,11 @@ static conica_code run(const conica_path *p, const conica_path_settings *s, int 
             if (!(c.tol > 0)) /* a subpath of one point */
                 c.tol = DBL_MIN;
             c.L->tolerance = c.tol;
+            c.flat_fraction = 1.0;
+            if (!smooth && sp->closed && c.s.fit == CONICA_PATH_FIT_OUTSIDE)
+                c.flat_fraction = PATH_FIT_OUTSIDE_FRACTION;
+            else if (!smooth && sp->closed && c.s.fit == CONICA_PATH_FIT_MIDDLE)
+                c.flat_fraction = PATH_FIT_MIDDLE_FRACTION;
             rc = drawn_subpath(&c, sp, smooth);
             if (c.L->deviation / c.tol > r.worst_ratio)
                 r.worst_ratio = c.L->deviation / c.tol;
