@@ -3,6 +3,7 @@
  * independent checker of tests/support (no libcore code), plus the exact
  * cases: conics, straight edges, Blender's default Bezier, noise. */
 #include <math.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -531,4 +532,85 @@ TEST_CASE("fit modes on a circle: outside vertices in [r, r + T], chords outside
             conica_path_result_free(&r);
             conica_path_free(&p);
         }
+}
+
+/* xorshift: a fixed-seed generator of our own (reproducible everywhere) */
+static double rnd(unsigned long long *s)
+{
+    *s ^= *s << 13;
+    *s ^= *s >> 7;
+    *s ^= *s << 17;
+    return (double)(*s >> 11) / 9007199254740992.0;
+}
+
+TEST_CASE("random drawn paths: never farther from the drawn curve than the tolerance",
+          "[path][random]")
+{
+    unsigned long long seed = 0x9E3779B97F4A7C15ull;
+    int trial;
+    for (trial = 0; trial < 24; trial++) {
+        conica_path p;
+        conica_path_result r;
+        conica_path_settings s = conica_path_defaults();
+        ts_seg segs[8];
+        ts_contour c;
+        ts_poly poly;
+        ts_hausdorff h;
+        int nseg = 2 + (int)(rnd(&seed) * 5), i, k, smooth = trial % 2;
+        double start[2] = {rnd(&seed) * 10, rnd(&seed) * 10}, cur[2];
+        INFO("trial %d (%s)", trial, smooth ? "smooth" : "flatten");
+        conica_path_init(&p);
+        conica_path_result_init(&r);
+        REQUIRE(conica_path_move_to(&p, start[0], start[1], 0, NULL) == CONICA_OK);
+        cur[0] = start[0];
+        cur[1] = start[1];
+        for (i = 0; i < nseg; i++) {
+            int d = 1 + (int)(rnd(&seed) * 3);
+            double q[6];
+            memset(&segs[i], 0, sizeof segs[i]);
+            segs[i].degree = d;
+            segs[i].p[0][0] = cur[0];
+            segs[i].p[0][1] = cur[1];
+            for (k = 1; k <= d; k++) {
+                /* the last segment returns to the start: loops and cusps too */
+                int last = i + 1 == nseg && k == d;
+                q[2 * k - 2] = last ? start[0] : rnd(&seed) * 10;
+                q[2 * k - 1] = last ? start[1] : rnd(&seed) * 10;
+                segs[i].p[k][0] = q[2 * k - 2];
+                segs[i].p[k][1] = q[2 * k - 1];
+            }
+            REQUIRE(conica_path_bezier_to(&p, d, q, NULL, (size_t)i, NULL) == CONICA_OK);
+            cur[0] = q[2 * d - 2];
+            cur[1] = q[2 * d - 1];
+        }
+        REQUIRE(conica_path_close(&p, NULL) == CONICA_OK);
+        s.levels = 7; /* the polyline close to the limit curve */
+        REQUIRE((smooth ? conica_path_smooth(&p, &s, &r, NULL)
+                        : conica_path_flatten(&p, &s, &r, NULL)) == CONICA_OK);
+        REQUIRE_EQ_U(r.n, 1);
+        c.n = (size_t)nseg;
+        c.seg = segs;
+        c.closed = 1;
+        poly.xy = r.lines[0].xy;
+        poly.n = r.lines[0].n;
+        poly.closed = 1;
+        {
+            /* random cubics loop and nearly cusp: the checker's dense
+             * sampling must be fine enough not to miss the nearest part */
+            ts_sampling ds = ts_sampling_defaults();
+            ds.per_seg = 1024;
+            REQUIRE(ts_hausdorff_measure(&c, 1, &poly, 1, &ds, &h) == TS_OK);
+        }
+        CAPTURE_D(r.lines[0].tolerance);
+        CAPTURE_D(h.poly_to_curve);
+        CAPTURE_D(h.curve_to_poly);
+        /* every written point lies on the limit curve: within T of the
+         * drawn one; the level-7 chords add at most a little */
+        INFO("worst polyline place: edge %zu u %g (of %zu), nearest seg %zu t %g", h.poly_worst.edge,
+             h.poly_worst.u, poly.n, h.poly_nearest.seg, h.poly_nearest.t);
+        CHECK_LE(h.poly_to_curve, r.lines[0].tolerance * (1 + 1e-9));
+        CHECK_LE(h.curve_to_poly, r.lines[0].tolerance * (smooth ? 1.1 : 1 + 1e-9));
+        conica_path_result_free(&r);
+        conica_path_free(&p);
+    }
 }
