@@ -114,6 +114,16 @@ static size_t first_container(const conica_scad_profile *p, const info *in, cons
     return SIZE_MAX;
 }
 
+/* Column (or row) of coordinate v in a grid of g cells of width w from o. */
+static size_t cell_of(double v, double o, double w, size_t g)
+{
+    double k;
+    if (!(w > 0) || !(v > o))
+        return 0;
+    k = (v - o) / w;
+    return k < (double)g ? (size_t)k : g - 1;
+}
+
 /* Parent of every contour: the smallest one containing its first vertex.
  * Without crossings (validated) any vertex of c is inside or outside
  * another contour, never on it. A parent is strictly larger in the order
@@ -165,7 +175,6 @@ static int find_parents(const conica_scad_profile *p, info *in, size_t n)
         wx = 0;
     if (!(wy > 0) || !isfinite(wy))
         wy = 0;
-#define SCAD_CELL(v, o, w) ((w) > 0 && (v) > (o) ? ((v) - (o)) / (w) < (double)g ? (size_t)(((v) - (o)) / (w)) : g - 1 : 0)
     start = calloc(ncell + 1, sizeof *start);
     fill = calloc(ncell, sizeof *fill);
     big = malloc(n * sizeof *big);
@@ -174,8 +183,10 @@ static int find_parents(const conica_scad_profile *p, info *in, size_t n)
         goto done;
     for (int pass = 0; pass < 2; pass++) {
         for (size_t c = 0; c < n; c++) {
-            size_t x0 = SCAD_CELL(in[c].box[0], box[0], wx), x1 = SCAD_CELL(in[c].box[2], box[0], wx);
-            size_t y0 = SCAD_CELL(in[c].box[1], box[1], wy), y1 = SCAD_CELL(in[c].box[3], box[1], wy);
+            size_t x0 = cell_of(in[c].box[0], box[0], wx, g);
+            size_t x1 = cell_of(in[c].box[2], box[0], wx, g);
+            size_t y0 = cell_of(in[c].box[1], box[1], wy, g);
+            size_t y1 = cell_of(in[c].box[3], box[1], wy, g);
             if ((x1 - x0 + 1) * (y1 - y0 + 1) > SCAD_GRID_MAX_COVER) {
                 if (pass == 0)
                     big[nbig++] = c;
@@ -203,13 +214,12 @@ static int find_parents(const conica_scad_profile *p, info *in, size_t n)
     sort_by_area(in, big, nbig, tmp);
     for (size_t c = 0; c < n; c++) {
         const double *q = p->contours[c].xy;
-        size_t cell = SCAD_CELL(q[1], box[1], wy) * g + SCAD_CELL(q[0], box[0], wx);
+        size_t cell = cell_of(q[1], box[1], wy, g) * g + cell_of(q[0], box[0], wx, g);
         size_t a = first_container(p, in, entries + start[cell], start[cell + 1] - start[cell],
                                    c, q);
         size_t b = first_container(p, in, big, nbig, c, q);
         in[c].parent = a == SIZE_MAX ? b : b == SIZE_MAX ? a : before(in, a, b) ? a : b;
     }
-#undef SCAD_CELL
     rc = 0;
 done:
     free(start);
@@ -259,7 +269,8 @@ static int fill_states(const conica_scad_profile *p, info *in, size_t n)
                 size_t outside = in[c].parent == SIZE_MAX ? 0 : cnt[in[c].parent];
                 long old = w[gi];
                 w[gi] = old + sgn;
-                cnt[c] = outside - (size_t)filled((int)old, rule) + (size_t)filled((int)w[gi], rule);
+                cnt[c] = outside - (size_t)filled((int)old, rule) +
+                         (size_t)filled((int)w[gi], rule);
                 in[c].inside = cnt[c] > 0;
                 in[c].outside = outside > 0;
             }

@@ -22,7 +22,8 @@
  * --max-path-bytes, --max-attributes or --max-namespaces, read value (a
  * whole number in 1..2147483647) into the matching field of *lim. Returns
  * 1 when the flag was one of these and the value is good, 0 when the flag
- * is none of these (nothing changed), -1 after printing `prog: usage error: ...` for a missing or bad value. */
+ * is none of these (nothing changed), -1 after printing `prog: usage
+ * error: ...` for a missing or bad value. */
 int conica_svg__cli_limit(const char *prog, const char *flag, const char *value,
                           conica_svg_limits *lim);
 
