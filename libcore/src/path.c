@@ -71,6 +71,9 @@
  * fidelity tolerance (OUTSIDE: the shifted vertices sit about a chord's
  * bulge off the curve; MIDDLE: half of it either way). */
 #define PATH_FIT_SAMPLES 16
+/* Flattening plots this many times finer than the tolerance, then keeps
+ * the longest chords that stay within it (near the fewest points). */
+#define PATH_FLAT_DENSE 8
 #define PATH_FIT_OUTSIDE_FRACTION 0.99
 #define PATH_FIT_MIDDLE_FRACTION 1.98
 /* Samples of settings.precision handed to the subdivision as noise. */
@@ -854,6 +857,20 @@ static void join_normal(const join *J, double n[2])
 
 /* ------------------------------------------------------------ flattening */
 
+static double bulge(const conica_path *p, size_t s, double ta, double tb, const double a[2],
+                    const double n[2], int sign);
+
+/* Largest distance of segment s on [ta, tb] from the chord a b (both
+ * sides of its line). */
+static double chord_dev(const conica_path *p, size_t s, double ta, double tb, const double a[2],
+                        const double b[2])
+{
+    double n[2];
+    if (!unit2(b[1] - a[1], a[0] - b[0], n))
+        return INFINITY;
+    return fmax(bulge(p, s, ta, tb, a, n, 1), bulge(p, s, ta, tb, a, n, -1));
+}
+
 /* Append segment s flattened within the tolerance (its first point is
  * there already); its end point gets normal nend and the flags. */
 static conica_code flatten_seg(ctx *c, size_t s, const double nend[2], unsigned endflags,
@@ -881,9 +898,45 @@ static conica_code flatten_seg(ctx *c, size_t s, const double nend[2], unsigned 
     rc = conica_bspline_from_bezier(d, 2, ctrl, p->seg[s].rational ? w : NULL, &bs, &est);
     if (rc == CONICA_OK) {
         ps.method = CONICA_PLOT_GUARANTEED;
-        ps.abs_tolerance = c->tol * c->flat_fraction;
-        ps.max_points = c->budget + 1;
+        /* plotted finer, then the longest chords within the tolerance
+         * (the plotter's own chords stay well inside it) */
+        ps.abs_tolerance = c->tol * c->flat_fraction / (double)PATH_FLAT_DENSE;
+        ps.max_points = c->budget < SIZE_MAX / PATH_FLAT_DENSE - 1 ? PATH_FLAT_DENSE * (c->budget + 1) : SIZE_MAX;
         rc = conica_plot(&bs, &ps, &pl, &pst, &est);
+    }
+    if (rc == CONICA_OK && pl.t && pl.n > 2) {
+        /* greedy longest chords over the plotted points: gallop, then
+         * bisect, every chord measured against the segment itself */
+        double thr = c->tol * c->flat_fraction, worst = 0;
+        size_t i0 = 0, nk = 1;
+        while (i0 + 1 < pl.n) {
+            size_t best = i0 + 1, step = 1, lo, hi;
+            double dv;
+            while (best + step < pl.n &&
+                   chord_dev(p, s, pl.t[i0], pl.t[best + step], pl.xy + 2 * i0,
+                             pl.xy + 2 * (best + step)) <= thr) {
+                best += step;
+                step *= 2;
+            }
+            lo = best;
+            hi = best + step < pl.n ? best + step : pl.n;
+            while (hi - lo > 1) {
+                size_t mid = lo + (hi - lo) / 2;
+                if (chord_dev(p, s, pl.t[i0], pl.t[mid], pl.xy + 2 * i0, pl.xy + 2 * mid) <= thr)
+                    lo = mid;
+                else
+                    hi = mid;
+            }
+            dv = chord_dev(p, s, pl.t[i0], pl.t[lo], pl.xy + 2 * i0, pl.xy + 2 * lo);
+            worst = dv > worst ? dv : worst;
+            pl.xy[2 * nk] = pl.xy[2 * lo];
+            pl.xy[2 * nk + 1] = pl.xy[2 * lo + 1];
+            pl.t[nk] = pl.t[lo];
+            nk++;
+            i0 = lo;
+        }
+        pl.n = nk;
+        pst.bound = worst;
     }
     conica_bspline_free(&bs);
     if (rc != CONICA_OK) {
