@@ -74,6 +74,9 @@
 /* Flattening plots this many times finer than the tolerance, then keeps
  * the longest chords that stay within it (near the fewest points). */
 #define PATH_FLAT_DENSE 8
+/* The plotter's trial steps per allowed point (a bound on its time that
+ * the budget sets; a curve that needs more is refused as too large). */
+#define PATH_FLAT_TRIALS 64
 #define PATH_FIT_OUTSIDE_FRACTION 0.99
 #define PATH_FIT_MIDDLE_FRACTION 1.98
 /* Samples of settings.precision handed to the subdivision as noise. */
@@ -901,8 +904,18 @@ static conica_code flatten_seg(ctx *c, size_t s, const double nend[2], unsigned 
         /* plotted finer, then the longest chords within the tolerance
          * (the plotter's own chords stay well inside it) */
         ps.abs_tolerance = c->tol * c->flat_fraction / (double)PATH_FLAT_DENSE;
-        ps.max_points = c->budget < SIZE_MAX / PATH_FLAT_DENSE - 1 ? PATH_FLAT_DENSE * (c->budget + 1) : SIZE_MAX;
+        ps.max_points = c->budget + 1; /* the work stays bounded by the budget */
+        ps.max_iterations = PATH_FLAT_TRIALS * ps.max_points < ps.max_iterations
+                                ? PATH_FLAT_TRIALS * ps.max_points
+                                : ps.max_iterations;
         rc = conica_plot(&bs, &ps, &pl, &pst, &est);
+        if (rc == CONICA_ERR_LIMIT) {
+            /* too many dense points for the budget: the chords at T itself */
+            conica_polyline_free(&pl);
+            conica_polyline_init(&pl);
+            ps.abs_tolerance = c->tol * c->flat_fraction;
+            rc = conica_plot(&bs, &ps, &pl, &pst, &est);
+        }
     }
     if (rc == CONICA_OK && pl.t && pl.n > 2) {
         /* greedy longest chords over the plotted points: gallop, then
