@@ -486,7 +486,7 @@ static measure measure_polys(const glyph *g, const polyset *p)
  * the run's cost in *c. */
 static measure run_scadprofile(const glyph *g, double tol, const char *out, int check, cost *c)
 {
-    char t[40], *argv[7];
+    char t[40], *argv[9];
     polyset p;
     measure m;
     memset(&m, 0, sizeof m);
@@ -496,8 +496,10 @@ static measure run_scadprofile(const glyph *g, double tol, const char *out, int 
     argv[2] = t;
     argv[3] = "-o";
     argv[4] = (char *)out;
-    argv[5] = (char *)g->svg;
-    argv[6] = NULL;
+    argv[5] = "--module"; /* the rendering .scad calls profile() */
+    argv[6] = "profile";
+    argv[7] = (char *)g->svg;
+    argv[8] = NULL;
     if (spawn(argv, 0, NULL, c) != 0) {
         note("%s: scadprofile --tolerance %g failed", g->label, tol);
         return m;

@@ -87,6 +87,10 @@ conica_code conica_scad_add_contour(conica_scad_profile *p, size_t group, const 
         return conica__fail(st, CONICA_ERR_NOMEM, 0, 0, "out of memory");
     memcpy(copy, xy, 2 * n * sizeof *copy);
     p->contours[p->ncontours].group = group;
+    p->contours[p->ncontours].subpath =
+        p->ncontours > 0 && p->contours[p->ncontours - 1].group == group
+            ? p->contours[p->ncontours - 1].subpath + 1
+            : 1;
     p->contours[p->ncontours].n = n;
     p->contours[p->ncontours].xy = copy;
     p->ncontours++;

@@ -27,29 +27,47 @@ static const double *pt(const conica_scad_profile *p, size_t c, size_t i)
     return &k->xy[2 * (i % k->n)];
 }
 
-/* "contour 3 (subpath 2 of 'outline', line 7)" into buf. */
-static void describe(const conica_scad_profile *p, size_t c, char *buf, size_t cap)
+size_t conica_scad_describe(const conica_scad_profile *p, size_t c, char *buf, size_t cap)
 {
-    const conica_scad_contour *k = &p->contours[c];
-    const conica_scad_group *g = &p->groups[k->group];
-    size_t rank = 1;
-    for (size_t i = 0; i < c; i++)
-        rank += p->contours[i].group == k->group;
-    if (g->line)
-        snprintf(buf, cap, "contour %zu (subpath %zu of '%s', line %zu)", c + 1, rank, g->name,
-                 g->line);
+    int len;
+    if (!buf || cap == 0)
+        return 0;
+    if (!p || c >= p->ncontours || p->contours[c].group >= p->ngroups)
+        len = snprintf(buf, cap, "a contour");
+    else if (!p->groups[p->contours[c].group].name[0])
+        len = p->ncontours == 1 ? snprintf(buf, cap, "the contour")
+                                : snprintf(buf, cap, "contour %zu", p->contours[c].subpath);
     else
-        snprintf(buf, cap, "contour %zu (subpath %zu of '%s')", c + 1, rank, g->name);
+        len = snprintf(buf, cap, "%s: subpath %zu", p->groups[p->contours[c].group].name,
+                       p->contours[c].subpath);
+    return len < 0 ? 0 : (size_t)len;
+}
+
+/* The second contour of a message about two: "subpath 3" in the first's
+ * group, else its full name with its group's line when that differs. */
+static void describe_other(const conica_scad_profile *p, size_t first, size_t c, char *buf,
+                           size_t cap)
+{
+    const conica_scad_group *ga = &p->groups[p->contours[first].group];
+    const conica_scad_group *gb = &p->groups[p->contours[c].group];
+    if (ga == gb && gb->name[0]) {
+        snprintf(buf, cap, "subpath %zu", p->contours[c].subpath);
+    } else {
+        size_t len = conica_scad_describe(p, c, buf, cap);
+        if (gb->line && gb->line != ga->line && len < cap)
+            snprintf(buf + len, cap - len, " (line %zu)", gb->line);
+    }
 }
 
 static conica_code report(const conica_scad_profile *p, conica_scad_violation *v,
                           conica_status *st, conica_scad_problem what, size_t ca, size_t sa,
                           size_t cb, size_t sb, double x, double y)
 {
-    char da[160], db[160], xs[40], ys[40];
+    char da[CONICA_SCAD_MAX_GROUP_NAME + 64], db[CONICA_SCAD_MAX_GROUP_NAME + 80];
+    char xs[40], ys[40], lim[40];
     size_t na = p->contours[ca].n, nb = p->contours[cb].n;
-    describe(p, ca, da, sizeof da);
-    describe(p, cb, db, sizeof db);
+    conica_scad_describe(p, ca, da, sizeof da);
+    describe_other(p, ca, cb, db, sizeof db);
     conica_scad_format_double(x, xs, sizeof xs);
     conica_scad_format_double(y, ys, sizeof ys);
     if (v) {
@@ -62,6 +80,12 @@ static conica_code report(const conica_scad_profile *p, conica_scad_violation *v
         v->y = y;
     }
     switch (what) {
+    case CONICA_SCAD_OUT_OF_RANGE:
+        snprintf(lim, sizeof lim, "%g", CONICA_SCAD_MAX_COORD);
+        return conica__fail(st, CONICA_ERR_LIMIT, 0, ca,
+                            "%s: point %zu (%s, %s) is out of range: coordinates must lie "
+                            "within +-%s (OpenSCAD ignores points beyond about 1e15)",
+                            da, sa + 1, xs, ys, lim);
     case CONICA_SCAD_TOO_FEW_POINTS:
         return conica__fail(st, CONICA_ERR_DEGENERATE, 0, ca, "%s has %zu point%s (a polygon needs 3)",
                                  da, na, na == 1 ? "" : "s");
@@ -316,11 +340,125 @@ static conica_code check_crossings(const conica_scad_profile *p, conica_scad_vio
     return rc;
 }
 
+/* The first point of contour c with a coordinate beyond
+ * CONICA_SCAD_MAX_COORD, or SIZE_MAX. */
+static size_t out_of_range(const conica_scad_contour *k)
+{
+    for (size_t i = 0; i < k->n; i++)
+        if (!(fabs(k->xy[2 * i]) <= CONICA_SCAD_MAX_COORD) ||
+            !(fabs(k->xy[2 * i + 1]) <= CONICA_SCAD_MAX_COORD))
+            return i;
+    return SIZE_MAX;
+}
+
+conica_code conica_scad_check_range(const conica_scad_profile *p, conica_scad_violation *v,
+                                    conica_status *st)
+{
+    if (!p)
+        return conica__fail(st, CONICA_ERR_ARG, 0, 0, "no profile");
+    for (size_t c = 0; c < p->ncontours; c++) {
+        size_t i = out_of_range(&p->contours[c]);
+        if (i != SIZE_MAX)
+            return report(p, v, st, CONICA_SCAD_OUT_OF_RANGE, c, i, c, i,
+                          p->contours[c].xy[2 * i], p->contours[c].xy[2 * i + 1]);
+    }
+    if (v)
+        memset(v, 0, sizeof *v);
+    conica__ok(st);
+    return CONICA_OK;
+}
+
+/* Are all points of k on one line (exact)? The line runs through the
+ * first point and the first point that differs from it; a contour of one
+ * repeated point is on every line. */
+static int collinear(const conica_scad_contour *k)
+{
+    size_t j = 1;
+    while (j < k->n && k->xy[2 * j] == k->xy[0] && k->xy[2 * j + 1] == k->xy[1])
+        j++;
+    for (size_t i = j + 1; i < k->n; i++)
+        if (conica__scad_orient(k->xy, k->xy + 2 * j, k->xy + 2 * i) != 0)
+            return 0;
+    return 1;
+}
+
+/* Is k's signed area negligible against its box (rounding noise of a
+ * polygon folded onto a line)? */
+static int tiny_area(const conica_scad_contour *k)
+{
+    double xmin = INFINITY, ymin = INFINITY, xmax = -INFINITY, ymax = -INFINITY;
+    for (size_t i = 0; i < k->n; i++) {
+        xmin = fmin(xmin, k->xy[2 * i]);
+        xmax = fmax(xmax, k->xy[2 * i]);
+        ymin = fmin(ymin, k->xy[2 * i + 1]);
+        ymax = fmax(ymax, k->xy[2 * i + 1]);
+    }
+    double diag2 = (xmax - xmin) * (xmax - xmin) + (ymax - ymin) * (ymax - ymin);
+    return !(fabs(0.5 * conica__scad_area2(k->xy, k->n)) > CONICA_SCAD_ZERO_AREA_REL * diag2);
+}
+
+conica_code conica_scad_drop_empty(conica_scad_profile *p, conica_scad_drop_fn fn, void *ctx,
+                                   size_t *dropped, conica_status *st)
+{
+    size_t w = 0, nd = 0;
+    if (!p)
+        return conica__fail(st, CONICA_ERR_ARG, 0, 0, "no profile");
+    for (size_t c = 0; c < p->ncontours; c++) {
+        conica_scad_contour *k = &p->contours[c];
+        conica_scad_problem what = CONICA_SCAD_OK;
+        if (out_of_range(k) != SIZE_MAX) {
+            what = CONICA_SCAD_OK; /* conica_scad_validate() names it */
+        } else if (k->n < 3) {
+            what = CONICA_SCAD_TOO_FEW_POINTS;
+        } else if (collinear(k)) {
+            what = CONICA_SCAD_ZERO_AREA;
+        } else if (tiny_area(k)) {
+            /* a bowtie's lobes cancel as well: that one crosses itself */
+            conica_scad_profile one = *p;
+            conica_status cst;
+            one.ncontours = 1;
+            one.contours = k;
+            conica_code rc = check_crossings(&one, NULL, &cst);
+            if (rc == CONICA_ERR_NOMEM) {
+                memmove(p->contours + w, p->contours + c, (p->ncontours - c) * sizeof *k);
+                p->ncontours = w + p->ncontours - c;
+                return conica__fail(st, rc, 0, 0, "out of memory");
+            }
+            if (rc == CONICA_OK)
+                what = CONICA_SCAD_ZERO_AREA;
+        }
+        if (what == CONICA_SCAD_OK) {
+            p->contours[w++] = *k;
+            continue;
+        }
+        if (fn) {
+            conica_scad_violation v;
+            conica_status msg;
+            report(p, &v, &msg, what, c, 0, c, 0, k->xy[0], k->xy[1]);
+            fn(ctx, p, c, &v, msg.message);
+        }
+        p->npoints -= k->n;
+        free(k->xy);
+        k->xy = NULL;
+        nd++;
+    }
+    p->ncontours = w;
+    if (dropped)
+        *dropped = nd;
+    conica__ok(st);
+    return CONICA_OK;
+}
+
 conica_code conica_scad_validate(const conica_scad_profile *p, int rotate_extrude,
                                  conica_scad_violation *v, conica_status *st)
 {
     if (!p || p->ncontours == 0)
         return conica__fail(st, CONICA_ERR_ARG, 0, 0, "empty profile");
+    /* range first: a triangle at 1e200 is out of range, its area (an
+     * overflow) says nothing */
+    conica_code rc = conica_scad_check_range(p, v, st);
+    if (rc != CONICA_OK)
+        return rc;
     for (size_t c = 0; c < p->ncontours; c++) {
         const conica_scad_contour *k = &p->contours[c];
         if (k->n < 3)
@@ -338,27 +476,16 @@ conica_code conica_scad_validate(const conica_scad_profile *p, int rotate_extrud
      * back over itself. */
     for (size_t c = 0; c < p->ncontours; c++) {
         const conica_scad_contour *k = &p->contours[c];
-        size_t i = 2;
-        while (i < k->n && conica__scad_orient(k->xy, k->xy + 2, k->xy + 2 * i) == 0)
-            i++;
-        if (i == k->n)
+        if (collinear(k))
             return report(p, v, st, CONICA_SCAD_ZERO_AREA, c, 0, c, 0, k->xy[0], k->xy[1]);
     }
     /* crossings next: a bowtie's lobes cancel to zero signed area */
-    conica_code rc = check_crossings(p, v, st);
+    rc = check_crossings(p, v, st);
     if (rc != CONICA_OK)
         return rc;
     for (size_t c = 0; c < p->ncontours; c++) {
         const conica_scad_contour *k = &p->contours[c];
-        double xmin = INFINITY, ymin = INFINITY, xmax = -INFINITY, ymax = -INFINITY;
-        for (size_t i = 0; i < k->n; i++) {
-            xmin = fmin(xmin, k->xy[2 * i]);
-            xmax = fmax(xmax, k->xy[2 * i]);
-            ymin = fmin(ymin, k->xy[2 * i + 1]);
-            ymax = fmax(ymax, k->xy[2 * i + 1]);
-        }
-        double diag2 = (xmax - xmin) * (xmax - xmin) + (ymax - ymin) * (ymax - ymin);
-        if (!(fabs(0.5 * conica__scad_area2(k->xy, k->n)) > CONICA_SCAD_ZERO_AREA_REL * diag2))
+        if (tiny_area(k))
             return report(p, v, st, CONICA_SCAD_ZERO_AREA, c, 0, c, 0, k->xy[0], k->xy[1]);
     }
     if (v)

@@ -1,12 +1,15 @@
 /* scadprofile: smooth, exact 2D profiles as OpenSCAD modules.
  *
- *   scadprofile [--levels K | --tolerance T] [--module NAME] [--units U]
- *               [--extrude H | --rotate-extrude [ANGLE]] [--select IDS]
+ *   scadprofile [--levels K | --tolerance T] [--fit F] [--module NAME]
+ *               [--units U] [--extrude H | --rotate-extrude [ANGLE]]
+ *               [--demo-call | --no-demo-call] [--select IDS]
  *               [--force] [--stats] [-o OUT.scad] IN
  *
  * IN is a point-normal file (`v`/`vn`, refined by conic subdivision), an SVG
  * document (every closed subpath of the selected elements) or a spline file
- * (.spl, through the adaptive plotter). */
+ * (.spl, through the adaptive plotter). The file it writes defines NAME(),
+ * NAME_points(), NAME_paths(), NAME_bbox() and has no top-level geometry
+ * unless asked (--demo-call, --extrude, --rotate-extrude). */
 #include <math.h>
 #include <stdint.h>
 #include <stdio.h>
@@ -36,11 +39,25 @@
 
 typedef enum kind { IN_POINTS, IN_SVG, IN_SPLINE } kind;
 typedef enum units { U_DEFAULT, U_PX, U_MM, U_IN } units;
+/* --fit: the first three are conica_path_fit values (the SVG layer's
+ * conica_svg_settings.fit); clearance runs inside and outside. */
+typedef enum fit { FIT_INSIDE = 0, FIT_OUTSIDE = 1, FIT_MIDDLE = 2, FIT_CLEARANCE = 3 } fit;
+static const char *const fit_names[4] = {"inside", "outside", "middle", "clearance"};
+static const char *const fit_meaning[4] = {
+    "vertices on each curve, chords inside it: every contour at most as large as drawn",
+    "chords on or outside each curve: every contour, outline or hole, at least as large",
+    "chords straddle each curve, within the tolerance both ways: fewest points",
+    "outlines inside, holes outside: the part never larger than drawn, its holes never "
+    "smaller",
+};
 
 typedef struct options {
     int levels;          /* -1: not given */
     double tolerance;    /* 0: not given */
     const char *module;
+    int module_given;
+    fit fit;
+    int demo_call;       /* -1: not given (--extrude / --rotate-extrude imply it), 0, 1 */
     units unit;
     int extrude, revolve;
     double height, angle;
@@ -56,42 +73,73 @@ typedef struct stats {
     const char *kind;
     size_t input_points, dense_points, points;
     size_t elements, subpaths;  /* SVG */
+    size_t skipped;             /* contours without area (conica_scad_drop_empty) */
     int levels;
     double seconds;
 } stats;
 
 static void usage(FILE *f)
 {
-    fputs("Usage: " PROG " [--levels K | --tolerance T] [--module NAME] [--units U]\n"
-          "                   [--extrude H | --rotate-extrude [ANGLE]] [--select IDS]\n"
-          "                   [--force] [--stats] [-o OUT.scad] IN\n"
-          "Write a 2D profile as an OpenSCAD module: function NAME_points(),\n"
-          "function NAME_paths(), module NAME() (a polygon with holes), plus\n"
-          "NAME_extruded(height, center) / NAME_revolved(angle) when asked.\n"
+    fputs("Usage: " PROG " [--levels K | --tolerance T] [--fit F] [--module NAME]\n"
+          "                   [--units U] [--extrude H | --rotate-extrude [ANGLE]]\n"
+          "                   [--demo-call | --no-demo-call] [--select IDS] [--force]\n"
+          "                   [--stats] [-o OUT.scad] IN\n"
+          "Write a 2D profile as an OpenSCAD library file: module NAME(center=false)\n"
+          "(a polygon with holes; center=true centres its bounding box on the origin),\n"
+          "functions NAME_points(), NAME_paths(), NAME_bbox() = [[xmin,ymin],[xmax,ymax]],\n"
+          "plus NAME_extruded(height, center) / NAME_revolved(angle) when asked. The\n"
+          "file has no top-level geometry, so `use <OUT.scad>` and `include <OUT.scad>`\n"
+          "both work, then e.g. `linear_extrude(3) NAME();`.\n"
           "\n"
           "IN: a point-normal file (`v x y` / `vn nx ny`, refined by conic subdivision),\n"
           "    an SVG file (every closed subpath of the selected elements; y flipped),\n"
           "    or a spline file (.spl, through the adaptive plotter); - reads stdin.\n"
           "\n"
           "  --tolerance T     largest distance between the polygon and the curve, in\n"
-          "                    output units (default 0.01); fewest points that meet it\n"
-          "  --levels K        subdivide exactly K levels instead (0..30), keep every point\n"
+          "                    output units (default 0.01); fewest points that meet it.\n"
+          "                    Numbers are written with the fewest digits that keep each\n"
+          "                    point within T/1000 (inside T); the input's own numbers\n"
+          "                    (corners, straight edges) stay exact when that is cheap\n"
+          "  --levels K        subdivide exactly K levels instead (0..30); every point\n"
+          "                    is kept and written exactly (round-trip decimals)\n"
           "  --flatten-only    keep the input geometry: only flatten curves (SVG, .spl)\n"
-          "  --module NAME     module name (default: profile)\n"
-          "  --units U         SVG only: output units px, mm (default) or in; 96 px per inch,\n"
-          "                    the document's viewBox/width/height honoured\n"
-          "  --extrude H       also emit NAME_extruded(height=H, center=false) and render it\n"
-          "  --rotate-extrude [ANGLE]  also emit NAME_revolved(angle=ANGLE, default 360);\n"
-          "                    the profile must not have points with x < 0\n"
+          "  --fit F           which side of each curve the polygon keeps to (SVG input;\n"
+          "                    point-normal and spline input: inside only):\n"
+          "                      inside     vertices on the curve, chords inside: every\n"
+          "                                 contour at most as large as drawn (default)\n"
+          "                      outside    chords on or outside: every contour, outline\n"
+          "                                 or hole, at least as large as drawn\n"
+          "                      middle     chords straddle the curve: fewest points\n"
+          "                      clearance  outlines inside, holes outside: the part is\n"
+          "                                 never larger than drawn, its holes never\n"
+          "                                 smaller\n"
+          "  --module NAME     module name (default: the input file's name made into an\n"
+          "                    identifier, e.g. bracket-v2.svg -> bracket_v2, with a\n"
+          "                    warning when it had to be changed; stdin: profile)\n",
+          f);
+    fputs("  --units U         SVG only: output units px, mm (default) or in; 96 px per\n"
+          "                    inch, the document's viewBox/width/height honoured\n"
+          "  --demo-call       end the file with a top-level call of NAME() (or of the\n"
+          "                    wrapper below) so that it renders alone\n"
+          "  --extrude H       also emit NAME_extruded(height=H, center=false); implies\n"
+          "                    --demo-call (the file renders the solid alone)\n"
+          "  --rotate-extrude [ANGLE]  also emit NAME_revolved(angle=ANGLE, default 360),\n"
+          "                    implies --demo-call; the profile must not have x < 0\n"
+          "  --no-demo-call    no top-level call even with --extrude / --rotate-extrude\n"
           "  --select IDS      SVG only: comma-separated element ids (default: all)\n"
           "  --max-points N    cap on the dense points of one curve (default 4194304)\n"
           "  --max-input-bytes N   input size cap (default 256 MiB, SVG 64 MiB, or the\n"
           "                        environment variable CONICA_MAX_INPUT_BYTES)\n"
           CONICA_SVG_CLI_LIMITS_HELP
-          "  --force           write even if validation fails (warnings instead of errors)\n"
+          "  --force           write even if validation fails (warnings instead of errors;\n"
+          "                    coordinates beyond +-1e12 are refused all the same)\n"
           "  --stats           figures on stderr\n"
           "  -o FILE           output (default stdout; written via a temporary file)\n"
           "  -h, --help        this help;  --version  version\n"
+          "\n"
+          "Subpaths that enclose no area (fewer than 3 points, all on one line) are\n"
+          "skipped with a warning; messages name a subpath as the SVG does: the element\n"
+          "(id or tag) and line, and the subpath's number within the element from 1.\n"
           "\n"
           "Exit status: 0 success, 1 error (nothing written), 2 usage error.\n",
           f);
@@ -109,6 +157,8 @@ static int parse_args(int argc, char **argv, options *o, int *exit_now)
     memset(o, 0, sizeof *o);
     o->levels = -1;
     o->module = "profile";
+    o->fit = FIT_INSIDE;
+    o->demo_call = -1;
     o->height = 10;
     o->angle = 360;
     o->max_points = CONICA_SCAD_DEFAULT_MAX_DENSE;
@@ -151,6 +201,24 @@ static int parse_args(int argc, char **argv, options *o, int *exit_now)
                                        "([A-Za-z_][A-Za-z0-9_]*, at most %d characters)",
                                        next, why, CONICA_SCAD_MAX_MODULE_NAME);
             o->module = next;
+            o->module_given = 1;
+        } else if (strcmp(a, "--fit") == 0) {
+            NEED_ARG();
+            int found = 0;
+            for (int f = 0; f < 4; f++)
+                if (strcmp(next, fit_names[f]) == 0) {
+                    o->fit = (fit)f;
+                    found = 1;
+                }
+            if (!found)
+                return cli_usage_error(PROG,
+                                       "--fit must be inside, outside, middle or clearance, "
+                                       "not '%s'",
+                                       next);
+        } else if (strcmp(a, "--demo-call") == 0) {
+            o->demo_call = 1;
+        } else if (strcmp(a, "--no-demo-call") == 0) {
+            o->demo_call = 0;
         } else if (strcmp(a, "--units") == 0) {
             NEED_ARG();
             if (strcmp(next, "px") == 0)
@@ -223,6 +291,11 @@ static int parse_args(int argc, char **argv, options *o, int *exit_now)
         return cli_usage_error(PROG, "--extrude and --rotate-extrude exclude each other");
     if (o->flatten_only && o->levels >= 0)
         return cli_usage_error(PROG, "--flatten-only and --levels exclude each other");
+    if (o->fit != FIT_INSIDE && o->levels >= 0)
+        return cli_usage_error(PROG,
+                               "--fit %s applies to flattening to a tolerance; --levels keeps "
+                               "every subdivision point (on the curve)",
+                               fit_names[o->fit]);
     if (o->tolerance <= 0)
         o->tolerance = DEFAULT_TOLERANCE;
     return 0;
@@ -292,6 +365,59 @@ static const char *base_name(const char *path)
     return s ? s + 1 : path;
 }
 
+/* The default module name: the input file's base name without its
+ * extension, made into an OpenSCAD identifier (each run of other
+ * characters becomes one '_', a leading digit gets a '_' before it, at
+ * most CONICA_SCAD_MAX_MODULE_NAME characters, a reserved word or built-in
+ * gets a '_' after it); "profile" for stdin or when nothing is left.
+ * *changed: the name is not the base name as it was. buf: at least
+ * CONICA_SCAD_MAX_MODULE_NAME + 1 bytes. */
+static void default_module(const char *in, char *buf, size_t cap, int *changed)
+{
+    const char *b = base_name(in), *dot = strrchr(b, '.');
+    size_t len = dot && dot != b ? (size_t)(dot - b) : strlen(b), n = 0;
+    int gap = 0;
+    *changed = 0;
+    if (strcmp(in, "-") == 0 || cap < CONICA_SCAD_MAX_MODULE_NAME + 1) {
+        snprintf(buf, cap, "profile");
+        return;
+    }
+    for (size_t i = 0; i < len && n < CONICA_SCAD_MAX_MODULE_NAME; i++) {
+        char c = b[i];
+        int ok = (c >= 'A' && c <= 'Z') || (c >= 'a' && c <= 'z') || (c >= '0' && c <= '9') ||
+                 c == '_';
+        if (!ok) {
+            *changed = 1;
+            gap = 1;
+            continue;
+        }
+        if (gap && n > 0 && n < CONICA_SCAD_MAX_MODULE_NAME)
+            buf[n++] = '_';
+        gap = 0;
+        if (n == 0 && c >= '0' && c <= '9') {
+            buf[n++] = '_';
+            *changed = 1;
+        }
+        if (n < CONICA_SCAD_MAX_MODULE_NAME)
+            buf[n++] = c;
+    }
+    if (n == CONICA_SCAD_MAX_MODULE_NAME && n < len)
+        *changed = 1;
+    buf[n] = '\0';
+    if (n == 0) {
+        snprintf(buf, cap, "profile");
+        *changed = 1;
+        return;
+    }
+    if (!conica_scad_valid_name(buf)) { /* a reserved word or built-in */
+        if (n == CONICA_SCAD_MAX_MODULE_NAME)
+            n--;
+        buf[n++] = '_';
+        buf[n] = '\0';
+        *changed = 1;
+    }
+}
+
 /* `scadprofile: error: FILE[:LINE]: what` from a library status. */
 static int status_error(const char *file, const conica_status *st)
 {
@@ -319,6 +445,26 @@ static int point_error(const char *file, const char *buf, size_t len, const coni
     return status_error(file, st);
 }
 
+/* 0, or an error naming the line of the first input point beyond
+ * CONICA_SCAD_MAX_COORD (subdivision interpolates: it stays in the output). */
+static int points_in_range(const char *name, const char *buf, size_t len, const conica_curve *in)
+{
+    for (size_t i = 0; i < in->n; i++)
+        if (!(fabs(in->xy[2 * i]) <= CONICA_SCAD_MAX_COORD) ||
+            !(fabs(in->xy[2 * i + 1]) <= CONICA_SCAD_MAX_COORD)) {
+            char where[1024], xs[40], ys[40];
+            snprintf(where, sizeof where, "%s:%zu", name,
+                     conica_curve_line_of_point(buf, len, i, 0));
+            conica_scad_format_double(in->xy[2 * i], xs, sizeof xs);
+            conica_scad_format_double(in->xy[2 * i + 1], ys, sizeof ys);
+            return cli_error(PROG, where,
+                             "point %zu (%s, %s) is out of range: coordinates must lie within "
+                             "+-%g (OpenSCAD ignores points beyond about 1e15)",
+                             i + 1, xs, ys, CONICA_SCAD_MAX_COORD);
+        }
+    return 0;
+}
+
 static int load_points(const options *o, const char *name, const char *buf, size_t len,
                        conica_scad_profile *prof, stats *sx)
 {
@@ -341,6 +487,12 @@ static int load_points(const options *o, const char *name, const char *buf, size
         conica_curve_free(&in);
         return cli_error(PROG, name, "a profile needs at least 3 points, the file has %zu", got);
     }
+    /* before refining (a huge curve would only exhaust the point cap);
+     * --levels keeps the subdivision's own report of huge input */
+    if (o->levels < 0 && points_in_range(name, buf, len, &in) != 0) {
+        conica_curve_free(&in);
+        return CLI_EXIT_ERROR;
+    }
     if (o->flatten_only) {
         rc = CONICA_OK;
         pts = in.xy;
@@ -358,12 +510,33 @@ static int load_points(const options *o, const char *name, const char *buf, size
     } else {
         conica_scad_refine_info info;
         memset(&info, 0, sizeof info);
-        rc = conica_scad_refine(&in, o->tolerance, o->max_points, &pts, &n, &info, &st);
+        /* the written digits may move a point by tol * ROUND_FRACTION */
+        rc = conica_scad_refine(&in, o->tolerance * (1 - CONICA_SCAD_ROUND_FRACTION),
+                                o->max_points, &pts, &n, &info, &st);
         sx->levels = info.levels;
         sx->dense_points = info.dense_points;
+        if (rc == CONICA_ERR_LIMIT && strncmp(st.message, "tolerance ", 10) == 0) {
+            /* it names the tolerance less the digits' share: say the user's */
+            const char *rest = strchr(st.message + 10, ' ');
+            char msg[sizeof st.message], num[40];
+            size_t m;
+            conica_scad_format_double(o->tolerance, num, sizeof num);
+            m = (size_t)snprintf(msg, sizeof msg, "tolerance %s", num);
+            if (rest && m < sizeof msg)
+                memcpy(msg + m, rest, strnlen(rest, sizeof msg - m - 1) + 1);
+            msg[sizeof msg - 1] = '\0';
+            memcpy(st.message, msg, sizeof msg);
+        }
+    }
+    if (rc == CONICA_OK && o->levels >= 0 && points_in_range(name, buf, len, &in) != 0) {
+        if (pts != in.xy && pts != sub.xy)
+            free(pts);
+        conica_curve_free(&in);
+        conica_curve_free(&sub);
+        return CLI_EXIT_ERROR;
     }
     if (rc == CONICA_OK)
-        rc = conica_scad_add_group(prof, base_name(name), CONICA_SCAD_FILL_NONZERO, 0, &g, &st);
+        rc = conica_scad_add_group(prof, "", CONICA_SCAD_FILL_NONZERO, 0, &g, &st);
     if (rc == CONICA_OK)
         rc = conica_scad_add_contour(prof, g, pts, n, &st);
     if (pts != in.xy && pts != sub.xy)
@@ -405,7 +578,8 @@ static int load_spline(const options *o, const char *name, const char *buf, size
     }
     conica_plot_settings ps = conica_plot_defaults();
     ps.method = CONICA_PLOT_GUARANTEED;
-    ps.abs_tolerance = o->flatten_only ? o->tolerance : o->tolerance * DENSE_FRACTION;
+    ps.abs_tolerance = o->flatten_only ? o->tolerance * (1 - CONICA_SCAD_ROUND_FRACTION)
+                                       : o->tolerance * DENSE_FRACTION;
     ps.max_points = o->max_points;
     rc = conica_plot(&s, &ps, &pl, NULL, &st);
     conica_bspline_free(&s);
@@ -431,13 +605,15 @@ static int load_spline(const options *o, const char *name, const char *buf, size
             cli_warning(PROG, name, "the spline is open; a straight segment closes the profile");
     }
     if (n >= 3 && !o->flatten_only) {
-        rc = conica_scad_thin(pl.xy, n, 1, o->tolerance * (1 - DENSE_FRACTION), &pts, &n, &st);
+        rc = conica_scad_thin(pl.xy, n, 1,
+                              o->tolerance * (1 - DENSE_FRACTION - CONICA_SCAD_ROUND_FRACTION),
+                              &pts, &n, &st);
     } else {
         rc = CONICA_OK;
         pts = pl.xy;
     }
     if (rc == CONICA_OK)
-        rc = conica_scad_add_group(prof, base_name(name), CONICA_SCAD_FILL_NONZERO, 0, &g, &st);
+        rc = conica_scad_add_group(prof, "", CONICA_SCAD_FILL_NONZERO, 0, &g, &st);
     if (rc == CONICA_OK)
         rc = conica_scad_add_contour(prof, g, pts, n, &st);
     if (pts != pl.xy)
@@ -487,8 +663,23 @@ static char **split_ids(const char *s, size_t *count)
     return ids;
 }
 
+/* The SVG's own name of an element, as the SVG layer's messages say it
+ * (svg_doc.c describe()): "path 'plate'", "rect (no id)". */
+static void element_name(const conica_svg_element *el, char *buf, size_t cap)
+{
+    if (el->id)
+        snprintf(buf, cap, "%s '%.60s'", el->tag, el->id);
+    else
+        snprintf(buf, cap, "%s (no id)", el->tag);
+}
+
+/* Every subpath of the selected elements, in output units, into prof[r]
+ * for each of the nruns fit modes fits[r] (the document is parsed once; the
+ * runs have the same elements and subpaths in the same order). One group
+ * per element, one contour per subpath, numbered as the element's
+ * subpaths from 1. Warnings come from the first run only. */
 static int load_svg(const options *o, const char *name, const char *buf, size_t len,
-                    conica_scad_profile *prof, stats *sx)
+                    const fit *fits, size_t nruns, conica_scad_profile *prof, stats *sx)
 {
     conica_svg_doc *doc = NULL;
     conica_svg_shapes shapes;
@@ -533,8 +724,6 @@ static int load_svg(const options *o, const char *name, const char *buf, size_t 
 
     conica_svg_settings set = conica_svg_defaults();
     set.convert_shapes = 1;
-    set.warn = svg_warn;
-    set.warn_ctx = (void *)name;
     set.limits = o->limits;
     set.limits.max_points = o->max_points * 16;
     /* SVG fills an open subpath as if closed (as OpenSCAD's import() does) */
@@ -546,9 +735,10 @@ static int load_svg(const options *o, const char *name, const char *buf, size_t 
         set.fidelity = tol_user;
     } else {
         /* The drawn curves are the ground truth: flattened within the
-         * tolerance of them, straight edges and their ends exact. */
+         * tolerance of them, straight edges and their ends exact; the
+         * written digits get tolerance * ROUND_FRACTION of it. */
         set.mode = CONICA_SVG_FLATTEN;
-        set.tolerance = tol_user;
+        set.tolerance = tol_user * (1 - CONICA_SCAD_ROUND_FRACTION);
     }
     if (o->select) {
         ids = split_ids(o->select, &nids);
@@ -559,65 +749,72 @@ static int load_svg(const options *o, const char *name, const char *buf, size_t 
         set.select = (const char *const *)ids;
         set.nselect = nids;
     }
-    conica_svg_shapes_init(&shapes);
-    rc = conica_svg_extract(doc, &set, &shapes, &st);
-    conica_svg_doc_free(doc);
-    if (rc != CONICA_OK) {
-        result = status_error(name, &st);
-        goto done;
-    }
     sx->kind = "SVG";
-    sx->elements = shapes.nelements;
-    for (size_t e = 0; e < shapes.nelements && result == 0; e++) {
-        const conica_svg_element *el = &shapes.elements[e];
-        char gname[64], where[1024];
-        size_t g;
-        snprintf(where, sizeof where, "%s:%zu", name, el->line);
-        if (el->has_transform)
-            cli_warning(PROG, where, "<%s%s%s> has a transform, which is not applied", el->tag,
-                        el->id ? " id=" : "", el->id ? el->id : "");
-        if (el->id)
-            snprintf(gname, sizeof gname, "%s", el->id);
-        else
-            snprintf(gname, sizeof gname, "<%s>", el->tag);
-        if (conica_scad_add_group(prof, gname,
-                                  el->fill_rule == CONICA_SVG_EVENODD ? CONICA_SCAD_FILL_EVENODD
-                                                                      : CONICA_SCAD_FILL_NONZERO,
-                                  el->line, &g, &st) != CONICA_OK) {
+    for (size_t r = 0; r < nruns && result == 0; r++) {
+        set.fit = (int)fits[r];
+        set.warn = r == 0 ? svg_warn : NULL;
+        set.warn_ctx = (void *)name;
+        conica_svg_shapes_init(&shapes);
+        rc = conica_svg_extract(doc, &set, &shapes, &st);
+        if (rc != CONICA_OK) {
             result = status_error(name, &st);
+            conica_svg_shapes_free(&shapes);
             break;
         }
-        for (size_t k = 0; k < el->nsubpaths; k++) {
-            const conica_svg_subpath *sp = &shapes.subpaths[el->first_subpath + k];
-            double *xy, *pts = NULL;
-            size_t n = sp->n;
-            sx->dense_points += n;
-            sx->subpaths++;
-            xy = malloc(2 * (n ? n : 1) * sizeof *xy);
-            if (!xy) {
-                result = cli_error(PROG, name, "out of memory");
+        if (r == 0)
+            sx->elements = shapes.nelements;
+        for (size_t e = 0; e < shapes.nelements && result == 0; e++) {
+            const conica_svg_element *el = &shapes.elements[e];
+            char gname[CONICA_SCAD_MAX_GROUP_NAME], where[1024];
+            size_t g;
+            snprintf(where, sizeof where, "%s:%zu", name, el->line);
+            element_name(el, gname, sizeof gname);
+            if (el->has_transform && r == 0)
+                cli_warning(PROG, where, "%s has a transform, which is not applied", gname);
+            if (conica_scad_add_group(&prof[r], gname,
+                                      el->fill_rule == CONICA_SVG_EVENODD
+                                          ? CONICA_SCAD_FILL_EVENODD
+                                          : CONICA_SCAD_FILL_NONZERO,
+                                      el->line, &g, &st) != CONICA_OK) {
+                result = status_error(name, &st);
                 break;
             }
-            for (size_t i = 0; i < n; i++) {
-                xy[2 * i] = (sp->xy[2 * i] - x0) * sxu;
-                xy[2 * i + 1] = (ytop - sp->xy[2 * i + 1]) * syu;
-            }
-            rc = CONICA_OK;
-            (void)pts;
-            if (rc == CONICA_OK)
-                rc = conica_scad_add_contour(prof, g, xy, n, &st);
-            free(xy);
-            if (rc != CONICA_OK) {
-                result = cli_error(PROG, where, "%s", st.message);
-                break;
+            for (size_t k = 0; k < el->nsubpaths; k++) {
+                const conica_svg_subpath *sp = &shapes.subpaths[el->first_subpath + k];
+                double *xy;
+                size_t n = sp->n;
+                if (r == 0) {
+                    sx->dense_points += n;
+                    sx->subpaths++;
+                }
+                if (n == 0)
+                    continue;
+                xy = malloc(2 * n * sizeof *xy);
+                if (!xy) {
+                    result = cli_error(PROG, name, "out of memory");
+                    break;
+                }
+                for (size_t i = 0; i < n; i++) {
+                    xy[2 * i] = (sp->xy[2 * i] - x0) * sxu;
+                    xy[2 * i + 1] = (ytop - sp->xy[2 * i + 1]) * syu;
+                }
+                rc = conica_scad_add_contour(&prof[r], g, xy, n, &st);
+                free(xy);
+                if (rc != CONICA_OK) {
+                    result = cli_error(PROG, where, "%s: subpath %zu: %s", gname, k + 1,
+                                       st.message);
+                    break;
+                }
+                /* the SVG's own numbering, whatever was left out before */
+                prof[r].contours[prof[r].ncontours - 1].subpath = k + 1;
             }
         }
+        conica_svg_shapes_free(&shapes);
+        if (result == 0 && prof[r].ncontours == 0)
+            result = cli_error(PROG, name, "no closed subpath in the %s elements",
+                               o->select ? "selected" : "document's");
     }
-    if (result == 0 && prof->ncontours == 0)
-        result = cli_error(PROG, name, "no closed subpath in the %s elements",
-                           o->select ? "selected" : "document's");
-done:
-    conica_svg_shapes_free(&shapes);
+    conica_svg_doc_free(doc);
     if (ids) {
         if (nids)
             free(ids[0]);
@@ -626,48 +823,183 @@ done:
     return result;
 }
 
+/* --fit clearance: the contours that are holes in the inside run *in
+ * (arranged as *lay) take their points from the outside run *out, which
+ * holds the same subpaths in the same order (*in may have lost some to
+ * conica_scad_drop_empty; group and subpath number find the rest). */
+static int take_holes(conica_scad_profile *in, const conica_scad_layout *lay,
+                      const conica_scad_profile *out, const char *name, size_t *taken)
+{
+    unsigned char *hole = calloc(in->ncontours ? in->ncontours : 1, 1);
+    size_t j = 0;
+    *taken = 0;
+    if (!hole)
+        return cli_error(PROG, name, "out of memory");
+    for (size_t i = 0; i < lay->npaths; i++)
+        if (lay->paths[i].hole)
+            hole[lay->paths[i].contour] = 1;
+    for (size_t c = 0; c < in->ncontours; c++) {
+        conica_scad_contour *k = &in->contours[c];
+        while (j < out->ncontours &&
+               (out->contours[j].group != k->group || out->contours[j].subpath != k->subpath))
+            j++;
+        if (j == out->ncontours) {
+            free(hole);
+            return cli_error(PROG, name,
+                             "--fit clearance: the outside run lacks a subpath of the inside run");
+        }
+        if (!hole[c])
+            continue;
+        const conica_scad_contour *q = &out->contours[j];
+        double *xy = malloc(2 * q->n * sizeof *xy);
+        if (!xy) {
+            free(hole);
+            return cli_error(PROG, name, "out of memory");
+        }
+        memcpy(xy, q->xy, 2 * q->n * sizeof *xy);
+        free(k->xy);
+        in->npoints = in->npoints - k->n + q->n;
+        k->xy = xy;
+        k->n = q->n;
+        (*taken)++;
+    }
+    free(hole);
+    return 0;
+}
+
 /* ------------------------------------------------------------ main */
 
-static char *header_text(int argc, char **argv, const options *o, const char *kind_name)
+static char *header_text(int argc, char **argv, const options *o, const char *kind_name,
+                         int exact)
 {
-    size_t cap = 512;
+    size_t cap = 1024;
     for (int i = 0; i < argc; i++)
         cap += strlen(argv[i]) + 3;
-    char *h = malloc(cap), num[40];
+    char *h = malloc(cap), num[40], step[40];
     if (!h)
         return NULL;
     size_t n = (size_t)snprintf(h, cap, "Generated by " PROG " " VERSION " (Conica).\ncommand:");
     for (int i = 0; i < argc && n < cap; i++)
         n += (size_t)snprintf(h + n, cap - n, " %s", i == 0 ? PROG : argv[i]);
     conica_scad_format_double(o->tolerance, num, sizeof num);
+    conica_scad_format_double(o->tolerance * CONICA_SCAD_ROUND_FRACTION, step, sizeof step);
     if (n < cap)
         n += (size_t)snprintf(h + n, cap - n, "\nsource: %s (%s)\n", o->in, kind_name);
+    /* SVG output units are chosen; other inputs keep their own units */
+    const char *u = strcmp(kind_name, "SVG") != 0 ? "(input units)"
+                    : o->unit == U_PX                ? "px"
+                    : o->unit == U_IN                ? "in"
+                                                     : "mm";
     if (n < cap) {
-        /* SVG output units are chosen; other inputs keep their own units */
-        const char *u = strcmp(kind_name, "SVG") != 0 ? "(input units)"
-                        : o->unit == U_PX                ? "px"
-                        : o->unit == U_IN                ? "in"
-                                                         : "mm";
         if (o->levels >= 0)
-            snprintf(h + n, cap - n, "refinement: %d subdivision levels, every point kept", o->levels);
+            n += (size_t)snprintf(h + n, cap - n,
+                                  "refinement: %d subdivision levels, every point kept", o->levels);
         else if (o->flatten_only)
-            snprintf(h + n, cap - n, "tolerance: %s %s (curves flattened, input geometry kept)",
-                     num, u);
+            n += (size_t)snprintf(h + n, cap - n,
+                                  "tolerance: %s %s (curves flattened, input geometry kept)", num, u);
+        else
+            n += (size_t)snprintf(h + n, cap - n,
+                                  "tolerance: %s %s (largest distance between the polygon and the "
+                                  "curve)",
+                                  num, u);
+    }
+    if (n < cap)
+        n += (size_t)snprintf(h + n, cap - n, "\nfit: %s (%s)", fit_names[o->fit],
+                              fit_meaning[o->fit]);
+    if (n < cap) {
+        if (exact)
+            snprintf(h + n, cap - n, "\ncoordinates: exact (the shortest decimals that read "
+                                     "back to the computed doubles)");
         else
             snprintf(h + n, cap - n,
-                     "tolerance: %s %s (largest distance between the polygon and the curve)", num,
-                     u);
+                     "\ncoordinates: fewest digits within %s %s (tolerance/1000) of each point,\n"
+                     "  the input's own numbers kept exactly where that is short",
+                     step, u);
     }
     return h;
+}
+
+/* Where a validation problem is: FILE:LINE of the contour's element, or,
+ * for a point file written as it is (--flatten-only), the line of the
+ * point the problem names. */
+static void problem_where(const char *name, kind k, const options *o, const char *buf, size_t len,
+                          const conica_scad_profile *p, const conica_scad_violation *v,
+                          char *where, size_t cap)
+{
+    const conica_scad_group *g = v->problem != CONICA_SCAD_OK && v->contour_a < p->ncontours
+                                     ? &p->groups[p->contours[v->contour_a].group]
+                                     : NULL;
+    size_t pline = k == IN_POINTS && o->flatten_only &&
+                           (v->problem == CONICA_SCAD_DUPLICATE_POINT ||
+                            v->problem == CONICA_SCAD_NEGATIVE_X ||
+                            v->problem == CONICA_SCAD_OUT_OF_RANGE)
+                       ? conica_curve_line_of_point(buf, len, v->segment_a, 0)
+                       : 0;
+    if (pline)
+        snprintf(where, cap, "%s:%zu", name, pline);
+    else if (g && g->line)
+        snprintf(where, cap, "%s:%zu", name, g->line);
+    else
+        snprintf(where, cap, "%s", name);
+}
+
+/* conica_scad_drop_empty()'s report: a warning per skipped contour, or,
+ * for a profile of one contour, the message kept for the error. */
+typedef struct drop_ctx {
+    const char *name;
+    int quiet;
+    char where[1024];
+    char first[sizeof ((conica_status *)0)->message];
+} drop_ctx;
+
+static void on_drop(void *ctx, const conica_scad_profile *p, size_t contour,
+                    const conica_scad_violation *v, const char *message)
+{
+    drop_ctx *d = ctx;
+    const conica_scad_group *g = &p->groups[p->contours[contour].group];
+    (void)v;
+    if (g->line)
+        snprintf(d->where, sizeof d->where, "%s:%zu", d->name, g->line);
+    else
+        snprintf(d->where, sizeof d->where, "%s", d->name);
+    if (d->quiet)
+        snprintf(d->first, sizeof d->first, "%s", message);
+    else
+        cli_warning(PROG, d->where, "%s; skipped", message);
+}
+
+/* Validation failed: an error (returns 1), or with --force a warning
+ * (returns 0). Coordinates out of range are refused even then. */
+static int invalid(const char *name, kind k, const options *o, const char *buf, size_t len,
+                   const conica_scad_profile *p, const conica_scad_violation *v,
+                   const conica_status *st)
+{
+    char where[1024];
+    problem_where(name, k, o, buf, len, p, v, where, sizeof where);
+    if (v->problem == CONICA_SCAD_OUT_OF_RANGE) {
+        if (k == IN_SVG)
+            cli_error(PROG, where, "%s; the numbers are in %s, after unit conversion", st->message,
+                      o->unit == U_PX ? "px" : o->unit == U_IN ? "in" : "mm");
+        else
+            cli_error(PROG, where, "%s", st->message);
+        return 1;
+    }
+    if (!o->force) {
+        cli_error(PROG, where, "%s (nothing written; --force writes it anyway)", st->message);
+        return 1;
+    }
+    cli_warning(PROG, where, "%s (written anyway: --force)", st->message);
+    return 0;
 }
 
 int main(int argc, char **argv)
 {
     options o;
-    int exit_now = 0, rc;
-    char *buf = NULL;
+    int exit_now = 0, rc, exact = 0;
+    char *buf = NULL, modbuf[CONICA_SCAD_MAX_MODULE_NAME + 1];
     size_t len = 0;
-    conica_scad_profile prof;
+    conica_scad_profile prof[2], rounded;
+    const conica_scad_profile *use;
     conica_scad_layout lay;
     conica_scad_violation viol;
     conica_status st;
@@ -687,49 +1019,136 @@ int main(int argc, char **argv)
         free(buf);
         return cli_usage_error(PROG, "--units and --select apply to SVG input only");
     }
+    if (k != IN_SVG && o.fit != FIT_INSIDE) {
+        free(buf);
+        return cli_usage_error(PROG,
+                               "--fit %s: %s input supports only --fit inside (for now; "
+                               "--fit outside, middle and clearance need SVG input)",
+                               fit_names[o.fit], k == IN_SPLINE ? "spline" : "point-normal");
+    }
+    if (!o.module_given) {
+        int changed;
+        default_module(o.in, modbuf, sizeof modbuf, &changed);
+        o.module = modbuf;
+        if (changed)
+            cli_warning(PROG, name,
+                        "the module is named '%s' (the file name made into an OpenSCAD "
+                        "identifier; --module NAME sets it)",
+                        modbuf);
+    }
     memset(&sx, 0, sizeof sx);
     sx.levels = -1;
-    conica_scad_profile_init(&prof);
+    conica_scad_profile_init(&prof[0]);
+    conica_scad_profile_init(&prof[1]);
+    conica_scad_profile_init(&rounded);
     conica_scad_layout_init(&lay);
+    /* --fit clearance: an inside run, and an outside one for the holes */
+    fit fits[2] = {o.fit == FIT_CLEARANCE ? FIT_INSIDE : o.fit, FIT_OUTSIDE};
+    size_t nruns = o.fit == FIT_CLEARANCE ? 2 : 1;
     if (k == IN_SVG)
-        rc = load_svg(&o, name, buf, len, &prof, &sx);
+        rc = load_svg(&o, name, buf, len, fits, nruns, prof, &sx);
     else if (k == IN_SPLINE)
-        rc = load_spline(&o, name, buf, len, &prof, &sx);
+        rc = load_spline(&o, name, buf, len, &prof[0], &sx);
     else
-        rc = load_points(&o, name, buf, len, &prof, &sx);
+        rc = load_points(&o, name, buf, len, &prof[0], &sx);
     if (rc != 0)
         goto fail;
+    if (nruns == 2 &&
+        (prof[0].ncontours != prof[1].ncontours || prof[0].ngroups != prof[1].ngroups)) {
+        cli_error(PROG, name, "--fit clearance: the inside and outside runs have different "
+                              "subpaths (%zu and %zu)",
+                  prof[0].ncontours, prof[1].ncontours);
+        goto fail;
+    }
 
-    if (conica_scad_validate(&prof, o.revolve, &viol, &st) != CONICA_OK) {
-        char where[1024];
-        const conica_scad_group *g = viol.problem != CONICA_SCAD_OK
-                                         ? &prof.groups[prof.contours[viol.contour_a].group]
-                                         : NULL;
-        /* with --flatten-only a point file's contour is its points, in order */
-        size_t pline = k == IN_POINTS && o.flatten_only &&
-                               (viol.problem == CONICA_SCAD_DUPLICATE_POINT ||
-                                viol.problem == CONICA_SCAD_NEGATIVE_X)
-                           ? conica_curve_line_of_point(buf, len, viol.segment_a, 0)
-                           : 0;
-        if (pline)
-            snprintf(where, sizeof where, "%s:%zu", name, pline);
-        else if (g && g->line)
-            snprintf(where, sizeof where, "%s:%zu", name, g->line);
-        else
-            snprintf(where, sizeof where, "%s", name);
-        if (!o.force) {
-            cli_error(PROG, where, "%s (nothing written; --force writes it anyway)", st.message);
+    /* out of range first (an overflowing area says nothing), then the
+     * subpaths without area go, with a warning each */
+    if (conica_scad_check_range(&prof[0], &viol, &st) != CONICA_OK) {
+        invalid(name, k, &o, buf, len, &prof[0], &viol, &st);
+        goto fail;
+    }
+    {
+        drop_ctx dc;
+        memset(&dc, 0, sizeof dc);
+        dc.name = name;
+        dc.quiet = prof[0].ncontours == 1;
+        size_t before = prof[0].ncontours, dropped = 0;
+        if (conica_scad_drop_empty(&prof[0], on_drop, &dc, &dropped, &st) != CONICA_OK) {
+            status_error(name, &st);
             goto fail;
         }
-        cli_warning(PROG, where, "%s (written anyway: --force)", st.message);
+        sx.skipped = dropped;
+        if (prof[0].ncontours == 0) {
+            if (dc.quiet)
+                cli_error(PROG, dc.where, "%s; nothing to write", dc.first);
+            else
+                cli_error(PROG, name,
+                          "nothing to write: none of the %zu subpaths encloses an area", before);
+            goto fail;
+        }
     }
-    if (conica_scad_arrange(&prof, &lay, &st) != CONICA_OK) {
+    if (nruns == 2) {
+        /* which contours are holes, from the inside run's arrangement */
+        size_t taken = 0;
+        if (conica_scad_validate(&prof[0], o.revolve, &viol, &st) != CONICA_OK &&
+            invalid(name, k, &o, buf, len, &prof[0], &viol, &st))
+            goto fail;
+        if (conica_scad_arrange(&prof[0], &lay, &st) != CONICA_OK) {
+            status_error(name, &st);
+            goto fail;
+        }
+        if (take_holes(&prof[0], &lay, &prof[1], name, &taken) != 0)
+            goto fail;
+        conica_scad_profile_free(&prof[1]);
+        conica_scad_layout_free(&lay);
+        conica_scad_layout_init(&lay);
+    }
+
+    /* the written digits: within tolerance/1000 of each point (--levels:
+     * exact); what is validated and arranged is what is written */
+    use = &prof[0];
+    exact = o.levels >= 0;
+    if (!exact) {
+        double h = o.tolerance * CONICA_SCAD_ROUND_FRACTION / sqrt(2.0);
+        if (conica_scad_round(&prof[0], h, &rounded, &st) != CONICA_OK) {
+            status_error(name, &st);
+            goto fail;
+        }
+        use = &rounded;
+    }
+    if (conica_scad_validate(use, o.revolve, &viol, &st) != CONICA_OK) {
+        conica_scad_violation v0;
+        conica_status st0;
+        if (use == &rounded) {
+            if (conica_scad_validate(&prof[0], o.revolve, &v0, &st0) == CONICA_OK) {
+                char step[40];
+                conica_scad_format_double(o.tolerance * CONICA_SCAD_ROUND_FRACTION, step,
+                                          sizeof step);
+                cli_warning(PROG, name,
+                            "coordinates rounded to within %s (tolerance/1000) would make the "
+                            "profile invalid (%s); written exactly instead",
+                            step, st.message);
+                exact = 1;
+                use = &prof[0];
+                viol.problem = CONICA_SCAD_OK;
+            } else {
+                /* the problem is the geometry's: report it in its own numbers */
+                exact = 1;
+                use = &prof[0];
+                viol = v0;
+                st = st0;
+            }
+        }
+        if (viol.problem != CONICA_SCAD_OK && invalid(name, k, &o, buf, len, use, &viol, &st))
+            goto fail;
+    }
+    if (conica_scad_arrange(use, &lay, &st) != CONICA_OK) {
         status_error(name, &st);
         goto fail;
     }
     {
         static const char *const kinds[3] = {"point-normal", "SVG", "spline"};
-        char *header = header_text(argc, argv, &o, kinds[k]);
+        char *header = header_text(argc, argv, &o, kinds[k], exact);
         conica_scad_write_options wo = conica_scad_write_defaults();
         cli_output out;
         if (!header) {
@@ -742,11 +1161,14 @@ int main(int argc, char **argv)
         wo.extrude_height = o.height;
         wo.revolve = o.revolve;
         wo.revolve_angle = o.angle;
+        /* --extrude / --rotate-extrude make a file that renders the solid
+         * alone, as before --demo-call existed (scripts/demo-scad.sh) */
+        wo.instantiate = o.demo_call == 1 || (o.demo_call < 0 && (o.extrude || o.revolve));
         if (cli_output_open(PROG, o.out, &out) != 0) {
             free(header);
             goto fail;
         }
-        if (conica_scad_write(out.f, &prof, &lay, &wo, &st) != CONICA_OK) {
+        if (conica_scad_write(out.f, use, &lay, &wo, &st) != CONICA_OK) {
             cli_output_abort(&out);
             free(header);
             cli_error(PROG, o.out ? o.out : "<stdout>", "%s", st.message);
@@ -760,7 +1182,7 @@ int main(int argc, char **argv)
     if (o.stats) {
         size_t pts = 0;
         for (size_t i = 0; i < lay.npaths; i++)
-            pts += prof.contours[lay.paths[i].contour].n;
+            pts += use->contours[lay.paths[i].contour].n;
         if (k == IN_SVG)
             fprintf(stderr, PROG ": input SVG, %zu elements, %zu closed subpaths", sx.elements,
                     sx.subpaths);
@@ -771,6 +1193,8 @@ int main(int argc, char **argv)
                 o.flatten_only ? " (flatten only)" : "");
         if (sx.levels >= 0)
             fprintf(stderr, "; level %d", sx.levels);
+        if (sx.skipped)
+            fprintf(stderr, "; %zu without area skipped", sx.skipped);
         fprintf(stderr,
                 "\n" PROG ": %zu points written in %zu paths (%zu outer, %zu holes, %zu dropped), "
                 "convexity %d; %.3f ms\n",
@@ -778,12 +1202,16 @@ int main(int argc, char **argv)
                 1e3 * ((double)(t1.tv_sec - t0.tv_sec) + 1e-9 * (double)(t1.tv_nsec - t0.tv_nsec)));
     }
     conica_scad_layout_free(&lay);
-    conica_scad_profile_free(&prof);
+    conica_scad_profile_free(&prof[0]);
+    conica_scad_profile_free(&prof[1]);
+    conica_scad_profile_free(&rounded);
     free(buf);
     return CLI_EXIT_OK;
 fail:
     free(buf);
     conica_scad_layout_free(&lay);
-    conica_scad_profile_free(&prof);
+    conica_scad_profile_free(&prof[0]);
+    conica_scad_profile_free(&prof[1]);
+    conica_scad_profile_free(&rounded);
     return CLI_EXIT_ERROR;
 }

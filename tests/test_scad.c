@@ -129,7 +129,9 @@ TEST_CASE("validation refuses what OpenSCAD would render wrongly", "[scad][valid
         CHECK_NEAR(v.y, 1, 1e-15);
         INFO("%s", st.message);
         CHECK(strstr(st.message, "segment 1 (points 1-2) and segment 3 (points 3-4)") != NULL);
-        CHECK(strstr(st.message, "'shape'") != NULL);
+        /* named by its group and its number in it, nothing else */
+        CHECK(strncmp(st.message, "shape: subpath 1 intersects itself", 34) == 0);
+        CHECK(strstr(st.message, "contour") == NULL);
     }
     SECTION("a figure eight touching itself at one vertex")
     {
@@ -190,6 +192,37 @@ TEST_CASE("validation refuses what OpenSCAD would render wrongly", "[scad][valid
         CHECK_EQ(conica_scad_validate(&p, 0, &v, &st), CONICA_ERR_DEGENERATE);
         CHECK_EQ(v.problem, CONICA_SCAD_TOO_FEW_POINTS);
     }
+    SECTION("coordinates beyond CONICA_SCAD_MAX_COORD are out of range, checked first")
+    {
+        /* a triangle at 1e200: its area overflows, and it used to be
+         * reported as "zero area (collinear)" */
+        double big[6] = {0, 0, 1e200, 0, 0, 1e200};
+        double e15[6] = {0, 0, 1e15, 0, 0, 1};
+        double edge[6] = {0, 0, CONICA_SCAD_MAX_COORD, 0, 0, -CONICA_SCAD_MAX_COORD};
+        double sq[8];
+        square(sq, 0, 0, 1, 1);
+        REQUIRE_EQ(conica_scad_add_contour(&p, g, sq, 4, NULL), CONICA_OK);
+        REQUIRE_EQ(conica_scad_add_contour(&p, g, big, 3, NULL), CONICA_OK);
+        CHECK_EQ(conica_scad_validate(&p, 0, &v, &st), CONICA_ERR_LIMIT);
+        CHECK_EQ(v.problem, CONICA_SCAD_OUT_OF_RANGE);
+        CHECK_EQ_U(v.contour_a, 1);
+        CHECK_EQ_U(v.segment_a, 1);
+        INFO("%s", st.message);
+        CHECK(strncmp(st.message, "shape: subpath 2: point 2 (1e+200, 0) is out of range", 52) ==
+              0);
+        CHECK(strstr(st.message, "zero area") == NULL);
+        CHECK_EQ(conica_scad_check_range(&p, &v, &st), CONICA_ERR_LIMIT);
+        conica_scad_profile_free(&p);
+        g = group(&p, "shape", CONICA_SCAD_FILL_NONZERO);
+        REQUIRE_EQ(conica_scad_add_contour(&p, g, e15, 3, NULL), CONICA_OK);
+        CHECK_EQ(conica_scad_validate(&p, 0, &v, &st), CONICA_ERR_LIMIT);
+        CHECK_EQ(v.problem, CONICA_SCAD_OUT_OF_RANGE);
+        conica_scad_profile_free(&p);
+        g = group(&p, "shape", CONICA_SCAD_FILL_NONZERO);
+        REQUIRE_EQ(conica_scad_add_contour(&p, g, edge, 3, NULL), CONICA_OK);
+        CHECK_EQ(conica_scad_check_range(&p, &v, &st), CONICA_OK); /* the bound itself is fine */
+        CHECK_EQ(conica_scad_validate(&p, 0, &v, &st), CONICA_OK);
+    }
     SECTION("rotate_extrude needs x >= 0")
     {
         double xy[8];
@@ -237,6 +270,187 @@ TEST_CASE("validation refuses what OpenSCAD would render wrongly", "[scad][valid
         CHECK(v.segment_b <= 1001);
         free(xy);
     }
+    conica_scad_profile_free(&p);
+}
+
+/* conica_scad_drop_empty()'s reports, collected. */
+typedef struct drops {
+    size_t n;
+    size_t subpath[8];
+    conica_scad_problem problem[8];
+    char message[8][256];
+} drops;
+
+static void collect_drop(void *ctx, const conica_scad_profile *p, size_t c,
+                         const conica_scad_violation *v, const char *message)
+{
+    drops *d = ctx;
+    if (d->n < 8) {
+        d->subpath[d->n] = p->contours[c].subpath;
+        d->problem[d->n] = v->problem;
+        snprintf(d->message[d->n], sizeof d->message[d->n], "%s", message);
+    }
+    d->n++;
+}
+
+TEST_CASE("contours without area are dropped and named; the rest stay in order",
+          "[scad][validate][drop]")
+{
+    conica_scad_profile p;
+    conica_scad_profile_init(&p);
+    size_t g = group(&p, "path 'a'", CONICA_SCAD_FILL_EVENODD);
+    size_t h = group(&p, "rect (no id)", CONICA_SCAD_FILL_NONZERO);
+    double sq[8], two[4] = {20, 20, 30, 30}, line[6] = {40, 40, 50, 50, 60, 60};
+    double dupline[8] = {70, 0, 70, 0, 71, 0, 72, 0};
+    double bow[8] = {0, 20, 2, 22, 2, 20, 0, 22}; /* signed area 0, but a bowtie */
+    double tri_dup[8] = {0, 30, 0, 30, 1, 30, 0, 31}; /* a duplicate, not collinear */
+    double far[6] = {0, 0, 1e200, 0, 0, 1e200};
+    double sq2[8];
+    square(sq, 0, 0, 10, 1);
+    square(sq2, 50, 0, 5, 1);
+    REQUIRE_EQ(conica_scad_add_contour(&p, g, sq, 4, NULL), CONICA_OK);
+    REQUIRE_EQ(conica_scad_add_contour(&p, g, two, 2, NULL), CONICA_OK);
+    REQUIRE_EQ(conica_scad_add_contour(&p, g, line, 3, NULL), CONICA_OK);
+    REQUIRE_EQ(conica_scad_add_contour(&p, g, dupline, 4, NULL), CONICA_OK);
+    REQUIRE_EQ(conica_scad_add_contour(&p, g, bow, 4, NULL), CONICA_OK);
+    REQUIRE_EQ(conica_scad_add_contour(&p, g, tri_dup, 4, NULL), CONICA_OK);
+    REQUIRE_EQ(conica_scad_add_contour(&p, g, far, 3, NULL), CONICA_OK);
+    REQUIRE_EQ(conica_scad_add_contour(&p, h, sq2, 4, NULL), CONICA_OK);
+    CHECK_EQ_U(p.contours[6].subpath, 7);
+    CHECK_EQ_U(p.contours[7].subpath, 1); /* numbered within its own group */
+    size_t before = p.npoints, dropped = 0;
+    drops d;
+    memset(&d, 0, sizeof d);
+    REQUIRE_EQ(conica_scad_drop_empty(&p, collect_drop, &d, &dropped, NULL), CONICA_OK);
+    CHECK_EQ_U(dropped, 3);
+    REQUIRE_EQ_U(d.n, 3);
+    CHECK_EQ_U(d.subpath[0], 2);
+    CHECK_EQ(d.problem[0], CONICA_SCAD_TOO_FEW_POINTS);
+    INFO("%s | %s | %s", d.message[0], d.message[1], d.message[2]);
+    CHECK_STR_EQ(d.message[0], "path 'a': subpath 2 has 2 points (a polygon needs 3)");
+    CHECK_EQ_U(d.subpath[1], 3);
+    CHECK_EQ(d.problem[1], CONICA_SCAD_ZERO_AREA);
+    CHECK(strncmp(d.message[1], "path 'a': subpath 3 has zero area", 33) == 0);
+    CHECK_EQ_U(d.subpath[2], 4); /* collinear with a repeated first point */
+    CHECK_EQ(d.problem[2], CONICA_SCAD_ZERO_AREA);
+    /* kept: the square, the bowtie (validate names its crossing), the
+     * triangle with a repeated point (validate names the points), the far
+     * triangle (out of range, for validate) and the other group's square */
+    REQUIRE_EQ_U(p.ncontours, 5);
+    CHECK_EQ_U(p.contours[0].subpath, 1);
+    CHECK_EQ_U(p.contours[1].subpath, 5);
+    CHECK_EQ_U(p.contours[2].subpath, 6);
+    CHECK_EQ_U(p.contours[3].subpath, 7);
+    CHECK_EQ_U(p.contours[4].subpath, 1);
+    CHECK_EQ_U(p.contours[4].group, h);
+    CHECK_EQ_U(p.npoints, before - 2 - 3 - 4);
+    conica_scad_violation v;
+    conica_status st;
+    CHECK_EQ(conica_scad_validate(&p, 0, &v, &st), CONICA_ERR_LIMIT); /* range first */
+    CHECK_EQ_U(v.contour_a, 3);
+    char buf[128];
+    conica_scad_describe(&p, 3, buf, sizeof buf);
+    CHECK_STR_EQ(buf, "path 'a': subpath 7");
+    conica_scad_describe(&p, 4, buf, sizeof buf);
+    CHECK_STR_EQ(buf, "rect (no id): subpath 1");
+    conica_scad_profile_free(&p);
+
+    /* a one-contour profile without a group name is "the contour" */
+    g = group(&p, "", CONICA_SCAD_FILL_NONZERO);
+    REQUIRE_EQ(conica_scad_add_contour(&p, g, line, 3, NULL), CONICA_OK);
+    memset(&d, 0, sizeof d);
+    REQUIRE_EQ(conica_scad_drop_empty(&p, collect_drop, &d, &dropped, NULL), CONICA_OK);
+    CHECK_EQ_U(p.ncontours, 0);
+    CHECK_EQ_U(p.npoints, 0);
+    CHECK(strncmp(d.message[0], "the contour has zero area", 25) == 0);
+    conica_scad_profile_free(&p);
+}
+
+/* Significant digits of a %.17g-free decimal as printed. */
+static int sig_digits(const char *s)
+{
+    int n = 0, started = 0, trailing = 0;
+    for (; *s && *s != 'e' && *s != 'E'; s++) {
+        if (*s < '0' || *s > '9')
+            continue;
+        if (*s != '0' || started) {
+            started = 1;
+            n++;
+            trailing = *s == '0' ? trailing + 1 : 0;
+        }
+    }
+    return n - trailing;
+}
+
+TEST_CASE("rounding: fewest digits within h, the input's short numbers exact",
+          "[scad][format][round]")
+{
+    conica_scad_profile p, q;
+    conica_scad_profile_init(&p);
+    conica_scad_profile_init(&q);
+    size_t g = group(&p, "path 'r'", CONICA_SCAD_FILL_NONZERO);
+    /* exact corners computed the way a unit conversion does (80 as
+     * 79.99999999999999), a curve point, a px -> mm number (not short), a
+     * number just off an integer by computation noise */
+    double xy[12] = {0.1 * 3, 0, 80 - 1e-14, 0.5 * 100, 37.28473829472, 12.3456789,
+                     37 * 25.4 / 96, 1e-17, 12.5, 49.99999999999999, 0.19544384400537509,
+                     0.0001};
+    REQUIRE_EQ(conica_scad_add_contour(&p, g, xy, 6, NULL), CONICA_OK);
+    p.contours[0].subpath = 4;
+    const double tol = 0.01, h = tol * CONICA_SCAD_ROUND_FRACTION / sqrt(2.0);
+    REQUIRE_EQ(conica_scad_round(&p, h, &q, NULL), CONICA_OK);
+    REQUIRE_EQ_U(q.ncontours, 1);
+    CHECK_EQ_U(q.contours[0].subpath, 4);
+    CHECK_STR_EQ(q.groups[0].name, "path 'r'");
+    /* a small computed number gets no more decimals than the large ones
+     * (0.195443844 is within 1e-11 of this one, but is no input number);
+     * a short small one stays */
+    const char *want[12] = {"0.3", "0", "80", "50", "37.28474", "12.3456789", "9.78958", "0",
+                            "12.5", "50", "0.19544", "0.0001"};
+    for (int i = 0; i < 12; i++) {
+        char buf[40];
+        double r = q.contours[0].xy[i];
+        conica_scad_format_double(r, buf, sizeof buf);
+        INFO("coordinate %d: %.17g -> %s (want %s)", i, xy[i], buf, want[i]);
+        CHECK_STR_EQ(buf, want[i]);
+        CHECK_LE(fabs(r - xy[i]), h);
+    }
+    /* property: random points anywhere up to 1e6 move at most h per
+     * coordinate, and no shorter decimal would do, unless it is kept
+     * exactly (to CONICA_SCAD_EXACT_REL of the largest) in few digits */
+    uint64_t seed = 12345;
+    int exact = 0;
+    for (int t = 0; t < 2000; t++) {
+        seed = seed * 6364136223846793005u + 1442695040888963407u;
+        double u = (double)(seed >> 11) / 9007199254740992.0;
+        seed = seed * 6364136223846793005u + 1442695040888963407u;
+        double e = (double)(seed >> 11) / 9007199254740992.0;
+        double v = (u - 0.5) * pow(10, 6 * e);
+        double one[6] = {v, 1, 2, 3, 4, 5};
+        conica_scad_profile a;
+        conica_scad_profile_init(&a);
+        size_t ga = group(&a, "x", CONICA_SCAD_FILL_NONZERO);
+        REQUIRE_EQ(conica_scad_add_contour(&a, ga, one, 3, NULL), CONICA_OK);
+        REQUIRE_EQ(conica_scad_round(&a, h, &q, NULL), CONICA_OK);
+        double r = q.contours[0].xy[0];
+        char buf[40], shorter[48];
+        conica_scad_format_double(r, buf, sizeof buf);
+        int d = sig_digits(buf);
+        CAPTURE_D(v);
+        CHECK_LE(fabs(r - v), h);
+        double big = fmax(fabs(v), 5);
+        if (fabs(r - v) <= big * CONICA_SCAD_EXACT_REL && fabs(v) * 10 > big &&
+            d <= CONICA_SCAD_EXACT_MAX_DIGITS) {
+            exact++;
+        } else if (d > 1) {
+            snprintf(shorter, sizeof shorter, "%.*e", d - 2, v);
+            CHECK(fabs(strtod(shorter, NULL) - v) > h);
+        }
+        conica_scad_profile_free(&a);
+    }
+    CHECK_LE(exact, 40); /* random numbers are rarely short */
+    CHECK_EQ(conica_scad_round(&p, 0, &q, NULL), CONICA_ERR_ARG);
+    conica_scad_profile_free(&q);
     conica_scad_profile_free(&p);
 }
 
@@ -548,12 +762,50 @@ TEST_CASE("the writer emits points, paths and modules", "[scad][write]")
     CHECK(strstr(text, "function bracket_points() = [\n  [0,0],\n  [10,0],\n  [10,10],\n  [0,10],\n"
                        "  [2.5,2.5],\n  [2.5,2.6],\n  [2.6,2.6],\n  [2.6,2.5]];") != NULL);
     CHECK(strstr(text, "function bracket_paths() = [\n  [0,1,2,3],\n  [4,5,6,7]];") != NULL);
-    CHECK(strstr(text, "module bracket() polygon(points=bracket_points(), "
-                       "paths=bracket_paths(), convexity=2);") != NULL);
+    CHECK(strstr(text, "function bracket_bbox() = [[0,0],[10,10]];") != NULL);
+    CHECK(strstr(text, "module bracket(center=false)\n"
+                       "  translate(center ? -(bracket_bbox()[0] + bracket_bbox()[1]) / 2 : [0, 0])\n"
+                       "    polygon(points=bracket_points(), paths=bracket_paths(), convexity=2);") !=
+          NULL);
     CHECK(strstr(text, "module bracket_extruded(height=3, center=false)") != NULL);
     CHECK(strstr(text, "module bracket_revolved(angle=90)") != NULL);
+    /* include-safe by default: nothing but definitions and comments at the
+     * top level (every line outside a definition is a comment or blank) */
+    CHECK(strstr(text, "\nbracket_extruded();\n") == NULL);
+    CHECK(strstr(text, "\nbracket();\n") == NULL);
+    {
+        int depth = 0, stray = 0;
+        for (const char *line = text; *line;) {
+            const char *end = strchr(line, '\n');
+            size_t n = end ? (size_t)(end - line) : strlen(line);
+            if (depth == 0 && n > 0 && line[0] != '/' && line[0] != ' ' &&
+                strncmp(line, "function ", 9) != 0 && strncmp(line, "module ", 7) != 0)
+                stray++;
+            for (size_t i = 0; i < n && line[0] != '/'; i++)
+                depth += (line[i] == '[') - (line[i] == ']');
+            line += n + (end != NULL);
+        }
+        CHECK_EQ(stray, 0);
+        CHECK_EQ(depth, 0);
+    }
+    free(text);
+
+    /* instantiate: the call of the wrapper, for a file that renders alone */
+    o.instantiate = 1;
+    f = open_memstream(&text, &len);
+    REQUIRE(f != NULL);
+    CHECK_EQ(conica_scad_write(f, &p, &l, &o, &st), CONICA_OK);
+    fclose(f);
     CHECK(strstr(text, "\nbracket_extruded();\n") != NULL);
     free(text);
+    o.extrude = o.revolve = 0;
+    f = open_memstream(&text, &len);
+    REQUIRE(f != NULL);
+    CHECK_EQ(conica_scad_write(f, &p, &l, &o, &st), CONICA_OK);
+    fclose(f);
+    CHECK(strstr(text, "\nbracket();\n") != NULL);
+    free(text);
+    o.instantiate = 0;
 
     o.module = "2bad";
     f = open_memstream(&text, &len);

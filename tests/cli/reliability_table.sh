@@ -90,7 +90,7 @@ row 0 'warning: badpath.svg:1: path \(no id\): bad path data at byte 34: expecte
     "$svgsmooth" badpath.svg
 check_grep '<path d="M' "$out"
 row 0 'bad path data at byte 34' "$scad" badpath.svg
-check_grep 'module profile' "$out"
+check_grep '^module badpath\(center=false\)' "$out"
 
 begin_case "a point at 1e300 among ordinary ones ends in bounded time"
 if ! command -v timeout >/dev/null 2>&1; then
