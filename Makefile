@@ -184,8 +184,11 @@ demo:
 	scripts/demo.sh $(BUILD)
 
 # ---------------------------------------------------------------- install
+# Manual pages of the tools (docs/man/*.1) go to $(PREFIX)/share/man/man1.
+MAN1 := $(wildcard docs/man/*.1)
 install: $(CORE_A) $(CORE_SO) $(BINS) $(BUILD)/conica.pc
 	install -d $(DESTDIR)$(PREFIX)/lib/pkgconfig $(DESTDIR)$(PREFIX)/include/conica $(DESTDIR)$(PREFIX)/bin
+	install -d $(DESTDIR)$(PREFIX)/share/man/man1
 	install -m 644 libcore/include/conica/*.h $(DESTDIR)$(PREFIX)/include/conica/
 	install -m 644 $(CORE_A) $(DESTDIR)$(PREFIX)/lib/
 	install -m 755 $(CORE_SO).$(VERSION) $(DESTDIR)$(PREFIX)/lib/
@@ -193,6 +196,7 @@ install: $(CORE_A) $(CORE_SO) $(BINS) $(BUILD)/conica.pc
 	ln -sf libconica.so.$(VERSION) $(DESTDIR)$(PREFIX)/lib/libconica.so
 	install -m 755 $(BINS) $(DESTDIR)$(PREFIX)/bin/
 	install -m 644 $(BUILD)/conica.pc $(DESTDIR)$(PREFIX)/lib/pkgconfig/
+	install -m 644 $(MAN1) $(DESTDIR)$(PREFIX)/share/man/man1/
 
 clean:
 	rm -rf $(BUILD)

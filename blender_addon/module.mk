@@ -19,7 +19,7 @@ BLENDER_SOABI    := $(patsubst .%.so,%,$(BLENDER_PY_EXT))
 BLENDER_STAGE := $(BUILD)/blender/conica
 BLENDER_EXT   := $(BLENDER_STAGE)/_conica$(BLENDER_PY_EXT)
 BLENDER_ZIP   := $(BUILD)/conica-blender.zip
-BLENDER_PKG_SRCS := $(wildcard blender_addon/conica/*.py blender_addon/conica/*.toml)
+BLENDER_PKG_SRCS := $(wildcard blender_addon/conica/*.py blender_addon/conica/*.toml) blender_addon/conica/LICENSE
 BLENDER_EXT_OBJ := $(BUILD)/obj/blender_addon/ext/_conica.o
 
 # Python.h is included as a system header (-isystem): its inline functions

@@ -1,4 +1,4 @@
-/* Parser of the .spl spline text format (../shared/data/README.md):
+/* Parser of the .spl spline text format (docs/file-formats.md):
  *     degree P
  *     knots t1 t2 ...        (may be split over several `knots` lines)
  *     c x [y [z]]            (one control point a line)

@@ -99,7 +99,7 @@ CONICA_API conica_code conica_bspline_from_bezier(int degree, int dim, const dou
         const double *w, conica_bspline *out, conica_status *st);
 
 /**
- * @brief Parse the .spl text format of ../shared/data/README.md.
+ * @brief Parse the .spl text format (docs/file-formats.md).
  *
  * Lines: `degree P`, `knots t...` (may repeat), `c x [y [z]]` (one control
  * point a line, all with the same count), `w w1 ... wn` (may repeat);
