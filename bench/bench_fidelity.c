@@ -131,6 +131,54 @@ static void run(const char *font, const char *text, int smooth, double rel)
     ts_text_free(&t);
 }
 
+/* Points of a flattened r = 50 circle (two SVG-style arcs) per fit mode,
+ * beside the fewest any polygon needs: inscribed R (1 - cos(pi/n)) <= T,
+ * circumscribed R (1/cos(pi/n) - 1) <= T, straddling (R - T)/cos(pi/n)
+ * = R + T at best, i.e. cos(pi/n) >= (R - T)/(R + T). */
+static void circle_table(void)
+{
+    const double R = 50, T[3] = {0.1, 0.01, 0.001};
+    const char *names[3] = {"inside", "outside", "middle"};
+    printf("\nFlattened circle r = 50 (conica_path_flatten, two arcs), points vs the minimum\n\n");
+    printf("| fit | T | points | minimum | ratio | worst deviation / T |\n|---|---|---|---|---|---|\n");
+    for (int f = 0; f < 3; f++)
+        for (int k = 0; k < 3; k++) {
+            conica_path p;
+            conica_path_result r;
+            conica_path_settings s = conica_path_defaults();
+            double c = f == 0 ? 1 - T[k] / R : f == 1 ? R / (R + T[k]) : (R - T[k]) / (R + T[k]);
+            double nmin = ceil(M_PI / acos(c)), worst = 0;
+            conica_path_init(&p);
+            conica_path_result_init(&r);
+            conica_path_move_to(&p, R, 0, 0, NULL);
+            conica_path_arc_to(&p, 0, 0, R, R, 0, 0, M_PI, -R, 0, 0, NULL);
+            conica_path_arc_to(&p, 0, 0, R, R, 0, M_PI, M_PI, R, 0, 0, NULL);
+            conica_path_close(&p, NULL);
+            s.tolerance = T[k];
+            s.fit = (conica_path_fit)f;
+            if (conica_path_flatten(&p, &s, &r, NULL) != CONICA_OK) {
+                printf("| %s | %g | failed |\n", names[f], T[k]);
+                conica_path_free(&p);
+                continue;
+            }
+            {
+                /* measured: vertices and chord middles against the circle */
+                const conica_path_polyline *l = &r.lines[0];
+                for (size_t i = 0; i < l->n; i++) {
+                    size_t j = (i + 1) % l->n;
+                    double mx = 0.5 * (l->xy[2 * i] + l->xy[2 * j]);
+                    double my = 0.5 * (l->xy[2 * i + 1] + l->xy[2 * j + 1]);
+                    worst = fmax(worst, fabs(hypot(l->xy[2 * i], l->xy[2 * i + 1]) - R));
+                    worst = fmax(worst, fabs(hypot(mx, my) - R));
+                }
+            }
+            printf("| %s | %g | %zu | %.0f | %.3f | %.3f |\n", names[f], T[k], r.lines[0].n, nmin,
+                   (double)r.lines[0].n / nmin, worst / T[k]);
+            conica_path_result_free(&r);
+            conica_path_free(&p);
+        }
+}
+
 int main(void)
 {
     const char *text = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789&@%$?";
@@ -145,5 +193,6 @@ int main(void)
             run(TS_FONT_SANS, text, m == 0, k ? 1e-4 : 1e-3);
             run(TS_FONT_SERIF, text, m == 0, k ? 1e-4 : 1e-3);
         }
+    circle_table();
     return 0;
 }
