@@ -47,8 +47,7 @@ static const char *const fit_meaning[4] = {
     "vertices on each curve, chords inside it: every contour at most as large as drawn",
     "chords on or outside each curve: every contour, outline or hole, at least as large",
     "chords straddle each curve, within the tolerance both ways: fewest points",
-    "outlines inside, holes outside: the part never larger than drawn, its holes never "
-    "smaller",
+    "outlines inside, holes outside: the part never larger, its holes never smaller",
 };
 
 typedef struct options {
