@@ -40,7 +40,7 @@ awk 'BEGIN {
     }
     print "</svg>" }' >"$tmp/many.svg"
 check "the run ends" capped 20 "$scad" --force --levels 0 -o "$tmp/many.scad" "$tmp/many.svg"
-check_grep '^module profile\(' "$tmp/many.scad" "the profile module is written"
+check_grep '^module many\(' "$tmp/many.scad" "the module (named after the file) is written"
 check_exit 1 "exit 1 (contours meet)" capped 20 "$scad" --levels 0 -o "$tmp/x.scad" "$tmp/many.svg"
 check_grep 'meet' "$err" "the crossing is named"
 finish
