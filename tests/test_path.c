@@ -38,18 +38,8 @@ static void add_contour(conica_path *p, const ts_contour *c, double s, double dx
 
 static ts_contour scaled(const ts_contour *c, double s, double dx, double dy)
 {
-    ts_contour o = *c;
-    size_t i;
-    int k;
-    o.seg = malloc(c->n * sizeof *o.seg);
-    REQUIRE(o.seg != NULL);
-    for (i = 0; i < c->n; i++) {
-        o.seg[i] = c->seg[i];
-        for (k = 0; k <= c->seg[i].degree; k++) {
-            o.seg[i].p[k][0] = s * c->seg[i].p[k][0] + dx;
-            o.seg[i].p[k][1] = s * c->seg[i].p[k][1] + dy;
-        }
-    }
+    ts_contour o;
+    REQUIRE(ts_contour_transform(c, s, s, dx, dy, &o) == TS_OK);
     return o;
 }
 

@@ -18,18 +18,8 @@
 /* The glyph as the SVG draws it: scaled and flipped like ts_outline_svg_path. */
 static ts_contour mapped(const ts_contour *c)
 {
-    ts_contour o = *c;
-    size_t i;
-    int k;
-    o.seg = malloc(c->n * sizeof *o.seg);
-    REQUIRE(o.seg != NULL);
-    for (i = 0; i < c->n; i++) {
-        o.seg[i] = c->seg[i];
-        for (k = 0; k <= c->seg[i].degree; k++) {
-            o.seg[i].p[k][0] = SCALE * c->seg[i].p[k][0];
-            o.seg[i].p[k][1] = -SCALE * c->seg[i].p[k][1];
-        }
-    }
+    ts_contour o;
+    REQUIRE(ts_contour_transform(c, SCALE, -SCALE, 0, 0, &o) == TS_OK);
     return o;
 }
 

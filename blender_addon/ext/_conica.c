@@ -791,6 +791,22 @@ PyDoc_STRVAR(subdivide_doc,
 "(points, normals, attrs, inflections, info, left_handles, right_handles).\n"
 "info is a dict: points, inflections, seconds (libcore), plane data.");
 
+/* dim is 2 or 3 and stride (0: dim) between dim and 4: 1, or raise and 0. */
+static int cx_check_layout(cx_state *S, int dim, int *stride)
+{
+    if (dim != 2 && dim != 3) {
+        cx_raisef(S->arg_error, "dim must be 2 or 3, got %d", dim);
+        return 0;
+    }
+    if (*stride == 0)
+        *stride = dim;
+    if (*stride < dim || *stride > 4) {
+        cx_raisef(S->arg_error, "stride must be between dim (%d) and 4, got %d", dim, *stride);
+        return 0;
+    }
+    return 1;
+}
+
 /* The plane fit refused the spline: raise and say so (1), or 0. */
 static int cx_plane_refused(cx_state *S, int tiny, int nonplanar, const cx_plane *pl,
                             double plane_tol, double abs_tol)
@@ -835,13 +851,8 @@ static PyObject *cx_subdivide(PyObject *self, PyObject *args, PyObject *kw)
     char typecode;
     if (!cx_typecode(S, otype, &typecode))
         return NULL;
-    if (dim != 2 && dim != 3)
-        return cx_raisef(S->arg_error, "dim must be 2 or 3, got %d", dim);
-    if (stride == 0)
-        stride = dim;
-    if (stride < dim || stride > 4)
-        return cx_raisef(S->arg_error, "stride must be between dim (%d) and 4, got %d", dim,
-                         stride);
+    if (!cx_check_layout(S, dim, &stride))
+        return NULL;
     if (levels < 0 || levels > CONICA_SUBDIV_MAX_LEVELS)
         return cx_raisef(S->limit_error, "levels must be 0..%d, got %d",
                          CONICA_SUBDIV_MAX_LEVELS, levels);
@@ -1915,13 +1926,8 @@ static PyObject *cx_curve(PyObject *self, PyObject *args, PyObject *kw)
     int smooth = strcmp(mode, "smooth") == 0;
     if (!smooth && strcmp(mode, "flatten") != 0)
         return cx_raisef(S->arg_error, "mode must be 'smooth' or 'flatten', got '%s'", mode);
-    if (dim != 2 && dim != 3)
-        return cx_raisef(S->arg_error, "dim must be 2 or 3, got %d", dim);
-    if (stride == 0)
-        stride = dim;
-    if (stride < dim || stride > 4)
-        return cx_raisef(S->arg_error, "stride must be between dim (%d) and 4, got %d", dim,
-                         stride);
+    if (!cx_check_layout(S, dim, &stride))
+        return NULL;
     int top = CX_PATH_MAX_LEVELS - (handles ? 1 : 0);
     if (levels < 0 || levels > top)
         return cx_raisef(S->limit_error, "levels must be 0..%d%s, got %d", top,

@@ -35,3 +35,23 @@ void ts_outline_free(ts_outline *o)
     free(o->c);
     ts_outline_init(o);
 }
+
+ts_code ts_contour_transform(const ts_contour *c, double sx, double sy, double dx, double dy,
+                             ts_contour *out)
+{
+    ts_contour o = *c;
+    size_t i;
+    int k;
+    o.seg = malloc((c->n ? c->n : 1) * sizeof *o.seg);
+    if (!o.seg)
+        return TS_ERR_NOMEM;
+    for (i = 0; i < c->n; i++) {
+        o.seg[i] = c->seg[i];
+        for (k = 0; k <= c->seg[i].degree && k < 4; k++) {
+            o.seg[i].p[k][0] = sx * c->seg[i].p[k][0] + dx;
+            o.seg[i].p[k][1] = sy * c->seg[i].p[k][1] + dy;
+        }
+    }
+    *out = o;
+    return TS_OK;
+}

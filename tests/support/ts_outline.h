@@ -56,6 +56,12 @@ typedef enum ts_code {
 /** Static message for a code (never NULL). */
 const char *ts_strerror(ts_code code);
 
+/** A copy of contour c with every control point mapped to
+ *  (sx x + dx, sy y + dy); the caller frees out->seg.
+ *  @return TS_OK, TS_ERR_NOMEM (out untouched) */
+ts_code ts_contour_transform(const ts_contour *c, double sx, double sy, double dx, double dy,
+                             ts_contour *out);
+
 /** An empty outline, always safe to free. */
 void ts_outline_init(ts_outline *o);
 /** Free the contours and segments of `o` and reset it; NULL is fine. */
