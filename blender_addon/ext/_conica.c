@@ -807,6 +807,20 @@ static int cx_check_layout(cx_state *S, int dim, int *stride)
     return 1;
 }
 
+/* nattrs in 0..CX_MAX_ATTRS, given exactly when attrs is: 1, or raise and 0. */
+static int cx_check_attrs(cx_state *S, PyObject *oattrs, int nattrs)
+{
+    if (nattrs < 0 || nattrs > CX_MAX_ATTRS) {
+        cx_raisef(S->arg_error, "nattrs must be 0..%d, got %d", CX_MAX_ATTRS, nattrs);
+        return 0;
+    }
+    if ((oattrs == Py_None) != (nattrs == 0)) {
+        cx_raisef(S->arg_error, "attrs and nattrs > 0 go together");
+        return 0;
+    }
+    return 1;
+}
+
 /* The plane fit refused the spline: raise and say so (1), or 0. */
 static int cx_plane_refused(cx_state *S, int tiny, int nonplanar, const cx_plane *pl,
                             double plane_tol, double abs_tol)
@@ -859,10 +873,8 @@ static PyObject *cx_subdivide(PyObject *self, PyObject *args, PyObject *kw)
     if (max_points < 1 || (size_t)max_points > CX_HARD_MAX_POINTS)
         return cx_raisef(S->limit_error, "max_points must be 1..%zu, got %zd",
                          CX_HARD_MAX_POINTS, max_points);
-    if (nattrs < 0 || nattrs > CX_MAX_ATTRS)
-        return cx_raisef(S->arg_error, "nattrs must be 0..%d, got %d", CX_MAX_ATTRS, nattrs);
-    if ((oattrs == Py_None) != (nattrs == 0))
-        return cx_raisef(S->arg_error, "attrs and nattrs > 0 go together");
+    if (!cx_check_attrs(S, oattrs, nattrs))
+        return NULL;
     if (!isfinite(plane_tol) || plane_tol < 0 || !isfinite(abs_tol) || abs_tol < 0)
         return cx_raisef(S->arg_error, "plane_tol and abs_tol must be finite and >= 0");
     conica_normal_method nm;
@@ -1309,10 +1321,8 @@ static PyObject *cx_plot(PyObject *self, PyObject *args, PyObject *kw)
     if (max_points < 2 || (size_t)max_points > CX_HARD_MAX_POINTS)
         return cx_raisef(S->limit_error, "max_points must be 2..%zu, got %zd",
                          CX_HARD_MAX_POINTS, max_points);
-    if (nattrs < 0 || nattrs > CX_MAX_ATTRS)
-        return cx_raisef(S->arg_error, "nattrs must be 0..%d, got %d", CX_MAX_ATTRS, nattrs);
-    if ((oattrs == Py_None) != (nattrs == 0))
-        return cx_raisef(S->arg_error, "attrs and nattrs > 0 go together");
+    if (!cx_check_attrs(S, oattrs, nattrs))
+        return NULL;
     if (oknots == NULL)
         return cx_raisef(S->arg_error, "knots must be given");
 
@@ -1935,10 +1945,8 @@ static PyObject *cx_curve(PyObject *self, PyObject *args, PyObject *kw)
     if (max_points < 2 || (size_t)max_points > CX_HARD_MAX_POINTS)
         return cx_raisef(S->limit_error, "max_points must be 2..%zu, got %zd",
                          CX_HARD_MAX_POINTS, max_points);
-    if (nattrs < 0 || nattrs > CX_MAX_ATTRS)
-        return cx_raisef(S->arg_error, "nattrs must be 0..%d, got %d", CX_MAX_ATTRS, nattrs);
-    if ((oattrs == Py_None) != (nattrs == 0))
-        return cx_raisef(S->arg_error, "attrs and nattrs > 0 go together");
+    if (!cx_check_attrs(S, oattrs, nattrs))
+        return NULL;
     if (!isfinite(corner_angle) || corner_angle < 0)
         return cx_raisef(S->arg_error, "corner_angle must be a finite angle >= 0");
     if (!isfinite(tolerance) || tolerance < 0 ||

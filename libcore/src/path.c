@@ -79,7 +79,7 @@
 #define PATH_FLAT_TRIALS 64
 #define PATH_FIT_OUTSIDE_FRACTION 0.99
 #define PATH_FIT_MIDDLE_FRACTION 1.98
-/* Samples of settings.precision handed to the subdivision as noise. */
+/* Most levels that settings.level_tolerance may choose for a piece. */
 #define PATH_LEVELS_MAX 16
 
 /* ------------------------------------------------------------ storage */
