@@ -36,9 +36,6 @@ void conica_svg__put_number(conica_svg__buf *b, double v, int precision, int *pr
  * dropped (coincident end points, F.6.2). */
 int conica_svg__arc_to_centre(conica_svg_seg *seg, double rx, double ry, double phi_deg);
 
-/* Point and derivative (d/dt, t in [0,1]) of a drawing segment. */
-void conica_svg__seg_eval(const conica_svg_seg *seg, double t, double p[2], double d[2]);
-
 /* Append one segment (growing the array); 0 when out of memory. */
 int conica_svg__path_push(conica_svg_path *p, const conica_svg_seg *g);
 

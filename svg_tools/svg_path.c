@@ -376,54 +376,6 @@ int conica_svg__arc_to_centre(conica_svg_seg *seg, double rx, double ry, double 
     return 1;
 }
 
-void conica_svg__seg_eval(const conica_svg_seg *g, double t, double p[2], double d[2])
-{
-    double s = 1.0 - t;
-    switch (g->type) {
-    case CONICA_SVG_SEG_QUAD:
-        p[0] = s * s * g->x0 + 2.0 * s * t * g->c[0] + t * t * g->x1;
-        p[1] = s * s * g->y0 + 2.0 * s * t * g->c[1] + t * t * g->y1;
-        d[0] = 2.0 * (s * (g->c[0] - g->x0) + t * (g->x1 - g->c[0]));
-        d[1] = 2.0 * (s * (g->c[1] - g->y0) + t * (g->y1 - g->c[1]));
-        break;
-    case CONICA_SVG_SEG_CUBIC:
-        p[0] = s * s * s * g->x0 + 3.0 * s * s * t * g->c[0] + 3.0 * s * t * t * g->c[2] +
-               t * t * t * g->x1;
-        p[1] = s * s * s * g->y0 + 3.0 * s * s * t * g->c[1] + 3.0 * s * t * t * g->c[3] +
-               t * t * t * g->y1;
-        d[0] = 3.0 * (s * s * (g->c[0] - g->x0) + 2.0 * s * t * (g->c[2] - g->c[0]) +
-                      t * t * (g->x1 - g->c[2]));
-        d[1] = 3.0 * (s * s * (g->c[1] - g->y0) + 2.0 * s * t * (g->c[3] - g->c[1]) +
-                      t * t * (g->y1 - g->c[3]));
-        break;
-    case CONICA_SVG_SEG_ARC: {
-        double th = g->theta1 + t * g->dtheta, c = cos(th), sn = sin(th);
-        double cp = cos(g->phi), sp = sin(g->phi);
-        double ex = g->rx * c, ey = g->ry * sn, dx = -g->rx * sn * g->dtheta,
-               dy = g->ry * c * g->dtheta;
-        p[0] = g->cx + cp * ex - sp * ey;
-        p[1] = g->cy + sp * ex + cp * ey;
-        d[0] = cp * dx - sp * dy;
-        d[1] = sp * dx + cp * dy;
-        /* The end points are given exactly; do not let cos/sin move them. */
-        if (t == 0.0) {
-            p[0] = g->x0;
-            p[1] = g->y0;
-        } else if (t == 1.0) {
-            p[0] = g->x1;
-            p[1] = g->y1;
-        }
-        break;
-    }
-    default:
-        p[0] = s * g->x0 + t * g->x1;
-        p[1] = s * g->y0 + t * g->y1;
-        d[0] = g->x1 - g->x0;
-        d[1] = g->y1 - g->y0;
-        break;
-    }
-}
-
 /* ------------------------------------------------------------ path parser */
 
 typedef struct scanner {
