@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 # Conica — plain GNU make. All outputs go under $(BUILD).
 #   make            libraries and command-line tools
 #   make test       every suite (installs missing Debian packages first)
@@ -125,7 +126,7 @@ $(BUILD)/bin/conica: $(CONICA_OBJS) $(ALL_LIBS)
 $(BUILD)/obj/libcore/tools/conica.o: $(CMD_DEF)
 
 # conica.pc is rewritten whenever PREFIX changes (and only then).
-PC_TEXT := prefix=$(PREFIX)\nlibdir=$${prefix}/lib\nincludedir=$${prefix}/include\n\nName: conica\nDescription: Conic-preserving curve subdivision and adaptive spline plotting\nVersion: $(VERSION)\nLibs: -L$${libdir} -lconica\nLibs.private: $(CORE_LIBS)\nCflags: -I$${includedir}\n
+PC_TEXT := \# SPDX-License-Identifier: MIT\nprefix=$(PREFIX)\nlibdir=$${prefix}/lib\nincludedir=$${prefix}/include\n\nName: conica\nDescription: Conic-preserving curve subdivision and adaptive spline plotting\nVersion: $(VERSION)\nLibs: -L$${libdir} -lconica\nLibs.private: $(CORE_LIBS)\nCflags: -I$${includedir}\n
 $(shell mkdir -p $(BUILD) && { printf '$(PC_TEXT)' | cmp -s - $(BUILD)/conica.pc || printf '$(PC_TEXT)' > $(BUILD)/conica.pc; })
 
 # ---------------------------------------------------------------- tests

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* The numerics ablation of seed 000, Section 3.2 (Table 1, Figures 3-6), as
  * run-time settings of the one implementation (plotsvg_variant):
  *   BASE      double, normals normalised every level, plain quadratic formula

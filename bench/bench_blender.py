@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
 # Conic Subdivide vs Blender's own Subdivide, inside one Blender run:
 #   CONICA_ZIP=build/conica-blender.zip BLENDER_USER_SCRIPTS=$tmp \
 #   blender -b --factory-startup --python bench/bench_blender.py

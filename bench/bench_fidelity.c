@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* Fidelity on real outlines: the glyphs of a Debian font (FreeType), each
  * contour through conica/path.h, measured by the independent checker of
  * tests/support. Prints, per mode: worst distance / tolerance (both

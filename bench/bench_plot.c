@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* Benchmarks of the spline plotters (issue 5, seed 004). Prints tables,
  * asserts nothing. Run `build/bench/bench_plot [--rounds R] [--table T]
  * [DATA_DIR]` from the repository root (DATA_DIR defaults to

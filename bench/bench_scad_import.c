@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* scadprofile beside OpenSCAD's own import() on real glyph outlines.
  *
  * Every glyph of a fixed string (DejaVu Sans and Serif, FreeType's exact

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* Benchmark of conica_subdivide() (issue 3): speed in microseconds per edge
  * point for the three cases of REFERENCE.md section 1, and the conic
  * reproduction error E, E_max (seed 000, eqs. (13)-(14)) beside the seed's

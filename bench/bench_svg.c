@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* bench_svg: what the SVG layer costs next to the geometry it feeds
  * (issue 6). A generated document of 10 000 closed subpaths with 100
  * on-curve vertices each (10^6 vertices; half the segments straight, half

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 # bench/: benchmark programs (print figures, never assert). Shared fragment:
 # each owner appends its own rules below.
 

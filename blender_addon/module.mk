@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
 # blender_addon: the _conica CPython extension and the installable add-on zip.
 #
 #   make blender-addon   ->  $(BUILD)/conica-blender.zip

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /**
  * @file conica_scad.h
  * @brief OpenSCAD export of Conica: 2D profiles (contours with holes) as

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 # openscad_export: the .scad writer library (libconica_scad.a) and `scadprofile`.
 SCAD_LIB_SRCS := $(filter-out openscad_export/scadprofile.c,$(wildcard openscad_export/*.c))
 SCAD_LIB_OBJS := $(SCAD_LIB_SRCS:%.c=$(BUILD)/obj/%.o)

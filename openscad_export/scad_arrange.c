@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* Outer contours and holes from containment and the fill rules. */
 #include "scad_internal.h"
 

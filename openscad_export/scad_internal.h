@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* Internal helpers of the OpenSCAD export library (conica__scad_ prefix). */
 #ifndef CONICA_SCAD_INTERNAL_H
 #define CONICA_SCAD_INTERNAL_H

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* Profile storage, status helpers and the exact orientation predicate. */
 #include "scad_internal.h"
 

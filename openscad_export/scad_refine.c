@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* Tolerance-driven refinement of point-normal curves: conic subdivision
  * (seed 000, Section 1.1) to a dense polyline on the limit curve, then the
  * fewest points (conica_scad_thin). */

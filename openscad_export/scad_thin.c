@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* Fewest points for a tolerance: a dense polyline whose vertices lie on the
  * curve, then the greedy longest chords that stay within the tolerance. */
 #include "scad_internal.h"

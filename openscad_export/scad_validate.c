@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* Validation of a profile before it is written: OpenSCAD itself renders a
  * self-intersecting polygon silently (REFERENCE.md section 2), so simplicity
  * is checked here, with exact orientation tests, on a uniform grid. */

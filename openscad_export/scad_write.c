@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* The .scad writer: compact round-trip numbers, points, paths, modules. */
 #include "scad_internal.h"
 

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* scadprofile: smooth, exact 2D profiles as OpenSCAD modules.
  *
  *   scadprofile [--levels K | --tolerance T] [--fit F] [--module NAME]

@@ -1,4 +1,5 @@
 #!/bin/sh
+# SPDX-License-Identifier: MIT
 # Blender benchmark (called by scripts/bench.sh as `scripts/bench-blender.sh
 # BUILD_DIR`): Conic Subdivide vs Blender's own Subdivide in one headless
 # Blender run. Needs BUILD/conica-blender.zip (make bench builds it).

@@ -1,4 +1,5 @@
 #!/bin/sh
+# SPDX-License-Identifier: MIT
 # `make bench`, OpenSCAD part (called by scripts/bench.sh with BUILD as $1).
 # A circle of radius 50 mm from 8 exact point-normal samples, written by
 # scadprofile at tolerances 0.1 / 0.01 / 0.001 mm:

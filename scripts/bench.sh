@@ -1,4 +1,5 @@
 #!/bin/sh
+# SPDX-License-Identifier: MIT
 # Print every benchmark table: BUILD is $1, the benchmark programs follow;
 # module scripts scripts/bench-*.sh get the build directory.
 set -u

@@ -1,4 +1,5 @@
 #!/bin/sh
+# SPDX-License-Identifier: MIT
 # `make demo` part for the Blender add-on (called by scripts/demo.sh as
 # `scripts/demo-blender.sh BUILD_DIR`): in headless Blender, refine an
 # octagon, a flower and a Bezier circle with Blender's Subdivide and with

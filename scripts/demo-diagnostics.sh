@@ -1,4 +1,5 @@
 #!/bin/sh
+# SPDX-License-Identifier: MIT
 # `make demo` part of issue 9: curvature combs, an error-vs-level plot and the
 # numerics ablation of seed 000 (Figure 6), as SVG rendered to PNG.
 # BUILD is $1; everything goes to $BUILD/demo/.

@@ -1,4 +1,5 @@
 #!/bin/sh
+# SPDX-License-Identifier: MIT
 # `make demo` part of issue 5: plot the bundled splines (examples/*.spl)
 # with the guaranteed plotter at 0.5 px of a 1000x1000 view, and with the
 # thesis's adaptive loop for comparison. BUILD is $1.

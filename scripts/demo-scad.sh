@@ -1,4 +1,5 @@
 #!/bin/sh
+# SPDX-License-Identifier: MIT
 # `make demo`, OpenSCAD part: the bundled SVG outline examples/bracket.svg
 # becomes the OpenSCAD module file BUILD/demo/profile.scad (tolerance
 # 0.01 mm), OpenSCAD renders its extrusion to BUILD/demo/profile.stl, and a

@@ -1,4 +1,5 @@
 #!/bin/sh
+# SPDX-License-Identifier: MIT
 # `make demo`, SVG part (called by scripts/demo.sh with the build directory):
 # smooth and flatten every examples/*.svg with svgsmooth into BUILD/demo/,
 # render input and outputs with rsvg-convert and put them side by side

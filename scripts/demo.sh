@@ -1,4 +1,5 @@
 #!/bin/sh
+# SPDX-License-Identifier: MIT
 # `make demo`: run the main jobs on the bundled examples/ and say where the
 # results are. BUILD is $1. Each module's scripts/demo-*.sh adds its part.
 set -eu

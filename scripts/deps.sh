@@ -1,4 +1,5 @@
 #!/bin/sh
+# SPDX-License-Identifier: MIT
 # Install the Debian packages a make target needs, and nothing else.
 #   scripts/deps.sh build   compiler, LAPACKE, libxml2, Python headers
 #   scripts/deps.sh test    build + CGAL, GMP, OpenSCAD, Blender, rsvg, clang,

@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: MIT
 """Write the small demo curves in examples/ (used by `make demo`).
 
 Run from the repository root: python3 scripts/make-examples.py

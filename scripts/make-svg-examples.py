@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: MIT
 """Write the example SVGs of svgsmooth (examples/*.svg): our own drawings,
 public domain. Deterministic: run it again and the files come out the same.
 

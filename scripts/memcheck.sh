@@ -1,4 +1,5 @@
 #!/bin/sh
+# SPDX-License-Identifier: MIT
 # scripts/memcheck.sh [BUILD] [SUITE...] - valgrind memcheck over the
 # command-line tools (make memcheck). Two parts:
 #

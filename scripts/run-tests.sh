@@ -1,4 +1,5 @@
 #!/bin/sh
+# SPDX-License-Identifier: MIT
 # Run every test suite against the build in $1 (default: build) and end with
 # one line `N passed, M failed` summed over all suites (test cases).
 #

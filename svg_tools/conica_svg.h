@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /**
  * @file conica_svg.h
  * @brief SVG layer of Conica: safe document load/save (libxml2), the SVG 2

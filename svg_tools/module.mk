@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 # svg_tools: the SVG layer (libconica_svg.a) and the svgsmooth tool.
 SVG_SRCS := $(filter-out svg_tools/svgsmooth.c,$(sort $(wildcard svg_tools/*.c)))
 SVG_OBJS := $(SVG_SRCS:%.c=$(BUILD)/obj/%.o)

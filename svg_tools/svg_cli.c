@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* The XML limit flags shared by svgsmooth and scadprofile (svg_cli.h). */
 #include "svg_cli.h"
 

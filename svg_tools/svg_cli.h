@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* Command-line flags for the XML limits (conica_svg_limits), shared by the
  * tools that read SVG (svgsmooth, scadprofile) so both spell, check and
  * document them the same way. Internal to the tools (not installed). */

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* The SVG document: safe load and faithful save through libxml2, the
  * viewport, element selection with inherited fill-rule, and the two
  * high-level calls (extract polylines / rewrite geometry in place). */

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* Absolute SVG segments -> polylines through libcore's curve front end
  * (conica/path.h), which owns every rule: what a corner is, that straight
  * segments stay straight, how a Bézier or an arc becomes point-normal

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* Internal helpers shared by the SVG layer's translation units
  * (conica_svg__ prefix; not installed). */
 #ifndef CONICA_SVG_INTERNAL_H

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* SVG 2 path data and `points` lists: grammar, absolute segments, arcs in
  * centre parametrisation, and the compact writer.
  *

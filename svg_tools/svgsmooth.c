@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* svgsmooth: smooth the outlines of an SVG file with conic-preserving
  * subdivision (corners kept, arcs reproduced), or flatten its curves within
  * a tolerance; nothing else in the document changes. */

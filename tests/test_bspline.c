@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* B-spline toolkit (seed 004, Chapter 1): validation and preprocessing,
  * the triangular algorithm against the direct Cox-de Boor recursion,
  * derivatives against finite differences, Böhm insertion leaving the

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* The command-line helpers every tool shares (libcore/tools/cli.c): the
  * output written through a temporary, and what a signal does to it. Each
  * signal case runs in a child process (fork) that opens an output, writes

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* Tests of libcore/src/curve.c and numparse.c: the `v`/`vn` text format,
  * the locale-independent number reader, and normal estimation. */
 #include "conica_test.h"

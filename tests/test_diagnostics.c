@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* Tests of the visual diagnostics (libcore/tools/plotsvg.c, issue 9):
  * curvature combs (seed 000, Code 3), conic/normal errors (eqs. (13)-(14))
  * and the SVG writer. tests/cli/combs.sh checks the tools' SVG with

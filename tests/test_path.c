@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* The curve front end (conica/path.h) against curves no one here drew:
  * glyph outlines of a Debian font read with FreeType, measured by the
  * independent checker of tests/support (no libcore code), plus the exact

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* The reference implementation's own example curves (../shared/data/conis/
  * input) against what it produced at 5 levels (reference-k5): proof that
  * conica_subdivide() is the same scheme (seed 000, Section 1.1).

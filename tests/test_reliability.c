@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* Regression tests for the findings of the fuzzers (tests/fuzz/) and the
  * hostile-input audit (README.md): each case is an input that once
  * crashed, hung or hit undefined behaviour. Under the sanitizer build

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /*
  * The runner's own unit tests: Catch2's test-spec grammar and hidden tests
  * (catch_test_spec_parser.cpp / catch_test_spec.cpp), section discovery

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* Unit tests of the OpenSCAD export library (openscad_export/). The tests
  * that run OpenSCAD itself are in tests/cli/scadprofile.sh. */
 #include "conica_test.h"

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* Tests of the subdivision engine (libcore/src/subdiv.c, seed 000): conic
  * reproduction against the exact conics (eqs. (13)-(14)), interpolation,
  * invariance under similarity transforms, agreement of the closed-form fast

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* Self-tests of the test-support library (tests/support): the fidelity
  * checker against closed-form distances and areas, and the glyph loader
  * against what FreeType reports for DejaVu Sans (fonts-dejavu-core). */

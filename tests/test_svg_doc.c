@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* SVG documents: faithful round trip, conic reproduction through SVG (also
  * far from the origin), corners kept, flattening against dense evaluation,
  * hostile XML, fill-rule inheritance, viewport, selection, shapes. */

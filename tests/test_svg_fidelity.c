@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* svgsmooth's and scadprofile's geometry (the SVG layer on conica/path.h)
  * on glyph outlines no one here drew: DejaVu glyphs read with FreeType and
  * written as SVG path data with two decimals, with `Z` or without it (as

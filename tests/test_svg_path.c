@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* SVG path data: the SVG 2 grammar to absolute geometry (W3C-style packed
  * numbers and flags, implicit commands, error recovery), arcs in centre
  * parametrisation, and the compact writer. */

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
 # Conica for Blender: conic-preserving curve subdivision and adaptive
 # curve-to-polyline conversion, backed by libconica through the _conica
 # C extension that ships inside this package.

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
 # Operators of the Conica add-on: curve.conic_subdivide and
 # curve.adaptive_to_poly. Python only moves Blender's data in and out
 # (foreach_get/foreach_set on flat arrays); the geometry runs in _conica,

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /*
  * _conica: the thin CPython extension behind the Blender add-on.
  *

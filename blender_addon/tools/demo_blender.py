@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
 # Before/after picture for the Blender add-on, made in headless Blender:
 #   CONICA_ZIP=... CONICA_DEMO_OUT=dir BLENDER_USER_SCRIPTS=$tmp \
 #   blender -b --factory-startup --python blender_addon/tools/demo_blender.py

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* The curve front end (conica/path.h): a closed path of a quarter circle and
  * two straight edges, smoothed and flattened within the fidelity tolerance.
  * The corners stay sharp, the edges straight, the arc on its circle.

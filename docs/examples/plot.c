@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* Plot a NURBS circle (radius 50 about (100, 100), as examples/nurbs-circle.spl)
  * with the guaranteed plotter to 0.01 and check the result: every vertex on
  * the circle, every chord within 0.01 of it. Build: see docs/library.md. */

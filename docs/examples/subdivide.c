@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* Subdivide an ellipse given by 8 exact samples (points and normals) and
  * check that every new point lies on the ellipse; then show how an error
  * is reported. Build: see docs/library.md. */

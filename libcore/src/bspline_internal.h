@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* Internal B-spline helpers shared by bspline*.c, plot*.c and surface.c. */
 #ifndef CONICA_BSPLINE_INTERNAL_H
 #define CONICA_BSPLINE_INTERNAL_H

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* Parser of the .spl spline text format (docs/file-formats.md):
  *     degree P
  *     knots t1 t2 ...        (may be split over several `knots` lines)

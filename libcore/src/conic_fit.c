@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* LAPACK side of the general conic fit (see conic_fit.h). The long double
  * (precise) mode uses the one-sided Jacobi SVD in subdiv_impl.h instead,
  * since LAPACK has no extended-precision routines. */

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* Weighted conic fit of seed 000, Section 1.1 step 2 (matrix (2)), general
  * path: smallest right singular vector of W*A' through LAPACK's dgesvd with
  * workspace allocated once per conica_subdivide() call (no allocation per

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* Point-normal curves: storage, normal estimation, and the reference
  * implementation's text format (`v x y` / `vn nx ny` lines). */
 #include "conica/curve.h"

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* Internal helpers shared by libcore's translation units (conica__ prefix). */
 #ifndef CONICA_INTERNAL_H
 #define CONICA_INTERNAL_H

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* Locale-independent, correctly rounded decimal -> double conversion.
  *
  * How it stays exact without the locale:

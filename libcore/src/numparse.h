@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* Locale-independent, correctly rounded decimal -> double reader shared by
  * libcore's text parsers (curve files here; spline and SVG parsers reuse it).
  *

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* The curve front end (conica/path.h): drawn segments to point-normal
  * samples, smoothed by conic-preserving subdivision (seed 000, Section 1.1)
  * or flattened by the guaranteed plotter (seed 004), always checked

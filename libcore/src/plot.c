@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* Plotter front end: settings, names, polylines, the preprocessing of
  * Section 1.1.2 (clamp to the domain, split at knots of multiplicity >= p
  * into continuous pieces), dispatch to the methods, and a dense-sampling

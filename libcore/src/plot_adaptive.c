@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* The thesis's adaptive knot-insertion loop (seed 004, Sections 3.2-3.5):
  * each iteration a geometric criterion C picks the part of the control
  * polygon with the largest value, a rule R places one knot there, Böhm's

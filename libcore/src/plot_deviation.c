@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* Measured deviation between a spline and a polyline (tests, benchmarks):
  * when the polyline carries parameters, chord by chord (deviation_local);
  * otherwise dense samples of the curve against the polyline and

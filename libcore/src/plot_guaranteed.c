@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* Guaranteed plotter (beyond the seed; the default for the tools).
  *
  * Emits points ON the curve and certifies every chord: for consecutive

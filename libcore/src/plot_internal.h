@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* Internal plumbing shared by plot*.c and surface.c. */
 #ifndef CONICA_PLOT_INTERNAL_H
 #define CONICA_PLOT_INTERNAL_H

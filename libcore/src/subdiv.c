@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* Conic-preserving interpolatory subdivision (seed 000): public entry
  * points, argument checks, and the two instantiations (double, long double)
  * of the one type-generic implementation in subdiv_impl.h. */

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* Type-generic core of conica_subdivide() (seed 000, Section 1.1 with the
  * numerics of Section 2.3). subdiv.c includes this file twice: once with
  * REAL = double and once with REAL = long double, so that default and

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* Tensor-product B-spline surfaces (seed 004, Section 4.1): validation,
  * evaluation, and the two-phase quad-grid plot of Section 4.1.2. */
 #include <math.h>

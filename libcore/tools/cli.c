@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* realpath() is XSI, outside the POSIX base the build asks for. */
 #define _XOPEN_SOURCE 700
 

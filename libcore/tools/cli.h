@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* Helpers shared by every Conica command-line tool (conica, svgsmooth,
  * scadprofile): whole-file input with a size limit, output through a
  * temporary file renamed into place, and POSIX-style messages. */

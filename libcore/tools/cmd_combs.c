@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* `conica combs`: an SVG of a curve's curvature comb (seed 000, Section 2.2):
  * the control polygon dashed, the subdivided curve, and at every vertex a
  * tooth along the unit normal of length S * kappa, kappa from the circle

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* `conica errors`: per subdivision level k = 0..MAX, the conic error of seed
  * 000 (eqs. (13)-(14): mean and max of |f|/|grad f| over the vertices, when
  * the input is sampled from one conic) and the normal angle error (scheme

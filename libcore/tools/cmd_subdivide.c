@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* `conica subdivide`: conic-preserving interpolatory subdivision of a
  * point-normal curve in the reference implementation's text format
  * (seed 000, Section 1.1; README.md). */

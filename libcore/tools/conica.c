@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* `conica`: dispatcher for the subcommands in cmd_*.c (the list is made by
  * the Makefile from the file names, see CMD_DEF). */
 #include <stdio.h>

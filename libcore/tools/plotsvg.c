@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 #include "plotsvg.h"
 
 #include "cli.h"

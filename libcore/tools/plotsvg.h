@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* Visual diagnostics shared by `conica combs`, `conica errors` and
  * bench/bench_ablation (issue 9): curvature combs (seed 000, Section 2.2,
  * Code 3), conic and normal errors (Section 3.2, eqs. (13)-(14)) and a

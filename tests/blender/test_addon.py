@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
 # Conica add-on tests, run inside real Blender (headless):
 #   CONICA_ZIP=build/conica-blender.zip BLENDER_USER_SCRIPTS=$tmp \
 #   blender -b --factory-startup --python-exit-code 1 --python tests/blender/test_addon.py

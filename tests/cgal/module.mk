@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 # tests/cgal: CGAL checks of convexity preservation and inflection splitting
 # (issue 4). One C++17 translation unit: CGAL 5.5 is header-only, needs GMP,
 # and takes ~8 s to compile, so it is built once and rebuilt only when its

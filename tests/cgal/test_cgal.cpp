@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // CGAL checks of the two geometric promises of seed 000 (issue 4):
 //  1. a convex control polygon gives a convex curve (every level k = 1..6 is
 //     simple and convex with the input's orientation; open convex arcs keep

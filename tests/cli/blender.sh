@@ -1,4 +1,5 @@
 #!/bin/sh
+# SPDX-License-Identifier: MIT
 # Conica add-on in real, headless Blender. Installs BUILD/conica-blender.zip
 # (with bpy.ops.preferences.addon_install, as a user would) into a temporary
 # BLENDER_USER_SCRIPTS and runs tests/blender/test_addon.py in ONE Blender run

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 # tests/cli/cgal_broken.sh: the CGAL checks of issue 4 can fail. The hidden
 # test [.broken] of tests/cgal/test_cgal.cpp runs the inflection checks with
 # insert_inflections = 0 (a deliberately broken scheme); it must FAIL with

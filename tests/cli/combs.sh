@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 # tests/cli/combs.sh: `conica combs` and `conica errors` end to end (issue 9):
 # the SVG they write parses as XML (xmllint, i.e. libxml2) and renders
 # (rsvg-convert exit 0), the comb of a subdivided circle is constant, the

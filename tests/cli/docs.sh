@@ -1,4 +1,5 @@
 #!/bin/sh
+# SPDX-License-Identifier: MIT
 # CLI suite for the documentation (README.md, docs/*.md, docs/man/*.1,
 # docs/examples/*.c); docs/development.md ("The documentation test")
 # describes it.
@@ -289,6 +290,28 @@ check "make install into a staging directory" \
     make --no-print-directory BUILD="$build" PREFIX=/usr DESTDIR="$tmp/stage" install
 for p in $pages; do
     check_true "installed share/man/man1/${p##*/}" cmp -s "$p" "$tmp/stage/usr/share/man/man1/${p##*/}"
+done
+
+# ---------------------------------------------------------------- licences
+begin_case "every source file carries an SPDX licence line, and the licences agree"
+if git rev-parse --is-inside-work-tree >/dev/null 2>&1; then
+    git ls-files '*.c' '*.h' '*.cpp' '*.py' '*.sh' '*.mk' Makefile '*.1' .ci/run '*.toml' >"$tmp/sources"
+    : >"$tmp/nospdx"
+    while IFS= read -r f; do
+        case "$f" in
+            blender_addon/*|tests/blender/*|bench/bench_blender.py) want=GPL-3.0-or-later ;;
+            *) want=MIT ;;
+        esac
+        head -n 3 "$f" | grep -Eq "SPDX-License-Identifier: $want( |\$)" || printf '%s (wants %s)\n' "$f" "$want" >>"$tmp/nospdx"
+    done <"$tmp/sources"
+    check_true "no source file lacks its SPDX line: $(head -n 5 "$tmp/nospdx" | tr '\n' ' ')" test ! -s "$tmp/nospdx"
+fi
+check_true "LICENSE is the MIT licence" grep -q '^MIT License' LICENSE
+check_true "blender_addon/conica/LICENSE is the GPL version 3" grep -q 'GNU GENERAL PUBLIC LICENSE' blender_addon/conica/LICENSE
+check_true "the Blender manifest says GPL-3.0-or-later" grep -q '^license = \["SPDX:GPL-3.0-or-later"\]' blender_addon/conica/blender_manifest.toml
+check_true "conica.pc says MIT" grep -q 'SPDX-License-Identifier: MIT' "$build/conica.pc"
+for p in docs/man/*.1; do
+    check_true "${p##*/} names the MIT licence" grep -q 'under the MIT licence' "$p"
 done
 
 # ---------------------------------------------------------------- the markdown

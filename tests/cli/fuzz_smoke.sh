@@ -1,4 +1,5 @@
 #!/bin/sh
+# SPDX-License-Identifier: MIT
 # tests/cli/fuzz_smoke.sh BUILD_DIR - the libFuzzer targets of tests/fuzz/
 # (built by `make tests` into BUILD_DIR/fuzz/bin): each replays its
 # committed seed corpus and every regression input (tests/fuzz/regressions/

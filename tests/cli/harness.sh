@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 # tests/cli/harness.sh - a small POSIX sh library for CLI test suites.
 #
 # A suite is run from the repository root as `sh tests/cli/NAME.sh BUILD_DIR`:

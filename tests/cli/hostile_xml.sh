@@ -1,4 +1,5 @@
 #!/bin/sh
+# SPDX-License-Identifier: MIT
 # tests/cli/hostile_xml.sh BUILD_DIR - hostile XML through both SVG-reading
 # tools (svgsmooth and scadprofile): entity expansion (billion laughs),
 # external entities (XXE, general and parameter), an external DTD, XInclude,

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 # `make install` into a staging DESTDIR, then an outside program built only
 # with `pkg-config conica` (tests/install/consumer.c), linked both against the
 # shared library (run through the installed soname) and statically.

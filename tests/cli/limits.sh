@@ -1,4 +1,5 @@
 #!/bin/sh
+# SPDX-License-Identifier: MIT
 # tests/cli/limits.sh BUILD_DIR - every input-controlled size of the tools
 # has a default, a flag and a clear error: each cap is hit on purpose and
 # the run must exit 1, name the cap in its message, and write nothing (the

@@ -1,4 +1,5 @@
 #!/bin/sh
+# SPDX-License-Identifier: MIT
 # tests/cli/no_data_lost.sh BUILD_DIR - no CLI loses data when it fails.
 # For every tool (conica subdivide / combs / plot when present, svgsmooth
 # incl. --in-place, scadprofile):

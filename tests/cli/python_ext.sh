@@ -1,4 +1,5 @@
 #!/bin/sh
+# SPDX-License-Identifier: MIT
 # The _conica extension in plain CPython (/usr/bin/python3, the 3.11 it is
 # built for), outside Blender, under PYTHONMALLOC=debug so a use after free
 # or a buffer overrun in the module shows up as a crash of that case. Runs

@@ -1,4 +1,5 @@
 #!/bin/sh
+# SPDX-License-Identifier: MIT
 # tests/cli/reliability_table.sh BUILD_DIR - the "input -> behaviour" table
 # of README.md, row by row: each tool on an empty file, a file of
 # the wrong format, NaN, one point, duplicate points, bad path data and a

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 # The test runner's own suite: runs the deliberately failing binary
 # (tests/runner_selftest/failing.c, hidden cases) with Catch2 command lines
 # and checks output, reporters and exit codes.

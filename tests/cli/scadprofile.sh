@@ -1,4 +1,5 @@
 #!/bin/sh
+# SPDX-License-Identifier: MIT
 # CLI suite of scadprofile, with the real OpenSCAD (headless) where present.
 #   sh tests/cli/scadprofile.sh BUILD_DIR      (from the repository root)
 # Prints a Catch2-style summary. OpenSCAD runs are few (about 1 s each).

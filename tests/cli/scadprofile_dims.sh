@@ -1,4 +1,5 @@
 #!/bin/sh
+# SPDX-License-Identifier: MIT
 # CLI suite of scadprofile, issue 15 "dimension-true parts": include-safe
 # modules (NAME(center), NAME_points/paths/bbox, --demo-call), coordinates
 # with the fewest digits within tolerance/1000 and the input's own numbers

@@ -1,4 +1,5 @@
 #!/bin/sh
+# SPDX-License-Identifier: MIT
 # tests/cli/scaling.sh BUILD_DIR - work that grows with a user-given size
 # stays near-linear (issue 17, docs/reliability.md). Each run is bounded
 # by a CPU-time limit (ulimit -t, not wall time) set far above what it

@@ -1,4 +1,5 @@
 #!/bin/sh
+# SPDX-License-Identifier: MIT
 # tests/cli/signals.sh BUILD_DIR - a tool stopped by a signal while it
 # writes its output leaves no temporary file and the old output as it was,
 # and says so: exit 128 + signo and `TOOL: error: FILE: stopped by SIG...`.

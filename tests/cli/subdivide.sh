@@ -1,4 +1,5 @@
 #!/bin/sh
+# SPDX-License-Identifier: MIT
 # CLI suite for `conica subdivide` (README.md).
 # usage (from the repository root): sh tests/cli/subdivide.sh BUILD_DIR
 set -u

@@ -1,4 +1,5 @@
 #!/bin/sh
+# SPDX-License-Identifier: MIT
 # CLI suite for svgsmooth (README.md).
 # usage (from the repository root): sh tests/cli/svgsmooth.sh BUILD_DIR
 set -u

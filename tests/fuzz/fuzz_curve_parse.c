@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* libFuzzer target: the point-file reader conica_curve_parse() (`v x y` /
  * `vn nx ny` text) and conica_curve_line_of_point() on what it accepted. */
 #include "fuzz_common.h"

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* libFuzzer target: conica_bspline_set + conica_plot (seed 004) on
  * arbitrary splines and settings, every method, small budgets.
  *

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* libFuzzer target: the scadprofile pipeline in memory, through the same
  * library calls as openscad_export/scadprofile.c: the input kind is
  * detected from the content as the tool does for stdin (SVG, .spl spline or

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* libFuzzer target: the spline-file reader conica_bspline_parse() (.spl),
  * then the cheap operations every accepted spline must survive:
  * evaluation at the domain ends and middle, derivatives, knot insertion and

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* libFuzzer target: conic subdivision (seed 000) on arbitrary numbers.
  *
  * Input layout (every byte optional; missing bytes read as 0):

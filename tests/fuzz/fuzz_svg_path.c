@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* libFuzzer target: SVG path data. conica_svg_path_parse() on the whole
  * input, the polylines of what it kept (mode from the input length, small
  * budgets), their formatting, and conica_svg_points_parse() on the same

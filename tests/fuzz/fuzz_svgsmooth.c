@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* libFuzzer target: the whole svgsmooth pipeline in memory --
  * conica_svg_doc_load (small caps), conica_svg_extract, conica_svg_process,
  * conica_svg_doc_save -- with the mode and levels taken from the input

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 # tests/fuzz: libFuzzer targets (clang, -fsanitize=fuzzer,address,undefined).
 #
 #   make fuzz FUZZ_SECONDS=N   build every fuzzer, run each N seconds (default 60)

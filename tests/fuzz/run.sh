@@ -1,4 +1,5 @@
 #!/bin/sh
+# SPDX-License-Identifier: MIT
 # tests/fuzz/run.sh FUZZ_BUILD SECONDS NAME... - run each fuzzer SECONDS
 # seconds (libFuzzer -max_total_time) on its seed corpus.
 #

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* A program outside the project, built against the INSTALLED library via
  * `pkg-config conica` (tests/cli/install.sh): proves that `make install`
  * ships usable headers, libraries and conica.pc. It subdivides a hexagon

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 # The _conica extension on its own, in plain CPython (no Blender):
 #   /usr/bin/python3 tests/python/test_conica_ext.py EXT_DIR
 # EXT_DIR holds the built _conica*.so (BUILD/blender/conica). Every case runs

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /*
  * conica_test.c - the Catch2-compatible runner behind conica_test.h.
  *

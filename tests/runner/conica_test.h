@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /*
  * conica_test.h - a small Catch2-compatible test runner for C11 and C++17.
  *

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // conica_test.h from C++17: the CGAL tests include it this way. Every case
 // here passes; tests/cli/runner.sh runs the binary and checks its summary.
 #include "conica_test.h"

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /*
  * A deliberately failing test binary for the runner's own suite
  * (tests/cli/runner.sh). Everything but "visible: one assertion" is hidden

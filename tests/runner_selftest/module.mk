@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 # The runner's self-test binaries (run by tests/cli/runner.sh, not by the
 # unit-test loop): runner_failing holds hidden cases that fail, pass, skip
 # and use sections; runner_cxx proves conica_test.h compiles as C++17.

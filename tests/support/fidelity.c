@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* The independent fidelity checker (fidelity.h). Nothing here comes from
  * libcore: Bezier evaluation, distances, areas and crossings are written out
  * from their textbook definitions. */

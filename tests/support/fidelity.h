@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /*
  * fidelity.h - an independent checker of polylines against exact curves.
  *

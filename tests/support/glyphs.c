@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* Glyph outlines through FreeType, and SVG writing of outlines (glyphs.h). */
 #include "glyphs.h"
 

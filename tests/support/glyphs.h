@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /*
  * glyphs.h - real glyph outlines from a Debian font, for fidelity tests.
  *

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* Status messages and ownership of ts_outline (see ts_outline.h). */
 #include "ts_outline.h"
 

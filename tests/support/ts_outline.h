@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /*
  * ts_outline.h - outline types of the test-support library (tests only).
  *

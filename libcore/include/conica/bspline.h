@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /**
  * @file bspline.h
  * @brief B-spline functions and curves (optionally rational / NURBS) and

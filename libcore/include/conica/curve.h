@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /**
  * @file curve.h
  * @brief Point-normal curves: storage, normal estimation and the text format

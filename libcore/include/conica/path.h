@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /**
  * @file path.h
  * @brief Drawn curves in, what the engines need out: the one curve front end

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /**
  * @file plot.h
  * @brief Plotting B-splines as polylines (seed 004, Chapters 2-4): the

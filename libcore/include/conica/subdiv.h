@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /**
  * @file subdiv.h
  * @brief Conic-preserving interpolatory subdivision (seed 000, Section 1.1).
