@@ -142,9 +142,8 @@ int main(int argc, char **argv)
             free(sel);
             return 0;
         } else if (!strcmp(a, "--version")) {
-            printf("svgsmooth (Conica) %s\n", conica_version());
             free(sel);
-            return 0;
+            return cli_version("svgsmooth");
         } else if (!strcmp(a, "--levels")) {
             if (!v || cli_parse_int(v, 0, 30, &x))
                 return cli_usage_error(PROG, "--levels needs a whole number in 0..30");

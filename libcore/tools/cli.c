@@ -554,3 +554,11 @@ size_t cli_point_line(const char *buf, size_t len, conica_code code, const conic
         return conica_curve_line_of_point(buf, len, st->offset, 1);
     return 0;
 }
+
+int cli_version(const char *tool)
+{
+    printf("%s (Conica) %s\n", tool, conica_version());
+    if (fflush(stdout) != 0 || ferror(stdout))
+        return cli_error(tool, "<stdout>", "write error");
+    return CLI_EXIT_OK;
+}

@@ -99,6 +99,11 @@ int cli_output_commit(const char *prog, cli_output *out);
 /* Drop the temporary file (target untouched). Safe after commit. */
 void cli_output_abort(cli_output *out);
 
+/* `--version`: the one line every tool prints, `TOOL (Conica) VERSION`
+ * with the version of the library it runs on (conica_version()), on
+ * stdout. Returns 0, or 1 after a write error. */
+int cli_version(const char *tool);
+
 /* Parse a whole decimal integer in [lo, hi]; returns 0 on success. */
 int cli_parse_int(const char *s, long lo, long hi, long *out);
 /* Parse a finite number without the C locale; returns 0 on success. */

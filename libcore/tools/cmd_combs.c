@@ -19,6 +19,7 @@
 #define COMBS_MAX_WIDTH 20000.0
 
 static const char *const prog = "conica";
+static const char *const usage_prog = "conica combs";
 
 static void usage(FILE *f)
 {
@@ -29,7 +30,8 @@ static void usage(FILE *f)
             "Subdivide the point-normal curve IN (`v x y` / `vn nx ny` lines, '-' = stdin)\n"
             "and draw its curvature comb as SVG: control polygon dashed, subdivided curve,\n"
             "a tooth of length S*kappa along the unit normal at every vertex (kappa from\n"
-            "the circle through three consecutive points, seed 000 Code 3), tips joined.\n"
+            "the circle through three consecutive points, the CONIS paper's Code 3), tips\n"
+            "joined.\n"
             "\n"
             "  -k LEVELS      subdivision levels (default %d, max %d)\n"
             "  --scale S      tooth length per unit curvature (default: the largest tooth\n"
@@ -37,7 +39,7 @@ static void usage(FILE *f)
             "                 teeth, which are cut at twice that length)\n"
             "  --open         the curve is open; --closed (default) joins last to first\n"
             "  --signed       flip teeth to the other side where the curve bends towards\n"
-            "                 its normal (shows inflections); default: the seed's 1/R\n"
+            "                 its normal (shows inflections); default: unsigned 1/R\n"
             "  --max-teeth N  draw at most N teeth (default %d; every vertex still shapes\n"
             "                 the comb outline)\n"
             "  --width PX     picture width (default %.0f)\n"
@@ -47,6 +49,8 @@ static void usage(FILE *f)
             PLOTSVG_DEFAULT_MAX_TEETH, COMBS_DEFAULT_WIDTH);
 }
 
+extern const char conica_cmd_combs_summary[];
+const char conica_cmd_combs_summary[] = "curvature comb of a point-normal curve, as SVG";
 int conica_cmd_combs(int argc, char **argv);
 int conica_cmd_combs(int argc, char **argv)
 {
@@ -68,35 +72,35 @@ int conica_cmd_combs(int argc, char **argv)
             return CLI_EXIT_OK;
         } else if (!strcmp(a, "-k") && has_next) {
             if (cli_parse_int(argv[++i], 0, CONICA_SUBDIV_MAX_LEVELS, &levels))
-                return cli_usage_error(prog, "-k wants an integer 0..%d, got '%s'",
+                return cli_usage_error(usage_prog, "-k wants an integer 0..%d, got '%s'",
                                        CONICA_SUBDIV_MAX_LEVELS, argv[i]);
         } else if (!strcmp(a, "--scale") && has_next) {
             if (cli_parse_double(argv[++i], &scale) || !(scale > 0.0))
-                return cli_usage_error(prog, "--scale wants a positive number, got '%s'",
+                return cli_usage_error(usage_prog, "--scale wants a positive number, got '%s'",
                                        argv[i]);
         } else if (!strcmp(a, "--max-teeth") && has_next) {
             if (cli_parse_int(argv[++i], 0, PLOTSVG_MAX_TEETH_LIMIT, &max_teeth))
-                return cli_usage_error(prog, "--max-teeth wants an integer 0..%d, got '%s'",
+                return cli_usage_error(usage_prog, "--max-teeth wants an integer 0..%d, got '%s'",
                                        PLOTSVG_MAX_TEETH_LIMIT, argv[i]);
         } else if (!strcmp(a, "--width") && has_next) {
             if (cli_parse_double(argv[++i], &width) || !(width >= 100.0) ||
                 width > COMBS_MAX_WIDTH)
-                return cli_usage_error(prog, "--width wants 100..%.0f px, got '%s'",
+                return cli_usage_error(usage_prog, "--width wants 100..%.0f px, got '%s'",
                                        COMBS_MAX_WIDTH, argv[i]);
         } else if (!strcmp(a, "-o") && has_next) {
             out_path = argv[++i];
             if (!*out_path)
-                return cli_usage_error(prog, "-o needs a file name");
+                return cli_usage_error(usage_prog, "-o needs a file name");
         } else if (!strcmp(a, "--signed")) {
             signed_comb = 1;
         } else if (!strcmp(a, "--stats")) {
             stats = 1;
-        } else if (plotsvg_common_arg(prog, "combs", a, has_next, &closed, &in_path)) {
+        } else if (plotsvg_common_arg(usage_prog, a, has_next, &closed, &in_path)) {
             return CLI_EXIT_USAGE;
         }
     }
     if (!in_path)
-        return cli_usage_error(prog, "combs: no input file");
+        return cli_usage_error(usage_prog, "no input file (a file name, or - for standard input)");
 
     conica_curve_init(&in);
     conica_curve_init(&out);

@@ -20,6 +20,7 @@
 #define ERRORS_MAX_LEVEL 20
 
 static const char *const prog = "conica";
+static const char *const usage_prog = "conica errors";
 
 static void usage(FILE *f)
 {
@@ -29,14 +30,14 @@ static void usage(FILE *f)
             "                     [--plot OUT.svg] IN\n"
             "\n"
             "For every level k = 0..MAX (default %d, at most %d), subdivide IN and print\n"
-            "n_k, the conic error E, E_max (seed 000, eqs. (13)-(14), only with --conic)\n"
+            "n_k, the conic error E, E_max (CONIS paper, eqs. (13)-(14), with --conic)\n"
             "and the mean / max angle in degrees between the scheme's normals and normals\n"
             "estimated from the points.\n"
             "\n"
             "  --conic ...  the conic of eq. (3), coefficients in its order:\n"
             "               f = Q20 x^2 + Q02 y^2 + 2 Q11 xy + 2 Q10 x + 2 Q01 y + Q00\n"
             "               (circle x^2+y^2=25: --conic 1,1,0,0,0,-25)\n"
-            "  --variant V  numerics of Section 3.2: base (normals normalised each level,\n"
+            "  --variant V  numerics of the CONIS paper, Sec. 3.2: base (normals normalised each level,\n"
             "               plain quadratic formula), norm-skip, final (default), precise\n"
             "               (long double)\n"
             "  --open       the curve is open; --closed (default)\n"
@@ -120,6 +121,8 @@ static int write_plot(const char *path, const char *in_path, const char *variant
     return 0;
 }
 
+extern const char conica_cmd_errors_summary[];
+const char conica_cmd_errors_summary[] = "conic error and normal error per subdivision level, as a table";
 int conica_cmd_errors(int argc, char **argv);
 int conica_cmd_errors(int argc, char **argv)
 {
@@ -140,33 +143,33 @@ int conica_cmd_errors(int argc, char **argv)
             return CLI_EXIT_OK;
         } else if (!strcmp(a, "-k") && has_next) {
             if (cli_parse_int(argv[++i], 0, ERRORS_MAX_LEVEL, &kmax))
-                return cli_usage_error(prog, "-k wants an integer 0..%d, got '%s'",
+                return cli_usage_error(usage_prog, "-k wants an integer 0..%d, got '%s'",
                                        ERRORS_MAX_LEVEL, argv[i]);
         } else if (!strcmp(a, "--conic") && has_next) {
             if (parse_conic(argv[++i], &q))
-                return cli_usage_error(prog, "--conic wants six numbers Q20,Q02,Q11,Q10,Q01,Q00,"
+                return cli_usage_error(usage_prog, "--conic wants six numbers Q20,Q02,Q11,Q10,Q01,Q00,"
                                        " got '%s'", argv[i]);
             /* the error of eq. (13) divides by the gradient: with only Q00
              * left the gradient is 0 everywhere and there is no curve */
             if (q.q20 == 0 && q.q02 == 0 && q.q11 == 0 && q.q10 == 0 && q.q01 == 0)
-                return cli_usage_error(prog, "--conic '%s' is not a curve: Q20, Q02, Q11, Q10 "
+                return cli_usage_error(usage_prog, "--conic '%s' is not a curve: Q20, Q02, Q11, Q10 "
                                        "and Q01 are all zero", argv[i]);
             have_conic = 1;
         } else if (!strcmp(a, "--variant") && has_next) {
             variant = argv[++i];
             if (plotsvg_variant(variant, &set))
-                return cli_usage_error(prog, "--variant wants base, norm-skip, final or precise,"
+                return cli_usage_error(usage_prog, "--variant wants base, norm-skip, final or precise,"
                                        " got '%s'", variant);
         } else if (!strcmp(a, "--plot") && has_next) {
             plot_path = argv[++i];
             if (!*plot_path)
-                return cli_usage_error(prog, "--plot needs a file name");
-        } else if (plotsvg_common_arg(prog, "errors", a, has_next, &closed, &in_path)) {
+                return cli_usage_error(usage_prog, "--plot needs a file name");
+        } else if (plotsvg_common_arg(usage_prog, a, has_next, &closed, &in_path)) {
             return CLI_EXIT_USAGE;
         }
     }
     if (!in_path)
-        return cli_usage_error(prog, "errors: no input file");
+        return cli_usage_error(usage_prog, "no input file (a file name, or - for standard input)");
 
     conica_curve_init(&in);
     if (plotsvg_load_curve(prog, in_path, closed, &in))

@@ -28,7 +28,7 @@ static void usage(FILE *f)
             "                   [--max-degree N] [--stats] [-o OUT] IN.spl\n"
             "\n"
             "Plot a B-spline function or curve (optionally rational) as a polyline\n"
-            "(seed 004: adaptive plotting of splines).\n"
+            "(after T. Dahl, \"Adaptive plotting of splines\", Oslo 2019).\n"
             "\n"
             "Input: `degree P`, `knots ...`, one `c x [y [z]]` line per control point,\n"
             "optional `w ...` weights; `#` starts a comment. IN of `-`: stdin.\n"
@@ -329,6 +329,8 @@ static const char *limit_hint(const char *msg, const options *o, char *buf, size
 }
 
 /* Called by the dispatcher (conica.c), which declares it from commands.def. */
+extern const char conica_cmd_plot_summary[];
+const char conica_cmd_plot_summary[] = "B-spline or NURBS to a polyline within a tolerance";
 int conica_cmd_plot(int argc, char **argv);
 
 int conica_cmd_plot(int argc, char **argv)

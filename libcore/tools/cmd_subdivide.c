@@ -33,7 +33,8 @@ static void usage(FILE *f)
             "                        [-o OUT] [IN]\n"
             "\n"
             "Refine a point-normal curve with conic-preserving interpolatory subdivision\n"
-            "(seed 000): every level keeps the old points and inserts one point per edge.\n"
+            "(the CONIS scheme of Bügel, Romani and Kosinka): every level keeps the old\n"
+            "points and inserts one point per edge.\n"
             "\n"
             "Input: `v x y` lines, then optional `vn nx ny` lines paired with the points by\n"
             "order; `#`/`%%` lines and blank lines are ignored. IN of `-` or none: stdin.\n"
@@ -213,6 +214,8 @@ static int write_precise(FILE *f, const conica_curvel *c)
 }
 
 /* Called by the dispatcher (conica.c), which declares it from commands.def. */
+extern const char conica_cmd_subdivide_summary[];
+const char conica_cmd_subdivide_summary[] = "conic-preserving subdivision of a point-normal curve";
 int conica_cmd_subdivide(int argc, char **argv);
 
 int conica_cmd_subdivide(int argc, char **argv)

@@ -7,19 +7,22 @@
 #include "cli.h"
 #include "conica/common.h"
 
-#define CONICA_CMD(name) int conica_cmd_##name(int argc, char **argv);
+#define CONICA_CMD(name)                          \
+    int conica_cmd_##name(int argc, char **argv); \
+    extern const char conica_cmd_##name##_summary[];
 #include "commands.def"
 #undef CONICA_CMD
 
 struct command {
     const char *name;
     int (*run)(int argc, char **argv);
+    const char *summary; /* one line for `conica --help` */
 };
 
-#define CONICA_CMD(name) {#name, conica_cmd_##name},
+#define CONICA_CMD(name) {#name, conica_cmd_##name, conica_cmd_##name##_summary},
 static const struct command commands[] = {
 #include "commands.def"
-    {NULL, NULL}
+    {NULL, NULL, NULL}
 };
 #undef CONICA_CMD
 
@@ -27,7 +30,7 @@ static void usage(FILE *f)
 {
     fprintf(f, "usage: conica COMMAND [OPTIONS] [ARGS]\n\ncommands:\n");
     for (const struct command *c = commands; c->name; c++)
-        fprintf(f, "  %s\n", c->name);
+        fprintf(f, "  %-10s  %s\n", c->name, c->summary);
     fprintf(f, "\n'conica COMMAND --help' describes a command.\n");
 }
 
@@ -42,8 +45,7 @@ int main(int argc, char **argv)
         return CLI_EXIT_OK;
     }
     if (strcmp(argv[1], "--version") == 0) {
-        printf("conica %s\n", conica_version());
-        return CLI_EXIT_OK;
+        return cli_version("conica");
     }
     for (const struct command *c = commands; c->name; c++)
         if (strcmp(argv[1], c->name) == 0)

@@ -30,7 +30,7 @@ int plotsvg_load_curve(const char *prog, const char *path, int closed, conica_cu
     return 0;
 }
 
-int plotsvg_common_arg(const char *prog, const char *cmd, const char *a, int has_next,
+int plotsvg_common_arg(const char *usage_prog, const char *a, int has_next,
                        int *closed, const char **in_path)
 {
     if (!strcmp(a, "--open"))
@@ -38,10 +38,10 @@ int plotsvg_common_arg(const char *prog, const char *cmd, const char *a, int has
     else if (!strcmp(a, "--closed"))
         *closed = 1;
     else if (a[0] == '-' && a[1] != '\0')
-        return cli_usage_error(prog, "%s: unknown option '%s'%s", cmd, a,
+        return cli_usage_error(usage_prog, "unknown option '%s'%s", a,
                                has_next ? "" : " (or missing value)");
     else if (*in_path)
-        return cli_usage_error(prog, "%s: one input file only ('%s', '%s')", cmd, *in_path, a);
+        return cli_usage_error(usage_prog, "one input file only ('%s', '%s')", *in_path, a);
     else
         *in_path = a;
     return 0;

@@ -37,8 +37,9 @@ int plotsvg_load_curve(const char *prog, const char *path, int closed, conica_cu
 
 /* The arguments `conica combs` and `conica errors` share: --open, --closed
  * and the one input file; anything else starting with '-' is an unknown
- * option. Returns 0, or 2 after printing a usage error. */
-int plotsvg_common_arg(const char *prog, const char *cmd, const char *a, int has_next,
+ * option ("-" alone is standard input). Returns 0, or 2 after printing a
+ * usage error as usage_prog ("conica combs"). */
+int plotsvg_common_arg(const char *usage_prog, const char *a, int has_next,
                        int *closed, const char **in_path);
 
 /* ------------------------------------------------------------ curvature */
