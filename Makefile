@@ -165,9 +165,12 @@ deps:
 NPROC := $(shell nproc 2>/dev/null || echo 2)
 
 test: deps
-	$(MAKE) --no-print-directory -j$(NPROC) tests
-	$(MAKE) --no-print-directory -j$(NPROC) test-san
-	scripts/run-tests.sh $(BUILD)
+	@start=$$(date +%s); \
+	$(MAKE) --no-print-directory -j$(NPROC) tests && \
+	echo "build: $$(( $$(date +%s) - start )) s" && \
+	$(MAKE) --no-print-directory -j$(NPROC) test-san && \
+	echo "sanitizer build: $$(( $$(date +%s) - start )) s since the start" && \
+	CONICA_TEST_START=$$start scripts/run-tests.sh $(BUILD)
 
 # The unit and CLI suites again under AddressSanitizer + UBSan (clang).
 SAN_FLAGS := -fsanitize=address,undefined -fno-sanitize-recover=all -fno-omit-frame-pointer

@@ -7,6 +7,11 @@
 # CLI suite tests/cli/*.sh (shell harness, same summary format), then the
 # unit and CLI suites again from the sanitizer build in BUILD/san when it
 # exists (make test builds it). Logs go to BUILD/test-logs/.
+#
+# Each suite's line ends with its wall time; before the summary line come
+# the time of all suites and, when CONICA_TEST_START holds the epoch
+# seconds at which `make test` began (the Makefile sets it), the time of the
+# whole run including the builds.
 set -u
 build=${1:-build}
 logs=$build/test-logs
@@ -15,9 +20,18 @@ total_pass=0
 total_fail=0
 total_skip=0
 
+# Wall-clock seconds with fractions (GNU date's %N; whole seconds elsewhere).
+now() {
+    t=$(date +%s.%N 2>/dev/null)
+    case "$t" in *N*|'') date +%s ;; *) printf '%s\n' "$t" ;; esac
+}
+# seconds FROM TO: the difference, one decimal.
+seconds() { awk -v a="$1" -v b="$2" 'BEGIN { printf "%.1f", b - a }'; }
+suites_start=$(now)
+
 # Sum one suite's closing lines: Catch2's "All tests passed (A assertions in
 # T test cases)" or its "test cases: T | P passed | F failed | S skipped" row.
-count() { # log status name
+count() { # log status name seconds
     summary=$(grep -E '^(All tests passed|test cases:|No tests ran)' "$1" | tail -n 1)
     p=0 f=0 s=0
     case "$summary" in
@@ -38,7 +52,7 @@ count() { # log status name
     total_fail=$((total_fail + f))
     total_skip=$((total_skip + s))
     if [ "$f" -eq 0 ]; then word=ok; else word=FAILED; fi
-    printf '%-40s %s (%s passed, %s failed, %s skipped, exit %s)\n' "$3" "$word" "$p" "$f" "$s" "$2"
+    printf '%-40s %s (%s passed, %s failed, %s skipped, exit %s) %8s s\n' "$3" "$word" "$p" "$f" "$s" "$2" "$4"
     if [ "$f" -ne 0 ]; then
         echo "---- $1 ----"
         tail -n 60 "$1"
@@ -50,8 +64,10 @@ run_suite() { # name command...
     name=$1
     shift
     log=$logs/$(printf '%s' "$name" | tr '/ ' '__').log
+    t0=$(now)
     "$@" >"$log" 2>&1 </dev/null
-    count "$log" $? "$name"
+    st=$?
+    count "$log" "$st" "$name" "$(seconds "$t0" "$(now)")"
 }
 
 run_all() { # build-dir label
@@ -85,6 +101,12 @@ if [ -d "$build/san/tests" ]; then
     run_all "$build/san" "sanitizer/"
 fi
 
+end=$(now)
+echo "all suites: $(seconds "$suites_start" "$end") s"
+case "${CONICA_TEST_START:-}" in
+    ''|*[!0-9]*) ;;
+    *) echo "make test in all (builds and suites): $(seconds "$CONICA_TEST_START" "$end") s" ;;
+esac
 if [ "$total_skip" -ne 0 ]; then
     echo "$total_pass passed, $total_fail failed, $total_skip skipped"
 else

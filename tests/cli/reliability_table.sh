@@ -126,14 +126,14 @@ fi
 begin_case "an empty output name is a usage error in every tool"
 row 2 "^conica subdivide: usage error: -o needs a file name" "$conica" subdivide -o '' one.txt
 row 2 "^conica plot: usage error: -o needs a file name" "$conica" plot -o '' nan.spl
-row 2 "^conica: usage error: -o needs a file name" "$conica" combs -o '' one.txt
-row 2 "^conica: usage error: --plot needs a file name" "$conica" errors --plot '' one.txt
+row 2 "^conica combs: usage error: -o needs a file name" "$conica" combs -o '' one.txt
+row 2 "^conica errors: usage error: --plot needs a file name" "$conica" errors --plot '' one.txt
 row 2 "^svgsmooth: usage error: -o needs a file name" "$svgsmooth" -o '' badpath.svg
 row 2 "^scadprofile: usage error: -o needs a file name" "$scad" -o '' one.txt
 
 begin_case "conica errors: a conic without a gradient is an error, not inf"
 printf 'v 3 0\nv 0 2\nv -3 0\nv 0 -2\n' >ell.txt
-row 2 "^conica: usage error: --conic '0,0,0,0,0,0' is not a curve" \
+row 2 "^conica errors: usage error: --conic '0,0,0,0,0,0' is not a curve" \
     "$conica" errors --conic 0,0,0,0,0,0 ell.txt
 check_true "no table on stdout" test ! -s "$out"
 row 2 "is not a curve" "$conica" errors --conic 0,0,0,0,0,7 ell.txt
