@@ -1,7 +1,7 @@
 #!/bin/sh
 # SPDX-License-Identifier: MIT
-# `make demo` part of issue 9: curvature combs, an error-vs-level plot and the
-# numerics ablation of seed 000 (Figure 6), as SVG rendered to PNG.
+# `make demo` part: curvature combs, an error-vs-level plot and the
+# numerics ablation of the CONIS paper (Figure 6), as SVG rendered to PNG.
 # BUILD is $1; everything goes to $BUILD/demo/.
 set -eu
 build=${1:-build}
@@ -21,14 +21,18 @@ render() { # svg -> png next to it (rsvg-convert, from librsvg2-bin)
 # The comb of a smooth subdivided shape, and of a non-convex one (teeth flip
 # at inflections with --signed).
 "$conica" combs -k 5 -o "$out/comb-ellipse.svg" examples/ellipse.txt
+echo "  examples/ellipse.txt -> $out/comb-ellipse.svg (curvature comb, k = 5)"
 render "$out/comb-ellipse.svg"
 "$conica" combs -k 5 --signed -o "$out/comb-flower.svg" examples/flower.txt
+echo "  examples/flower.txt -> $out/comb-flower.svg (signed curvature comb, k = 5)"
 render "$out/comb-flower.svg"
 
 # Conic and normal errors per level on the ellipse 4x^2 + 9y^2 = 36 (its
-# samples are exact), as Figures 3-4 of the seed.
+# samples are exact), as Figures 3-4 of the CONIS paper.
 "$conica" errors -k 12 --conic 4,9,0,0,0,-36 --plot "$out/errors-ellipse.svg" \
-    examples/ellipse.txt | tee "$out/errors-ellipse.txt"
+    examples/ellipse.txt >"$out/errors-ellipse.txt"
+echo "  examples/ellipse.txt -> $out/errors-ellipse.txt (conic error per level, table)," \
+    "$out/errors-ellipse.svg (chart)"
 render "$out/errors-ellipse.svg"
 
 # The ablation: E, E_max at k = 4, 8, 12 per variant, and the combs at k = 10
@@ -42,5 +46,6 @@ if [ ! -f "$example" ]; then
     example=examples/flower.txt
 fi
 "$build/bench/bench_ablation" --example "$example" --svg "$out/ablation-combs.svg" \
-    | tee "$out/ablation.md"
+    >"$out/ablation.md"
+echo "  $example -> $out/ablation.md (numerics ablation, tables), $out/ablation-combs.svg (combs)"
 render "$out/ablation-combs.svg"

@@ -14,7 +14,7 @@ PY=python3
 [ -x /usr/bin/python3 ] && PY=/usr/bin/python3
 
 "$build/bin/scadprofile" --tolerance 0.01 --extrude 5 --module bracket --stats \
-    -o "$out/profile.scad" examples/bracket.svg
+    -o "$out/profile.scad" examples/bracket.svg 2>"$out/profile.stats.txt"
 echo "  examples/bracket.svg -> $out/profile.scad ($(grep -cE '^  \[[-0-9.e+]+,[-0-9.e+]+\](,|\];)$' "$out/profile.scad") points)"
 
 # A model that uses the profile as a library, as a user would.
