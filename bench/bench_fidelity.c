@@ -173,7 +173,7 @@ static void circle_table(void)
                     worst = fmax(worst, fabs(hypot(mx, my) - R));
                 }
             }
-            printf("| %s | %g | %zu | %.0f | %.3f | %.3f |\n", names[f], T[k], r.lines[0].n, nmin,
+            printf("| %s | %g | %zu | %.0f | %.3f | %.6f |\n", names[f], T[k], r.lines[0].n, nmin,
                    (double)r.lines[0].n / nmin, worst / T[k]);
             conica_path_result_free(&r);
             conica_path_free(&p);

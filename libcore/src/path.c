@@ -75,9 +75,23 @@
 /* Flattening plots this many times finer than the tolerance, then keeps
  * the longest chords that stay within it (near the fewest points). */
 #define PATH_FLAT_DENSE 8
+/* Bisection steps of a chord's end parameter between two plotted points
+ * (2^-30 of their spacing: the tolerance is used to 1e-9 of itself). */
+#define PATH_FLAT_BISECT 30
+/* A run reaches its subpath's bounding box where it comes within this
+ * fraction of the box's coordinate (plus the tolerance's) of it; an extreme
+ * this close to a segment's end (in its parameter) is that end. */
+#define PATH_EXT_REL 1e-12
+#define PATH_EXT_SNAP 1e-9
 /* The plotter's trial steps per allowed point (a bound on its time that
  * the budget sets; a curve that needs more is refused as too large). */
 #define PATH_FLAT_TRIALS 64
+/* Flattening tolerance / tolerance per fit mode. The chords use their
+ * tolerance to the last bit, so INSIDE keeps 0.2% of it for the writers'
+ * rounding (scadprofile and svgsmooth write each point within 1/1000 of
+ * the tolerance of its exact value); OUTSIDE shifts vertices by up to the
+ * bulge and MIDDLE by half of it, inside the same budget. */
+#define PATH_FIT_INSIDE_FRACTION 0.998
 #define PATH_FIT_OUTSIDE_FRACTION 0.99
 #define PATH_FIT_MIDDLE_FRACTION 1.98
 /* Most levels that settings.level_tolerance may choose for a piece. */
@@ -693,6 +707,10 @@ typedef struct ctx {
     size_t subpath;  /* index of the subpath at work */
     double tol;      /* its fidelity tolerance */
     double flat_fraction; /* flattening tolerance / tol (the fit mode's) */
+    /* flattening: the subpath's extent along +x, -x, +y, -y (coordinates
+     * times the sign); the points where a run reaches it become vertices */
+    double ext[4];
+    int use_ext;
     conica_path_polyline *L; /* its polyline */
     size_t lcap;     /* capacity of L's arrays */
     /* one segment's samples */
@@ -875,10 +893,63 @@ static double chord_dev(const conica_path *p, size_t s, double ta, double tb, co
     return fmax(bulge(p, s, ta, tb, a, n, 1), bulge(p, s, ta, tb, a, n, -1));
 }
 
-/* Append segment s flattened within the tolerance (its first point is
- * there already); its end point gets normal nend and the flags. */
-static conica_code flatten_seg(ctx *c, size_t s, const double nend[2], unsigned endflags,
-                               double *bound)
+/* The four directions of the bounding box: +x, -x, +y, -y. */
+static const double box_dir[4][2] = {{1, 0}, {-1, 0}, {0, 1}, {0, -1}};
+
+/* Largest value of C(t) . dir over segment s, and where (dense samples,
+ * then golden section round the best one, as bulge()). */
+static double seg_extreme(const conica_path *p, size_t s, const double dir[2], double *targ)
+{
+    const double *q = seg_pts(p, s);
+    int d = p->seg[s].degree, k, it;
+    double best = -INFINITY, bt = 0, pt[2];
+    for (k = 0; k <= PATH_FIT_SAMPLES; k++) {
+        double t = (double)k / PATH_FIT_SAMPLES, v;
+        bez_eval(q, d, t, pt, NULL, NULL);
+        v = pt[0] * dir[0] + pt[1] * dir[1];
+        if (v > best) {
+            best = v;
+            bt = t;
+        }
+    }
+    if (d > 1) {
+        double h = 1.0 / PATH_FIT_SAMPLES, lo = fmax(0.0, bt - h), hi = fmin(1.0, bt + h);
+        const double g = 0.6180339887498949;
+        for (it = 0; it < 60; it++) {
+            double m1 = hi - g * (hi - lo), m2 = lo + g * (hi - lo), v1, v2;
+            bez_eval(q, d, m1, pt, NULL, NULL);
+            v1 = pt[0] * dir[0] + pt[1] * dir[1];
+            bez_eval(q, d, m2, pt, NULL, NULL);
+            v2 = pt[0] * dir[0] + pt[1] * dir[1];
+            if (v1 > v2)
+                hi = m2;
+            else
+                lo = m1;
+            if (fmax(v1, v2) > best) {
+                best = fmax(v1, v2);
+                bt = v1 > v2 ? m1 : m2;
+            }
+        }
+    }
+    { /* an end that is as high to rounding is the extreme (a flat top
+       * drawn as a join is reached at the join itself) */
+        double v0 = q[0] * dir[0] + q[1] * dir[1], v1 = q[3 * d] * dir[0] + q[3 * d + 1] * dir[1];
+        double tiny = PATH_EXT_REL * (fabs(best) + fabs(v0) + fabs(v1));
+        if (v1 >= best - tiny && v1 >= v0) {
+            bt = 1.0;
+            best = fmax(best, v1);
+        } else if (v0 >= best - tiny) {
+            bt = 0.0;
+            best = fmax(best, v0);
+        }
+    }
+    *targ = bt;
+    return best;
+}
+
+/* Segment s plotted with the guaranteed plotter at a fraction of the
+ * flattening tolerance (its points on the segment, with parameters). */
+static conica_code dense_seg(ctx *c, size_t s, conica_polyline *pl, conica_status *est)
 {
     const conica_path *p = c->p;
     const double *q = seg_pts(p, s);
@@ -886,20 +957,15 @@ static conica_code flatten_seg(ctx *c, size_t s, const double nend[2], unsigned 
     conica_bspline bs;
     conica_plot_settings ps = conica_plot_defaults();
     conica_plot_stats pst;
-    conica_polyline pl;
-    conica_status est;
     conica_code rc;
     double ctrl[2 * (CONICA_PATH_MAX_DEGREE + 1)], w[CONICA_PATH_MAX_DEGREE + 1];
-    size_t i;
     for (k = 0; k <= d; k++) {
         ctrl[2 * k] = q[3 * k];
         ctrl[2 * k + 1] = q[3 * k + 1];
         w[k] = q[3 * k + 2];
     }
     conica_bspline_init(&bs);
-    conica_polyline_init(&pl);
-    memset(&pst, 0, sizeof pst);
-    rc = conica_bspline_from_bezier(d, 2, ctrl, p->seg[s].rational ? w : NULL, &bs, &est);
+    rc = conica_bspline_from_bezier(d, 2, ctrl, p->seg[s].rational ? w : NULL, &bs, est);
     if (rc == CONICA_OK) {
         ps.method = CONICA_PLOT_GUARANTEED;
         /* plotted finer, then the longest chords within the tolerance
@@ -909,78 +975,322 @@ static conica_code flatten_seg(ctx *c, size_t s, const double nend[2], unsigned 
         ps.max_iterations = PATH_FLAT_TRIALS * ps.max_points < ps.max_iterations
                                 ? PATH_FLAT_TRIALS * ps.max_points
                                 : ps.max_iterations;
-        rc = conica_plot(&bs, &ps, &pl, &pst, &est);
+        rc = conica_plot(&bs, &ps, pl, &pst, est);
         if (rc == CONICA_ERR_LIMIT) {
             /* too many dense points for the budget: the chords at T itself */
-            conica_polyline_free(&pl);
-            conica_polyline_init(&pl);
+            conica_polyline_free(pl);
+            conica_polyline_init(pl);
             ps.abs_tolerance = c->tol * c->flat_fraction;
-            rc = conica_plot(&bs, &ps, &pl, &pst, &est);
+            rc = conica_plot(&bs, &ps, pl, &pst, est);
         }
-    }
-    if (rc == CONICA_OK && pl.t && pl.n > 2) {
-        /* greedy longest chords over the plotted points: gallop, then
-         * bisect, every chord measured against the segment itself */
-        double thr = c->tol * c->flat_fraction, worst = 0;
-        size_t i0 = 0, nk = 1;
-        while (i0 + 1 < pl.n) {
-            size_t best = i0 + 1, step = 1, lo, hi;
-            double dv;
-            while (best + step < pl.n &&
-                   chord_dev(p, s, pl.t[i0], pl.t[best + step], pl.xy + 2 * i0,
-                             pl.xy + 2 * (best + step)) <= thr) {
-                best += step;
-                step *= 2;
-            }
-            lo = best;
-            hi = best + step < pl.n ? best + step : pl.n;
-            while (hi - lo > 1) {
-                size_t mid = lo + (hi - lo) / 2;
-                if (chord_dev(p, s, pl.t[i0], pl.t[mid], pl.xy + 2 * i0, pl.xy + 2 * mid) <= thr)
-                    lo = mid;
-                else
-                    hi = mid;
-            }
-            dv = chord_dev(p, s, pl.t[i0], pl.t[lo], pl.xy + 2 * i0, pl.xy + 2 * lo);
-            worst = dv > worst ? dv : worst;
-            pl.xy[2 * nk] = pl.xy[2 * lo];
-            pl.xy[2 * nk + 1] = pl.xy[2 * lo + 1];
-            pl.t[nk] = pl.t[lo];
-            nk++;
-            i0 = lo;
-        }
-        pl.n = nk;
-        pst.bound = worst;
+        if (rc == CONICA_OK && !pl->t)
+            rc = conica__fail(est, CONICA_ERR_NUMERIC, 0, s, "the plotter gave no parameters");
     }
     conica_bspline_free(&bs);
-    if (rc != CONICA_OK) {
+    return rc;
+}
+
+/* A run of segments flattened as one curve: the parameter u = k + t runs
+ * over segment segs[k] for u in [k, k + 1]. */
+typedef struct run {
+    const conica_path *p;
+    const size_t *segs;
+    size_t m;
+} seg_run;
+
+static void run_eval(const seg_run *R, double u, double pt[2])
+{
+    size_t k = u >= (double)R->m ? R->m - 1 : (size_t)u;
+    size_t s = R->segs[k];
+    bez_eval(seg_pts(R->p, s), R->p->seg[s].degree, u - (double)k, pt, NULL, NULL);
+}
+
+/* Largest distance of the run on [u0, u1] from the chord a b. */
+static double run_dev(const seg_run *R, double u0, double u1, const double a[2], const double b[2])
+{
+    size_t k0 = (size_t)u0, k1;
+    double worst = 0;
+    if (k0 >= R->m)
+        k0 = R->m - 1;
+    k1 = u1 >= (double)R->m ? R->m - 1 : (size_t)u1;
+    if (k1 > k0 && u1 == (double)k1)
+        k1--; /* u1 is the start of segment k1: nothing of it */
+    for (size_t k = k0; k <= k1; k++) {
+        double ta = k == k0 ? u0 - (double)k : 0.0, tb = k == k1 ? u1 - (double)k : 1.0;
+        double dv = chord_dev(R->p, R->segs[k], ta, tb, a, b);
+        worst = dv > worst ? dv : worst;
+    }
+    return worst;
+}
+
+/*
+ * Append the run of segments segs[0..m) flattened within the tolerance (its
+ * first point is there already) as one curve, so that chords may pass over
+ * the joins between them (the joins are tangent: the caller breaks runs at
+ * corners and straight segments). jn[2k] is the normal at the join after
+ * segs[k] (k < m - 1; NULL when m = 1), written when a vertex falls on it;
+ * the run's end point gets nend and endflags. *bound grows to the largest
+ * chord deviation.
+ */
+static conica_code flatten_run(ctx *c, const size_t *segs, size_t m, const double *jn,
+                               const double nend[2], unsigned endflags, double *bound)
+{
+    const conica_path *p = c->p;
+    seg_run R;
+    conica_status est;
+    conica_code rc = CONICA_OK;
+    double *U = NULL, *X = NULL, thr = c->tol * c->flat_fraction, worst = 0, fz[4 * 8];
+    size_t n = 0, cap = 0, k, i, nfz = 0;
+    R.p = p;
+    R.segs = segs;
+    R.m = m;
+    /* 1. the dense points of every segment, one list over u */
+    for (k = 0; k < m && rc == CONICA_OK; k++) {
+        conica_polyline pl;
+        conica_polyline_init(&pl);
+        rc = dense_seg(c, segs[k], &pl, &est);
+        if (rc == CONICA_OK) {
+            size_t from = k == 0 ? 0 : 1; /* a join once */
+            if (n + pl.n > cap) {
+                size_t nc = 2 * (n + pl.n);
+                double *u2 = realloc(U, nc * sizeof *U), *x2;
+                if (u2)
+                    U = u2;
+                x2 = u2 ? realloc(X, 2 * nc * sizeof *X) : NULL;
+                if (x2)
+                    X = x2;
+                if (!u2 || !x2) {
+                    conica_polyline_free(&pl);
+                    free(U);
+                    free(X);
+                    return fail_nomem(c);
+                }
+                cap = nc;
+            }
+            for (i = from; i < pl.n; i++) {
+                U[n] = (double)k + pl.t[i];
+                X[2 * n] = pl.xy[2 * i];
+                X[2 * n + 1] = pl.xy[2 * i + 1];
+                if (i + 1 == pl.n) { /* the segment's end, exactly (a join: u = k + 1) */
+                    const double *qe = seg_pts(p, segs[k]);
+                    int de = p->seg[segs[k]].degree;
+                    U[n] = (double)(k + 1);
+                    X[2 * n] = qe[3 * de];
+                    X[2 * n + 1] = qe[3 * de + 1];
+                }
+                n++;
+            }
+            if (k == 0)
+                U[0] = 0.0;
+        }
         conica_polyline_free(&pl);
+    }
+    if (rc != CONICA_OK) {
+        free(U);
+        free(X);
         if (rc == CONICA_ERR_LIMIT)
             return take(c, c->budget + 1);
         return conica__fail(c->st, rc, 0, c->subpath, "subpath %zu: %s", c->subpath + 1,
                             est.message);
     }
-    if (pst.bound > *bound)
-        *bound = pst.bound;
-    rc = pl.n > 1 ? take(c, pl.n - 1) : CONICA_OK;
-    for (i = 1; i < pl.n && rc == CONICA_OK; i++) {
-        double t = pl.t ? pl.t[i] : (double)i / (double)(pl.n - 1), tg[2], nn[2], pt[2];
-        if (i + 1 == pl.n) { /* the segment's end point exactly */
-            pt[0] = q[3 * d];
-            pt[1] = q[3 * d + 1];
-            if (!add_pt(c, pt, nend, s, 1.0, endflags))
+    /* 1b. where the run reaches the subpath's bounding box, a vertex: the
+     * part's extent is as drawn (an inscribed polygon would lose up to the
+     * tolerance there). Inserted into the list and marked: no chord passes
+     * over one. */
+    if (c->use_ext && n > 1) {
+        double fu[4 * 8];
+        size_t nf = 0, f;
+        for (k = 0; k < m; k++)
+            for (int dd = 0; dd < 4 && nf < sizeof fu / sizeof *fu; dd++) {
+                double t, v = seg_extreme(p, segs[k], box_dir[dd], &t);
+                double tiny = PATH_EXT_REL * (fabs(c->ext[dd]) + c->tol);
+                if (v >= c->ext[dd] - tiny) {
+                    double u = (double)k + t;
+                    if (t >= 1.0 - PATH_EXT_SNAP)
+                        u = (double)(k + 1); /* the drawn end point */
+                    else if (t <= PATH_EXT_SNAP)
+                        u = (double)k;
+                    if (u > U[0] && u < U[n - 1])
+                        fu[nf++] = u;
+                }
+            }
+        if (nf && n + nf > cap) {
+            size_t nc = n + nf;
+            double *u2 = realloc(U, nc * sizeof *U), *x2;
+            if (u2)
+                U = u2;
+            x2 = u2 ? realloc(X, 2 * nc * sizeof *X) : NULL;
+            if (x2)
+                X = x2;
+            if (!u2 || !x2) {
+                free(U);
+                free(X);
+                return fail_nomem(c);
+            }
+            cap = nc;
+        }
+        for (f = 0; f < nf; f++) {
+            size_t at = 0, j;
+            double pt[2];
+            while (at < n && U[at] < fu[f])
+                at++;
+            if (at < n && U[at] == fu[f]) { /* a dense point already */
+                fz[nfz++] = U[at];
+                continue;
+            }
+            for (j = n; j > at; j--) {
+                U[j] = U[j - 1];
+                X[2 * j] = X[2 * j - 2];
+                X[2 * j + 1] = X[2 * j - 1];
+            }
+            if (fu[f] == floor(fu[f]) && fu[f] > 0) { /* a join: its drawn point */
+                const double *qp = seg_pts(p, segs[(size_t)fu[f] - 1]);
+                int dp = p->seg[segs[(size_t)fu[f] - 1]].degree;
+                pt[0] = qp[3 * dp];
+                pt[1] = qp[3 * dp + 1];
+            } else {
+                run_eval(&R, fu[f], pt);
+            }
+            U[at] = fu[f];
+            X[2 * at] = pt[0];
+            X[2 * at + 1] = pt[1];
+            n++;
+            fz[nfz++] = fu[f];
+        }
+    }
+    /* 2. greedy longest chords: from the current start, gallop and bisect
+     * over the dense points for the last end that keeps the chord within
+     * the tolerance, then bisect the parameter between it and the first
+     * one that does not, so that every chord uses the whole tolerance (on a
+     * circle this gives the fewest points any inscribed polygon can have).
+     * Every chord is measured against the segments themselves. The chosen
+     * points overwrite the list in place (each is at or past its slot). */
+    {
+        double u0 = U[0], p0[2] = {X[0], X[1]};
+        size_t i0 = 0, nk = 1;
+        while (n > 1) {
+            size_t best = i0, step = 1, lo, hi, last = n - 1, f;
+            double dv, ulo, uhi, u1, p1[2], stop = U[n - 1];
+            int it;
+            for (f = 0; f < nfz; f++) /* the next vertex that must be */
+                if (fz[f] > u0 && fz[f] < stop)
+                    stop = fz[f];
+            while (U[last] > stop)
+                last--;
+            dv = run_dev(&R, u0, U[last], p0, X + 2 * last);
+            if (dv <= thr) { /* the rest, up to the next forced vertex, in one chord */
+                worst = dv > worst ? dv : worst;
+                U[nk] = U[last];
+                X[2 * nk] = X[2 * last];
+                X[2 * nk + 1] = X[2 * last + 1];
+                nk++;
+                if (last == n - 1)
+                    break;
+                u0 = U[last];
+                p0[0] = X[2 * last];
+                p0[1] = X[2 * last + 1];
+                i0 = last;
+                continue;
+            }
+            while (best + step < last &&
+                   run_dev(&R, u0, U[best + step], p0, X + 2 * (best + step)) <= thr) {
+                best += step;
+                step *= 2;
+            }
+            lo = best;
+            hi = best + step < last ? best + step : last;
+            while (hi - lo > 1) {
+                size_t mid = lo + (hi - lo) / 2;
+                if (run_dev(&R, u0, U[mid], p0, X + 2 * mid) <= thr)
+                    lo = mid;
+                else
+                    hi = mid;
+            }
+            /* feasible at ulo (the start itself when no dense point is),
+             * not at uhi = the next dense point */
+            ulo = lo > i0 ? U[lo] : u0;
+            uhi = U[lo + 1];
+            for (it = 0; it < PATH_FLAT_BISECT; it++) {
+                double um = 0.5 * (ulo + uhi), pm[2];
+                run_eval(&R, um, pm);
+                if (run_dev(&R, u0, um, p0, pm) <= thr)
+                    ulo = um;
+                else
+                    uhi = um;
+            }
+            if (ulo > U[lo] || (lo > i0 && ulo == U[lo])) {
+                u1 = ulo;
+                if (u1 == U[lo]) {
+                    p1[0] = X[2 * lo];
+                    p1[1] = X[2 * lo + 1];
+                } else {
+                    run_eval(&R, u1, p1);
+                }
+            } else { /* no room at all: the next dense point */
+                lo++;
+                u1 = U[lo];
+                p1[0] = X[2 * lo];
+                p1[1] = X[2 * lo + 1];
+            }
+            dv = run_dev(&R, u0, u1, p0, p1);
+            worst = dv > worst ? dv : worst;
+            U[nk] = u1;
+            X[2 * nk] = p1[0];
+            X[2 * nk + 1] = p1[1];
+            nk++;
+            u0 = u1;
+            p0[0] = p1[0];
+            p0[1] = p1[1];
+            i0 = lo;
+        }
+        n = nk;
+    }
+    if (worst > *bound)
+        *bound = worst;
+    /* 3. the points, with the normals of the curve there */
+    rc = n > 1 ? take(c, n - 1) : CONICA_OK;
+    for (i = 1; i < n && rc == CONICA_OK; i++) {
+        double u = U[i], tg[2], nn[2], pt[2], t;
+        size_t kk = u >= (double)m ? m - 1 : (size_t)u, s = segs[kk];
+        const double *q = seg_pts(p, s);
+        int d = p->seg[s].degree;
+        if (i + 1 == n) { /* the run's end point exactly */
+            const double *qe = seg_pts(p, segs[m - 1]);
+            int de = p->seg[segs[m - 1]].degree;
+            pt[0] = qe[3 * de];
+            pt[1] = qe[3 * de + 1];
+            if (!add_pt(c, pt, nend, segs[m - 1], 1.0, endflags))
                 rc = fail_nomem(c);
             break;
         }
-        pt[0] = pl.xy[2 * i];
-        pt[1] = pl.xy[2 * i + 1];
+        t = u - (double)kk;
+        if (t == 0.0 && kk > 0) { /* exactly on a join: the drawn end point */
+            const double *qp = seg_pts(p, segs[kk - 1]);
+            int dp = p->seg[segs[kk - 1]].degree;
+            pt[0] = qp[3 * dp];
+            pt[1] = qp[3 * dp + 1];
+            if (!add_pt(c, pt, jn + 2 * (kk - 1), segs[kk - 1], 1.0, CONICA_PATH_PT_VERTEX))
+                rc = fail_nomem(c);
+            continue;
+        }
+        pt[0] = X[2 * i];
+        pt[1] = X[2 * i + 1];
         inner_tangent(q, d, t, 1, tg);
         normal_of(tg, nn);
         if (!add_pt(c, pt, nn, s, t, 0))
             rc = fail_nomem(c);
     }
-    conica_polyline_free(&pl);
+    free(U);
+    free(X);
     return rc;
+}
+
+/* One segment flattened within the tolerance (its first point is there
+ * already); its end point gets normal nend and the flags. */
+static conica_code flatten_seg(ctx *c, size_t s, const double nend[2], unsigned endflags,
+                               double *bound)
+{
+    return flatten_run(c, &s, 1, NULL, nend, endflags, bound);
 }
 
 /* ------------------------------------------------------------ smoothing */
@@ -1717,6 +2027,16 @@ static conica_code drawn_subpath(ctx *c, const conica_path_subpath *sp, int smoo
         return fail_nomem(c);
     }
     brk = line + n;
+    c->use_ext = !smooth;
+    if (!smooth) { /* the subpath's bounding box, from its segments */
+        for (int dd = 0; dd < 4; dd++) {
+            c->ext[dd] = -INFINITY;
+            for (j = 0; j < n; j++) {
+                double t, v = seg_extreme(p, sp->first + j, box_dir[dd], &t);
+                c->ext[dd] = v > c->ext[dd] ? v : c->ext[dd];
+            }
+        }
+    }
     for (j = 0; j < n; j++) {
         size_t s = sp->first + j;
         J[j] = join_at(c, sp, j);
@@ -1746,6 +2066,27 @@ static conica_code drawn_subpath(ctx *c, const conica_path_subpath *sp, int smoo
         size_t jj = (start + done) % n, s = order[done], m, k;
         double nend[2], len;
         unsigned fl = CONICA_PATH_PT_VERTEX;
+        if (!line[jj] && !smooth) {
+            /* flattened: the curved segments up to the next break as one
+             * run, chords passing over its tangent joins */
+            for (m = 1; done + m < n && !brk[(jj + m) % n]; m++)
+                ;
+            for (k = 0; k + 1 < m; k++)
+                join_normal(&J[(jj + k + 1) % n], tan + 2 * k);
+            if (done + m < n || sp->closed) {
+                const join *N = &J[(jj + m) % n];
+                join_normal(N, nend);
+                if (N->corner)
+                    fl |= CONICA_PATH_PT_CORNER;
+            } else {
+                double tout[2];
+                seg_end_tangent(c, order[done + m - 1], 1, tout, &len);
+                normal_of(tout, nend);
+            }
+            rc = flatten_run(c, order + done, m, tan, nend, fl, &dev);
+            done += m;
+            continue;
+        }
         if (line[jj] || !smooth) {
             /* one segment: straight, or flattened */
             if (done + 1 < n || sp->closed) {
@@ -2059,7 +2400,7 @@ static conica_code run(const conica_path *p, const conica_path_settings *s, int 
             if (!(c.tol > 0)) /* a subpath of one point */
                 c.tol = DBL_MIN;
             c.L->tolerance = c.tol;
-            c.flat_fraction = 1.0;
+            c.flat_fraction = smooth ? 1.0 : PATH_FIT_INSIDE_FRACTION;
             if (!smooth && sp->closed && c.s.fit == CONICA_PATH_FIT_OUTSIDE)
                 c.flat_fraction = PATH_FIT_OUTSIDE_FRACTION;
             else if (!smooth && sp->closed && c.s.fit == CONICA_PATH_FIT_MIDDLE)
