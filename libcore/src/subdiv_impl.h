@@ -1334,10 +1334,7 @@ static conica_code SFX(run)(const SFX(input) *in, const conica_subdiv_settings *
         infl = malloc(ninfl * sizeof *infl);
 #if REAL_IS_DOUBLE
     for (t = 0; t < nth; t++)
-        ws[t].work = NULL;
-    for (t = 0; t < nth && L > 0; t++)
-        if (conica__svdws_init(&ws[t]) != 0)
-            code = CONICA_ERR_NOMEM;
+        conica__svdws_init(&ws[t]);
 #endif
     if (!A || !An || (NB && (!B || !Bn)) || (L > 0 && (!F[0] || !F[1])) || (ninfl && !infl))
         code = CONICA_ERR_NOMEM;
