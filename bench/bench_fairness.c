@@ -1,0 +1,147 @@
+/* SPDX-License-Identifier: MIT */
+/* bench_fairness (issue 20): fairness of the curvature at inflections on the
+ * reference implementation's own examples (conis/input of the shared data,
+ * from $CONICA_SHARED_DATA, else ../shared/data from the working directory;
+ * skipped with a notice when absent). For every example whose polygon turns
+ * both ways (the CONIS paper's inserted inflection points, eq. (9)), prints
+ * the total variation of the discrete curvature (circle through three
+ * consecutive points, tests/support/ts_fairness.h) and its sign changes:
+ * the reference's own output (reference-k5), the reference-compatible mode
+ * (absolute coordinates + weighted SVD, long double) and the default mode
+ * (local frames), at k = 5 and k = 8; and the number of inflections the
+ * input has. A benchmark: prints figures, asserts nothing (the fairness
+ * test, tests/test_fairness.c, asserts the bounds).
+ *
+ * usage: bench_fairness [DATA_DIR] */
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "conica/curve.h"
+#include "conica/subdiv.h"
+#include "ts_fairness.h"
+
+#define PATH_CAP 1024
+
+static const char *const names[] = {
+    "5pointOpenCircle", "ExLetG_sub0", "ExStar_sub0", "ExStep_sub0", "ex6_sub0E", "ex6_sub0F",
+    "example1",         "example10",   "example11",   "example12",   "example13", "example2",
+    "example3",         "example4",    "example5",    "example6",    "example7",  "example8",
+    "example9",         "lG2",         "tau_example2", "tau_sub0",   "tst"};
+#define NNAMES (sizeof names / sizeof names[0])
+
+static int load(const char *path, conica_curve *c)
+{
+    FILE *f = fopen(path, "rb");
+    char *buf;
+    long size;
+    size_t got;
+    conica_status st;
+    conica_code rc;
+    if (!f)
+        return 0;
+    fseek(f, 0, SEEK_END);
+    size = ftell(f);
+    fseek(f, 0, SEEK_SET);
+    buf = malloc((size_t)size + 1);
+    if (!buf) {
+        fclose(f);
+        return 0;
+    }
+    got = fread(buf, 1, (size_t)size, f);
+    fclose(f);
+    rc = conica_curve_parse(buf, got, c, &st);
+    free(buf);
+    if (rc != CONICA_OK)
+        fprintf(stderr, "bench_fairness: %s:%zu: %s\n", path, st.line, st.message);
+    return rc == CONICA_OK;
+}
+
+/* Subdivide in = (reference-compatible + precise, or default) at k levels
+ * and measure; returns the number of inflection points inserted, -1 on
+ * failure. */
+static long run(const conica_curve *in, int compat, int k, ts_fairness *m)
+{
+    conica_subdiv_settings s = conica_subdiv_defaults();
+    conica_subdiv_info info;
+    conica_curve out;
+    conica_status st;
+    long ninfl = -1;
+    conica_curve_init(&out);
+    conica_subdiv_info_init(&info);
+    s.levels = k;
+    s.reference_compatible = compat;
+    s.precise = compat;
+    if (conica_subdivide(in, &s, &out, &info, &st) != CONICA_OK)
+        fprintf(stderr, "bench_fairness: %s\n", st.message);
+    else if (ts_fairness_measure(out.xy, out.n, out.closed, m) == 0)
+        ninfl = (long)info.inflections;
+    conica_subdiv_info_free(&info);
+    conica_curve_free(&out);
+    return ninfl;
+}
+
+int main(int argc, char **argv)
+{
+    const char *env = getenv("CONICA_SHARED_DATA");
+    const char *dir = argc > 1 ? argv[1] : (env && *env ? env : "../shared/data");
+    char path[PATH_CAP];
+    size_t i;
+    int any = 0;
+    snprintf(path, sizeof path, "%s/conis/input/example9.txt", dir);
+    {
+        FILE *probe = fopen(path, "rb");
+        if (!probe) {
+            printf("notice: %s absent (set CONICA_SHARED_DATA or pass DATA_DIR): skipped\n", path);
+            return 0;
+        }
+        fclose(probe);
+    }
+    printf("Curvature total variation (TV) and sign changes (sc) on the reference's\n"
+           "non-convex examples; ref = reference-k5 output, compat = reference-compatible\n"
+           "+ precise, local = default mode; infl = inflections of the input.\n\n");
+    printf("| example | infl | k=5 ref TV (sc) | k=5 compat TV (sc) | k=5 local TV (sc) "
+           "| k=8 compat TV (sc) | k=8 local TV (sc) |\n|---|---|---|---|---|---|---|\n");
+    for (i = 0; i < NNAMES; i++) {
+        conica_curve in, ref;
+        ts_fairness mr, m[4];
+        long ni[4];
+        int k, ok = 1;
+        conica_curve_init(&in);
+        conica_curve_init(&ref);
+        snprintf(path, sizeof path, "%s/conis/input/%s.txt", dir, names[i]);
+        if (!load(path, &in))
+            ok = 0;
+        snprintf(path, sizeof path, "%s/conis/reference-k5/%s.k5.txt", dir, names[i]);
+        if (ok && !load(path, &ref))
+            ok = 0;
+        if (ok) {
+            in.closed = strcmp(names[i], "5pointOpenCircle") != 0;
+            ref.closed = in.closed;
+            if (!in.nxy && conica_curve_estimate_normals(&in, CONICA_NORMALS_AREA, NULL) != CONICA_OK)
+                ok = 0;
+        }
+        for (k = 0; ok && k < 4; k++)
+            ni[k] = run(&in, !(k & 1), k < 2 ? 5 : 8, &m[k]);
+        if (ok && ni[0] > 0) {
+            any = 1;
+            if (ts_fairness_measure(ref.xy, ref.n, ref.closed, &mr) != 0)
+                printf("| %s | %ld | (no curvature) |", names[i], ni[0]);
+            else
+                printf("| %s | %ld | %.4g (%zu) |", names[i], ni[0], mr.tv, mr.sign_changes);
+            for (k = 0; k < 4; k++)
+                if (ni[k] < 0)
+                    printf(" failed |");
+                else
+                    printf(" %.4g (%zu) |", m[k].tv, m[k].sign_changes);
+            printf("\n");
+        } else if (!ok) {
+            printf("| %s | (cannot load) |\n", names[i]);
+        }
+        conica_curve_free(&in);
+        conica_curve_free(&ref);
+    }
+    if (!any)
+        printf("(no non-convex example)\n");
+    return 0;
+}

@@ -1,0 +1,35 @@
+/* SPDX-License-Identifier: MIT */
+/*
+ * ts_fairness.h - fairness of a polyline's discrete curvature, for the
+ * fairness tests and bench_fairness (issue 20). Shares no code with libcore.
+ *
+ * The discrete curvature at vertex i is the signed curvature of the circle
+ * through vertices i-1, i, i+1 (positive for a counter-clockwise turn). Its
+ * total variation is sum |kappa_{i+1} - kappa_i| over consecutive vertices
+ * (cyclically for a closed polyline; open ones have no curvature at their
+ * two ends). A sign change is a pair of consecutive curvatures of opposite
+ * signs, skipping curvatures whose magnitude is at most
+ * TS_FAIR_ZERO_REL times the largest (straight runs, where rounding alone
+ * decides the sign).
+ */
+#ifndef TS_FAIRNESS_H
+#define TS_FAIRNESS_H
+
+#include <stddef.h>
+
+#define TS_FAIR_ZERO_REL 1e-9
+
+typedef struct ts_fairness {
+    double tv;           /* total variation of the discrete curvature */
+    double kmax;         /* largest |kappa| */
+    size_t sign_changes; /* sign changes of kappa (see above) */
+} ts_fairness;
+
+/** Signed curvature of the circle through a, b, c (0 if two coincide). */
+double ts_circle_curvature(const double a[2], const double b[2], const double c[2]);
+
+/** Measure the polyline xy (n vertices, interleaved x,y). Returns 0, or -1
+ *  when n < 3 (no curvature) or memory runs out. */
+int ts_fairness_measure(const double *xy, size_t n, int closed, ts_fairness *out);
+
+#endif
