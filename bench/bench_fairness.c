@@ -9,7 +9,8 @@
  * the reference's own output (reference-k5), the reference-compatible mode
  * (absolute coordinates + weighted SVD, long double) and the default mode
  * (local frames), at k = 5 and k = 8; and the number of inflections the
- * input has. A benchmark: prints figures, asserts nothing (the fairness
+ * input has, and how many of its vertices carry a normal outside the cone of
+ * their edges' normals (where the tangles are). A benchmark: prints figures, asserts nothing (the fairness
  * test, tests/test_fairness.c, asserts the bounds).
  *
  * usage: bench_fairness [DATA_DIR] */
@@ -19,6 +20,7 @@
 
 #include "conica/curve.h"
 #include "conica/subdiv.h"
+#include "plotsvg.h"
 #include "ts_fairness.h"
 
 #define PATH_CAP 1024
@@ -30,31 +32,9 @@ static const char *const names[] = {
     "example9",         "lG2",         "tau_example2", "tau_sub0",   "tst"};
 #define NNAMES (sizeof names / sizeof names[0])
 
-static int load(const char *path, conica_curve *c)
+static int load(const char *path, int closed, conica_curve *c)
 {
-    FILE *f = fopen(path, "rb");
-    char *buf;
-    long size;
-    size_t got;
-    conica_status st;
-    conica_code rc;
-    if (!f)
-        return 0;
-    fseek(f, 0, SEEK_END);
-    size = ftell(f);
-    fseek(f, 0, SEEK_SET);
-    buf = malloc((size_t)size + 1);
-    if (!buf) {
-        fclose(f);
-        return 0;
-    }
-    got = fread(buf, 1, (size_t)size, f);
-    fclose(f);
-    rc = conica_curve_parse(buf, got, c, &st);
-    free(buf);
-    if (rc != CONICA_OK)
-        fprintf(stderr, "bench_fairness: %s:%zu: %s\n", path, st.line, st.message);
-    return rc == CONICA_OK;
+    return plotsvg_load_curve("bench_fairness", path, closed, c) == 0;
 }
 
 /* Subdivide in = (reference-compatible + precise, or default) at k levels
@@ -99,36 +79,43 @@ int main(int argc, char **argv)
     }
     printf("Curvature total variation (TV) and sign changes (sc) on the reference's\n"
            "non-convex examples; ref = reference-k5 output, compat = reference-compatible\n"
-           "+ precise, local = default mode; infl = inflections of the input.\n\n");
-    printf("| example | infl | k=5 ref TV (sc) | k=5 compat TV (sc) | k=5 local TV (sc) "
-           "| k=8 compat TV (sc) | k=8 local TV (sc) |\n|---|---|---|---|---|---|---|\n");
+           "+ precise, local = default mode; infl = inflections of the input; outside =\n"
+           "vertices whose normal lies outside the cone of its two edges' normals (no\n"
+           "convex arc leaves them along the polygon), the first one named.\n\n");
+    printf("| example | infl | outside | k=5 ref TV (sc) | k=5 compat TV (sc) | k=5 local TV (sc) "
+           "| k=8 compat TV (sc) | k=8 local TV (sc) |\n|---|---|---|---|---|---|---|---|\n");
     for (i = 0; i < NNAMES; i++) {
         conica_curve in, ref;
         ts_fairness mr, m[4];
         long ni[4];
-        int k, ok = 1;
+        int k, ok = 1, closed = strcmp(names[i], "5pointOpenCircle") != 0;
+        size_t bad = 0, first = 0;
         conica_curve_init(&in);
         conica_curve_init(&ref);
         snprintf(path, sizeof path, "%s/conis/input/%s.txt", dir, names[i]);
-        if (!load(path, &in))
+        if (!load(path, closed, &in))
             ok = 0;
         snprintf(path, sizeof path, "%s/conis/reference-k5/%s.k5.txt", dir, names[i]);
-        if (ok && !load(path, &ref))
+        if (ok && !load(path, closed, &ref))
             ok = 0;
         if (ok) {
-            in.closed = strcmp(names[i], "5pointOpenCircle") != 0;
-            ref.closed = in.closed;
             if (!in.nxy && conica_curve_estimate_normals(&in, CONICA_NORMALS_AREA, NULL) != CONICA_OK)
                 ok = 0;
         }
         for (k = 0; ok && k < 4; k++)
             ni[k] = run(&in, !(k & 1), k < 2 ? 5 : 8, &m[k]);
+        if (ok)
+            bad = ts_normals_outside_cone(in.xy, in.nxy, in.n, in.closed, &first);
         if (ok && ni[0] > 0) {
+            char outside[64] = "none";
             any = 1;
+            if (bad)
+                snprintf(outside, sizeof outside, "%zu (p%zu)", bad, first);
             if (ts_fairness_measure(ref.xy, ref.n, ref.closed, &mr) != 0)
-                printf("| %s | %ld | (no curvature) |", names[i], ni[0]);
+                printf("| %s | %ld | %s | (no curvature) |", names[i], ni[0], outside);
             else
-                printf("| %s | %ld | %.4g (%zu) |", names[i], ni[0], mr.tv, mr.sign_changes);
+                printf("| %s | %ld | %s | %.4g (%zu) |", names[i], ni[0], outside, mr.tv,
+                       mr.sign_changes);
             for (k = 0; k < 4; k++)
                 if (ni[k] < 0)
                     printf(" failed |");

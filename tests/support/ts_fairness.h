@@ -18,6 +18,8 @@
 #include <stddef.h>
 
 #define TS_FAIR_ZERO_REL 1e-9
+/* A normal counts as inside its vertex's cone to within this sine. */
+#define TS_FAIR_CONE_TOL 1e-9
 
 typedef struct ts_fairness {
     double tv;           /* total variation of the discrete curvature */
@@ -31,5 +33,15 @@ double ts_circle_curvature(const double a[2], const double b[2], const double c[
 /** Measure the polyline xy (n vertices, interleaved x,y). Returns 0, or -1
  *  when n < 3 (no curvature) or memory runs out. */
 int ts_fairness_measure(const double *xy, size_t n, int closed, ts_fairness *out);
+
+/** Vertices of the point-normal polygon (xy, nxy: n vertices) whose normal
+ *  lies outside the cone of its two edges' normals (either orientation):
+ *  its tangent does not lie between the incoming and outgoing edge
+ *  directions, so no arc that turns the polygon's way leaves the vertex
+ *  along both edges. Open polygons' end vertices are not counted. Returns
+ *  the count; *first (if not NULL) gets the first such vertex. nxy NULL:
+ *  0. */
+size_t ts_normals_outside_cone(const double *xy, const double *nxy, size_t n, int closed,
+                               size_t *first);
 
 #endif
