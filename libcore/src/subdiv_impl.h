@@ -904,7 +904,20 @@ static int SFX(edge)(SFX(worker) *w, size_t i, REAL *oxy, REAL *on)
         if (ok)
             w->grown++;
     }
-    if (!ok && conflict >= 2) {
+    if (!ok && conflict >= 2 && j->infl && (j->infl[i] || j->infl[i1])) {
+        /* An S-shaped edge next to an inflection point: the inflection is
+         * already there, and a second one at the midpoint would start a
+         * cascade (every level's edge next to the new inflection point is
+         * S-shaped again), the zigzag combs of folded polygons such as the
+         * reference's lG2. The convex arc instead: the parabola of the
+         * pencil, within CONICA__IRREGULAR_MAX_T edge lengths of the
+         * midpoint, else the midpoint with the edge normal (below). */
+        ok = SFX(fast_fit)(j, P, 2, &y, &gx, &gy) > 0 &&
+             M(fabs)(y) <= 2 * RC(CONICA__IRREGULAR_MAX_T);
+        local = ok;
+        if (ok)
+            w->fallbacks++;
+    } else if (!ok && conflict >= 2) {
         /* An S-shaped edge holds an inflection of the curve: put it at the
          * midpoint, as eq. (9) does for the polygon's inflection edges,
          * with the tangent there of the cubic through both end pairs

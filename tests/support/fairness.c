@@ -58,6 +58,27 @@ int ts_fairness_measure(const double *xy, size_t n, int closed, ts_fairness *out
     return 0;
 }
 
+int ts_normal_outside_cone(const double a[2], const double b[2], const double c[2],
+                           const double nrm[2])
+{
+    double ux = b[0] - a[0], uy = b[1] - a[1], vx = c[0] - b[0], vy = c[1] - b[1];
+    double tx = -nrm[1], ty = nrm[0], lu = hypot(ux, uy), lv = hypot(vx, vy);
+    double lt = hypot(tx, ty), turn, c1, c2;
+    if (!(lu > 0) || !(lv > 0) || !(lt > 0))
+        return 0;
+    ux /= lu, uy /= lu, vx /= lv, vy /= lv, tx /= lt, ty /= lt;
+    if (tx * (ux + vx) + ty * (uy + vy) < 0) /* orient along the travel */
+        tx = -tx, ty = -ty;
+    turn = ux * vy - uy * vx;
+    c1 = ux * ty - uy * tx; /* incoming edge -> tangent */
+    c2 = tx * vy - ty * vx; /* tangent -> outgoing edge */
+    if (fabs(turn) <= TS_FAIR_CONE_TOL)
+        return 0; /* collinear edges: no cone to leave */
+    if (turn > 0)
+        return c1 < -TS_FAIR_CONE_TOL || c2 < -TS_FAIR_CONE_TOL;
+    return c1 > TS_FAIR_CONE_TOL || c2 > TS_FAIR_CONE_TOL;
+}
+
 size_t ts_normals_outside_cone(const double *xy, const double *nxy, size_t n, int closed,
                                size_t *first)
 {
@@ -66,26 +87,7 @@ size_t ts_normals_outside_cone(const double *xy, const double *nxy, size_t n, in
         return 0;
     for (i = closed ? 0 : 1; i < (closed ? n : n - 1); i++) {
         size_t a = i == 0 ? n - 1 : i - 1, c = i + 1 == n ? 0 : i + 1;
-        double ux = xy[2 * i] - xy[2 * a], uy = xy[2 * i + 1] - xy[2 * a + 1];
-        double vx = xy[2 * c] - xy[2 * i], vy = xy[2 * c + 1] - xy[2 * i + 1];
-        double tx = -nxy[2 * i + 1], ty = nxy[2 * i], lu = hypot(ux, uy), lv = hypot(vx, vy);
-        double lt = hypot(tx, ty), turn, c1, c2;
-        int inside;
-        if (!(lu > 0) || !(lv > 0) || !(lt > 0))
-            continue;
-        ux /= lu, uy /= lu, vx /= lv, vy /= lv, tx /= lt, ty /= lt;
-        if (tx * (ux + vx) + ty * (uy + vy) < 0) /* orient along the travel */
-            tx = -tx, ty = -ty;
-        turn = ux * vy - uy * vx;
-        c1 = ux * ty - uy * tx; /* incoming edge -> tangent */
-        c2 = tx * vy - ty * vx; /* tangent -> outgoing edge */
-        if (fabs(turn) <= TS_FAIR_CONE_TOL)
-            inside = fabs(c1) <= TS_FAIR_CONE_TOL && fabs(c2) <= TS_FAIR_CONE_TOL;
-        else if (turn > 0)
-            inside = c1 >= -TS_FAIR_CONE_TOL && c2 >= -TS_FAIR_CONE_TOL;
-        else
-            inside = c1 <= TS_FAIR_CONE_TOL && c2 <= TS_FAIR_CONE_TOL;
-        if (!inside) {
+        if (ts_normal_outside_cone(xy + 2 * a, xy + 2 * i, xy + 2 * c, nxy + 2 * i)) {
             if (count == 0 && first)
                 *first = i;
             count++;

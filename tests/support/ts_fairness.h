@@ -17,6 +17,10 @@
 
 #include <stddef.h>
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
 #define TS_FAIR_ZERO_REL 1e-9
 /* A normal counts as inside its vertex's cone to within this sine. */
 #define TS_FAIR_CONE_TOL 1e-9
@@ -34,6 +38,13 @@ double ts_circle_curvature(const double a[2], const double b[2], const double c[
  *  when n < 3 (no curvature) or memory runs out. */
 int ts_fairness_measure(const double *xy, size_t n, int closed, ts_fairness *out);
 
+/** Does the normal nrm of vertex b (edges a -> b -> c) lie outside the
+ *  cone of the two edges' normals (either orientation), i.e. its tangent
+ *  not between the edge directions? 1 or 0 (0 for a zero edge or normal
+ *  and for collinear edges, which have no cone). */
+int ts_normal_outside_cone(const double a[2], const double b[2], const double c[2],
+                           const double nrm[2]);
+
 /** Vertices of the point-normal polygon (xy, nxy: n vertices) whose normal
  *  lies outside the cone of its two edges' normals (either orientation):
  *  its tangent does not lie between the incoming and outgoing edge
@@ -43,5 +54,9 @@ int ts_fairness_measure(const double *xy, size_t n, int closed, ts_fairness *out
  *  0. */
 size_t ts_normals_outside_cone(const double *xy, const double *nxy, size_t n, int closed,
                                size_t *first);
+
+#ifdef __cplusplus
+}
+#endif
 
 #endif
