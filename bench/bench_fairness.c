@@ -14,6 +14,7 @@
  * test, tests/test_fairness.c, asserts the bounds).
  *
  * usage: bench_fairness [DATA_DIR] */
+#include <dirent.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -25,12 +26,37 @@
 
 #define PATH_CAP 1024
 
-static const char *const names[] = {
-    "5pointOpenCircle", "ExLetG_sub0", "ExStar_sub0", "ExStep_sub0", "ex6_sub0E", "ex6_sub0F",
-    "example1",         "example10",   "example11",   "example12",   "example13", "example2",
-    "example3",         "example4",    "example5",    "example6",    "example7",  "example8",
-    "example9",         "lG2",         "tau_example2", "tau_sub0",   "tst"};
-#define NNAMES (sizeof names / sizeof names[0])
+/* At most this many examples (the shared data has 23). */
+#define MAX_EXAMPLES 256
+#define NAME_CAP 128
+
+static int by_name(const void *a, const void *b)
+{
+    return strcmp((const char *)a, (const char *)b);
+}
+
+/* The examples' names: every NAME.txt in DIR/conis/input, sorted. */
+static size_t list_examples(const char *dir, char names[][NAME_CAP])
+{
+    char path[PATH_CAP];
+    DIR *d;
+    struct dirent *e;
+    size_t n = 0;
+    snprintf(path, sizeof path, "%s/conis/input", dir);
+    if (!(d = opendir(path)))
+        return 0;
+    while ((e = readdir(d)) != NULL && n < MAX_EXAMPLES) {
+        size_t len = strlen(e->d_name);
+        if (len > 4 && len < NAME_CAP && !strcmp(e->d_name + len - 4, ".txt")) {
+            memcpy(names[n], e->d_name, len - 4);
+            names[n][len - 4] = '\0';
+            n++;
+        }
+    }
+    closedir(d);
+    qsort(names, n, sizeof names[0], by_name);
+    return n;
+}
 
 static int load(const char *path, int closed, conica_curve *c)
 {
@@ -65,8 +91,9 @@ int main(int argc, char **argv)
 {
     const char *env = getenv("CONICA_SHARED_DATA");
     const char *dir = argc > 1 ? argv[1] : (env && *env ? env : "../shared/data");
+    static char names[MAX_EXAMPLES][NAME_CAP];
     char path[PATH_CAP];
-    size_t i;
+    size_t i, nnames;
     int any = 0;
     snprintf(path, sizeof path, "%s/conis/input/example9.txt", dir);
     {
@@ -84,7 +111,8 @@ int main(int argc, char **argv)
            "convex arc leaves them along the polygon), the first one named.\n\n");
     printf("| example | infl | outside | k=5 ref TV (sc) | k=5 compat TV (sc) | k=5 local TV (sc) "
            "| k=8 compat TV (sc) | k=8 local TV (sc) |\n|---|---|---|---|---|---|---|---|\n");
-    for (i = 0; i < NNAMES; i++) {
+    nnames = list_examples(dir, names);
+    for (i = 0; i < nnames; i++) {
         conica_curve in, ref;
         ts_fairness mr, m[4];
         long ni[4];
@@ -92,11 +120,13 @@ int main(int argc, char **argv)
         size_t bad = 0, first = 0;
         conica_curve_init(&in);
         conica_curve_init(&ref);
-        snprintf(path, sizeof path, "%s/conis/input/%s.txt", dir, names[i]);
-        if (!load(path, closed, &in))
+        if (snprintf(path, sizeof path, "%s/conis/input/%s.txt", dir, names[i]) >=
+                (int)sizeof path ||
+            !load(path, closed, &in))
             ok = 0;
-        snprintf(path, sizeof path, "%s/conis/reference-k5/%s.k5.txt", dir, names[i]);
-        if (ok && !load(path, closed, &ref))
+        if (ok && (snprintf(path, sizeof path, "%s/conis/reference-k5/%s.k5.txt", dir,
+                            names[i]) >= (int)sizeof path ||
+                   !load(path, closed, &ref)))
             ok = 0;
         if (ok) {
             if (!in.nxy && conica_curve_estimate_normals(&in, CONICA_NORMALS_AREA, NULL) != CONICA_OK)
