@@ -51,3 +51,11 @@ $(BENCH_SCAD_IMPORT): $(BUILD)/obj/bench/bench_scad_import.o $(BUILD)/lib/libcon
 	@mkdir -p $(@D)
 	$(CC) $(LDFLAGS) -o $@ $< $(BUILD)/lib/libconica_testsupport.a $(CORE_A) $(CORE_LIBS) $(FT_LIBS)
 BENCH_BINS += $(BENCH_SCAD_IMPORT)
+
+# ---- bench_fairness (issue 20): curvature total variation at inflections vs the reference
+BENCH_FAIRNESS := $(BUILD)/bench/bench_fairness
+$(BUILD)/obj/bench/bench_fairness.o: CPPFLAGS += -Itests/support -Ilibcore/tools
+$(BENCH_FAIRNESS): $(BUILD)/obj/bench/bench_fairness.o $(BUILD)/lib/libconica_testsupport.a $(CLI_A) $(CORE_A)
+	@mkdir -p $(@D)
+	$(CC) $(LDFLAGS) -o $@ $< $(BUILD)/lib/libconica_testsupport.a $(CLI_A) $(CORE_A) $(CORE_LIBS) $(FT_LIBS)
+BENCH_BINS += $(BENCH_FAIRNESS)

@@ -11,7 +11,8 @@
  *   places, points within 5e-2 of the diagonal (the local frame changes the
  *   fitted conic for data that lie on no conic; REFERENCE.md measured up to
  *   3e-2 for such a variant).
- * Every figure is printed, so a failure says which file and by how much. */
+ * Every figure is printed, so a failure says which file and by how much.
+ * The fairness test at the end checks the curvature of the same runs. */
 #include "conica_test.h"
 
 #include <math.h>
@@ -21,6 +22,7 @@
 
 #include "conica/curve.h"
 #include "conica/subdiv.h"
+#include "ts_fairness.h"
 
 #define LEVELS 5
 #define STRIDE (1u << LEVELS) /* level-0 vertices sit every 2^5 output points */
@@ -228,4 +230,120 @@ TEST_CASE("reference examples: default settings match reference-k5 within 5e-2",
           "[subdiv][reference][data]")
 {
     compare_all(0, TOL_DEFAULT);
+}
+
+/* ------------------------------------------------ fairness (issue 20) */
+
+/* A polygon vertex that turns by more than this (degrees) is a hairpin: the
+ * polygon folds back on itself (the reference's lG2), and no curve through
+ * its point-normal pairs is known to need only the polygon's inflections. */
+#define HAIRPIN_DEG 160.0
+
+static double max_turn_deg(const conica_curve *c)
+{
+    double worst = 0;
+    size_t i;
+    for (i = c->closed ? 0 : 1; i < (c->closed ? c->n : c->n - 1); i++) {
+        size_t a = i == 0 ? c->n - 1 : i - 1, b = i + 1 == c->n ? 0 : i + 1;
+        double ux = c->xy[2 * i] - c->xy[2 * a], uy = c->xy[2 * i + 1] - c->xy[2 * a + 1];
+        double vx = c->xy[2 * b] - c->xy[2 * i], vy = c->xy[2 * b + 1] - c->xy[2 * i + 1];
+        double t = fabs(atan2(ux * vy - uy * vx, ux * vx + uy * vy)) * 180.0 / 3.14159265358979;
+        worst = t > worst ? t : worst;
+    }
+    return worst;
+}
+
+/* Curvature fairness of the default mode on the examples (discrete
+ * curvature of the circle through three consecutive points,
+ * tests/support/ts_fairness.h), at k = 5 and k = 8:
+ * - an example whose polygon turns one way and whose every normal lies in
+ *   the cone of its vertex's edge normals (a convex point-normal polygon)
+ *   gives curvature of one sign;
+ * - a non-convex one (inflection points inserted) has a total variation no
+ *   greater than the reference's own output (reference-k5) at k = 5 and the
+ *   reference-compatible mode at k = 8, and as many curvature sign changes
+ *   as inflections; where the polygon folds (a hairpin vertex), no more
+ *   sign changes than the reference's own output has. */
+/* Returns 1 when the example was checked as a convex one. */
+static int fairness_one(const char *name)
+{
+    char rel[256];
+    conica_curve in, ref, out;
+    conica_subdiv_settings s = conica_subdiv_defaults();
+    conica_subdiv_info info;
+    ts_fairness poly, mref, m[2], mc;
+    size_t outside;
+    int k, convex;
+    double turn;
+
+    conica_curve_init(&in);
+    conica_curve_init(&ref);
+    conica_curve_init(&out);
+    snprintf(rel, sizeof rel, "conis/input/%s.txt", name);
+    REQUIRE(load(rel, &in));
+    snprintf(rel, sizeof rel, "conis/reference-k5/%s.k5.txt", name);
+    REQUIRE(load(rel, &ref));
+    in.closed = ref.closed = strcmp(name, "5pointOpenCircle") != 0;
+    if (!in.nxy)
+        REQUIRE_EQ(conica_curve_estimate_normals(&in, CONICA_NORMALS_AREA, NULL), CONICA_OK);
+    REQUIRE_EQ(ts_fairness_measure(in.xy, in.n, in.closed, &poly), 0);
+    REQUIRE_EQ(ts_fairness_measure(ref.xy, ref.n, ref.closed, &mref), 0);
+    outside = ts_normals_outside_cone(in.xy, in.nxy, in.n, in.closed, NULL);
+    convex = poly.sign_changes == 0 && outside == 0;
+    turn = max_turn_deg(&in);
+    for (k = 0; k < 2; k++) {
+        conica_subdiv_info_init(&info);
+        s.levels = k ? 8 : 5;
+        s.reference_compatible = 0;
+        s.precise = 0;
+        REQUIRE_EQ(conica_subdivide(&in, &s, &out, &info, NULL), CONICA_OK);
+        REQUIRE_EQ(ts_fairness_measure(out.xy, out.n, out.closed, &m[k]), 0);
+        INFO("%s at k = %d: %zu curvature sign changes, total variation %.4g", name, s.levels,
+             m[k].sign_changes, m[k].tv);
+        if (convex)
+            CHECK_EQ_U(m[k].sign_changes, 0);
+        if (poly.sign_changes > 0 && info.inflections > 0) {
+            double bound = mref.tv;
+            if (k == 1) {
+                conica_subdiv_settings sc = s;
+                sc.reference_compatible = 1;
+                sc.precise = 1;
+                REQUIRE_EQ(conica_subdivide(&in, &sc, &out, NULL, NULL), CONICA_OK);
+                REQUIRE_EQ(ts_fairness_measure(out.xy, out.n, out.closed, &mc), 0);
+                bound = mc.tv;
+            }
+            printf("fairness: %-12s k=%d TV %9.4g (reference%s %9.4g)  sign changes %3zu "
+                   "(inflections %zu, reference-k5 %zu)  normals outside their cone %zu  "
+                   "largest turn %.0f deg\n",
+                   name, s.levels, m[k].tv, k ? "-compatible" : "-k5", bound,
+                   m[k].sign_changes, info.inflections, mref.sign_changes, outside, turn);
+            CHECK_LE(m[k].tv, bound);
+            if (turn <= HAIRPIN_DEG) {
+                CHECK_EQ_U(m[k].sign_changes, info.inflections);
+            } else {
+                CHECK_LE(m[k].sign_changes, mref.sign_changes);
+                if (m[k].sign_changes != info.inflections)
+                    WARN("%s at k = %d: %zu curvature sign changes for %zu inflections (the "
+                         "polygon folds: a vertex turns by %.0f degrees)",
+                         name, s.levels, m[k].sign_changes, info.inflections, turn);
+            }
+        }
+        conica_subdiv_info_free(&info);
+    }
+    conica_curve_free(&in);
+    conica_curve_free(&ref);
+    conica_curve_free(&out);
+    return convex;
+}
+
+TEST_CASE("reference examples: curvature fairness (one sign when convex, TV <= reference)",
+          "[subdiv][reference][data][fairness]")
+{
+    size_t k;
+    int convex = 0;
+    ct_data_dir_or_skip();
+    for (k = 0; k < NNAMES; k++)
+        convex += fairness_one(names[k]);
+    printf("fairness: %d convex examples checked at k = 5 and 8\n", convex);
+    CHECK(convex > 0);
 }

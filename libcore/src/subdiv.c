@@ -32,6 +32,9 @@
  * midpoint along its normal. Regular (convex) patches, which every conic
  * produces, are not limited. */
 #define CONICA__IRREGULAR_MAX_T 1.0
+/* A vertex's normal counts as inside the cone of its edges' normals to
+ * within this sine (SFX(outside_cone)). */
+#define CONICA__CONE_SINE 1e-9
 /* Outer neighbours within this many rounding units of an edge line count
  * as on it (see SFX(line_class)). The unit is DBL_EPSILON in both modes: the
  * points collinear by construction (an inflection point (9), the S-shaped

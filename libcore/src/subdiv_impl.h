@@ -904,7 +904,20 @@ static int SFX(edge)(SFX(worker) *w, size_t i, REAL *oxy, REAL *on)
         if (ok)
             w->grown++;
     }
-    if (!ok && conflict >= 2) {
+    if (!ok && conflict >= 2 && j->infl && (j->infl[i] || j->infl[i1])) {
+        /* An S-shaped edge next to an inflection point: the inflection is
+         * already there, and a second one at the midpoint would start a
+         * cascade (every level's edge next to the new inflection point is
+         * S-shaped again), the zigzag combs of folded polygons such as the
+         * reference's lG2. The convex arc instead: the parabola of the
+         * pencil, within CONICA__IRREGULAR_MAX_T edge lengths of the
+         * midpoint, else the midpoint with the edge normal (below). */
+        ok = SFX(fast_fit)(j, P, 2, &y, &gx, &gy) > 0 &&
+             M(fabs)(y) <= 2 * RC(CONICA__IRREGULAR_MAX_T);
+        local = ok;
+        if (ok)
+            w->fallbacks++;
+    } else if (!ok && conflict >= 2) {
         /* An S-shaped edge holds an inflection of the curve: put it at the
          * midpoint, as eq. (9) does for the polygon's inflection edges,
          * with the tangent there of the cubic through both end pairs
@@ -1253,29 +1266,149 @@ static size_t SFX(count_infl)(const SFX(input) *in, int ref)
     return c;
 }
 
+/* Is the normal of input vertex v outside the cone of its two edges'
+ * normals (u -> v -> w; either orientation)? Then its tangent does not lie
+ * between the incoming and outgoing edge directions, and no arc that turns
+ * the polygon's way at v leaves v along both edges: the curve's turn
+ * changes sign at v itself. */
+static int SFX(outside_cone)(const SFX(input) *in, size_t u, size_t v, size_t w)
+{
+    REAL x0, y0, x1, y1, x2, y2, nx, ny, ux, uy, vx, vy, tx, ty, turn, c1, c2;
+    SFX(in_pt)(in, u, &x0, &y0);
+    SFX(in_pt)(in, v, &x1, &y1);
+    SFX(in_pt)(in, w, &x2, &y2);
+    SFX(in_nrm)(in, v, &nx, &ny);
+    ux = x1 - x0;
+    uy = y1 - y0;
+    vx = x2 - x1;
+    vy = y2 - y1;
+    if ((ux == 0 && uy == 0) || (vx == 0 && vy == 0) || (nx == 0 && ny == 0))
+        return 0;
+    SFX(unit)(&ux, &uy);
+    SFX(unit)(&vx, &vy);
+    tx = -ny;
+    ty = nx;
+    SFX(unit)(&tx, &ty);
+    if (tx * (ux + vx) + ty * (uy + vy) < 0) {
+        tx = -tx;
+        ty = -ty;
+    }
+    turn = DIFFPROD_WP(ux, vy, uy, vx);
+    c1 = DIFFPROD_WP(ux, ty, uy, tx);
+    c2 = DIFFPROD_WP(tx, vy, ty, vx);
+    if (M(fabs)(turn) <= RC(CONICA__CONE_SINE))
+        return 0;
+    return turn > 0 ? (c1 < -RC(CONICA__CONE_SINE) || c2 < -RC(CONICA__CONE_SINE))
+                    : (c1 > RC(CONICA__CONE_SINE) || c2 > RC(CONICA__CONE_SINE));
+}
+
+/*
+ * Default mode, an inflection edge (i, i+1) of the polygon whose end
+ * normals say there is no inflection inside it: one end normal lies outside
+ * its vertex's cone (SFX(outside_cone)) and the two end normals tilt apart
+ * as a convex arc's do (the fast path's regular test). A convex arc joins
+ * the end pairs, and no convex arc passes through the chord's midpoint of
+ * eq. (9): the midpoint would force two more inflections into the edge,
+ * which the subdivision draws as a tangle in the comb. The curve's
+ * inflection is that vertex (its turn changes sign there), so the point
+ * inserted on the edge is the convex arc's: the midpoint of the parabola of
+ * the pencil (the quadratic Bezier with the tangent lines' intersection as
+ * control point, (p_i + 2 T + p_i+1) / 4, normal perpendicular to the
+ * chord), and the vertex is flagged as the inflection point for the
+ * patches (none reaches across it). Returns the vertex (i or i+1) and
+ * writes the point, or returns (size_t)-1 when eq. (9) stands.
+ */
+static size_t SFX(infl_at_vertex)(const SFX(input) *in, size_t i, REAL *pxy, REAL *pn)
+{
+    size_t n = in->n, a = (i + n - 1) % n, c = (i + 1) % n, d = (i + 2) % n, v;
+    int o0 = SFX(outside_cone)(in, a, i, c), o1 = SFX(outside_cone)(in, i, c, d);
+    REAL x1, y1, x2, y2, n1x, n1y, n2x, n2y, hx, hy, a0, b0, a1, b1, det, r1, r2, txx, tyy;
+    REAL px, py, ex, ey;
+    if (o0 == o1)
+        return (size_t)-1;
+    v = o0 ? i : c;
+    SFX(in_pt)(in, i, &x1, &y1);
+    SFX(in_pt)(in, c, &x2, &y2);
+    SFX(in_nrm)(in, i, &n1x, &n1y);
+    SFX(in_nrm)(in, c, &n2x, &n2y);
+    SFX(unit)(&n1x, &n1y);
+    SFX(unit)(&n2x, &n2y);
+    hx = x2 - x1;
+    hy = y2 - y1;
+    a0 = FMA(n1x, hx, n1y * hy);
+    b0 = DIFFPROD_WP(hx, n1y, hy, n1x);
+    a1 = FMA(n2x, hx, n2y * hy);
+    b1 = DIFFPROD_WP(hx, n2y, hy, n2x);
+    if (!((a0 * b0) * (a1 * b1) < 0))
+        return (size_t)-1; /* the end normals describe an S: eq. (9) */
+    /* T: n1 . (T - p_i) = 0 and n2 . (T - p_i+1) = 0 */
+    det = DIFFPROD_WP(n1x, n2y, n1y, n2x);
+    r1 = FMA(n1x, x1, n1y * y1);
+    r2 = FMA(n2x, x2, n2y * y2);
+    if (det == 0)
+        return (size_t)-1;
+    txx = DIFFPROD_WP(r1, n2y, n1y, r2) / det;
+    tyy = DIFFPROD_WP(n1x, r2, r1, n2x) / det;
+    px = RC(0.25) * x1 + RC(0.5) * txx + RC(0.25) * x2;
+    py = RC(0.25) * y1 + RC(0.5) * tyy + RC(0.25) * y2;
+    ex = px - (RC(0.5) * x1 + RC(0.5) * x2);
+    ey = py - (RC(0.5) * y1 + RC(0.5) * y2);
+    /* the parabola stays in the triangle of chord and tangent lines; one
+     * that bulges more than an edge length is no fair answer either */
+    if (!isfinite(px) || !isfinite(py) ||
+        !(FMA(ex, ex, ey * ey) <= RC(CONICA__IRREGULAR_MAX_T) * FMA(hx, hx, hy * hy)))
+        return (size_t)-1;
+    pxy[0] = px;
+    pxy[1] = py;
+    pn[0] = -hy;
+    pn[1] = hx;
+    SFX(unit)(&pn[0], &pn[1]);
+    if (pn[0] * (n1x + n2x) + pn[1] * (n1y + n2y) < 0) {
+        pn[0] = -pn[0];
+        pn[1] = -pn[1];
+    }
+    return v;
+}
+
 /* Level 0: the input with unit normals, plus inflection points if asked.
  * Writes the flags (if flags) and the level-0 indices of inserted points. */
 static size_t SFX(load)(const SFX(input) *in, int ref, int insert, REAL *xy, REAL *nn,
                         unsigned char *flags, size_t *infl_idx)
 {
     size_t i, k = 0, ni = 0;
+    int flag_next = 0, flag_first = 0;
     for (i = 0; i < in->n; i++) {
         SFX(in_pt)(in, i, &xy[2 * k], &xy[2 * k + 1]);
         SFX(in_nrm)(in, i, &nn[2 * k], &nn[2 * k + 1]);
         SFX(unit)(&nn[2 * k], &nn[2 * k + 1]);
         if (flags)
-            flags[k] = 0;
+            flags[k] = (unsigned char)flag_next;
+        flag_next = 0;
         k++;
         if (insert && (in->closed || i + 1 < in->n) && SFX(needs_infl)(in, ref, i)) {
-            SFX(infl_point)(in, ref, i, &xy[2 * k], &nn[2 * k]);
-            if (flags)
-                flags[k] = 1;
+            size_t v = ref ? (size_t)-1 : SFX(infl_at_vertex)(in, i, &xy[2 * k], &nn[2 * k]);
+            if (v == (size_t)-1) {
+                SFX(infl_point)(in, ref, i, &xy[2 * k], &nn[2 * k]);
+                if (flags)
+                    flags[k] = 1;
+            } else {
+                if (flags)
+                    flags[k] = 0;
+                if (v == i && flags)
+                    flags[k - 1] = 1;
+                else if (v != i && i + 1 < in->n)
+                    flag_next = 1;
+                else if (v != i)
+                    flag_first = 1; /* closed: the edge back to vertex 0 */
+            }
             if (infl_idx)
                 infl_idx[ni] = k;
             ni++;
             k++;
         }
     }
+    if (flags && flag_first)
+        flags[0] = 1;
     return k;
 }
 
@@ -1334,10 +1467,7 @@ static conica_code SFX(run)(const SFX(input) *in, const conica_subdiv_settings *
         infl = malloc(ninfl * sizeof *infl);
 #if REAL_IS_DOUBLE
     for (t = 0; t < nth; t++)
-        ws[t].work = NULL;
-    for (t = 0; t < nth && L > 0; t++)
-        if (conica__svdws_init(&ws[t]) != 0)
-            code = CONICA_ERR_NOMEM;
+        conica__svdws_init(&ws[t]);
 #endif
     if (!A || !An || (NB && (!B || !Bn)) || (L > 0 && (!F[0] || !F[1])) || (ninfl && !infl))
         code = CONICA_ERR_NOMEM;

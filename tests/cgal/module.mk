@@ -17,8 +17,8 @@ $(CGAL_TEST_OBJ): CXXFLAGS += -frounding-math
 # headers): a known false positive; every other warning stays an error.
 $(CGAL_TEST_OBJ): CXXFLAGS += -Wno-maybe-uninitialized
 
-$(CGAL_TEST): $(CGAL_TEST_OBJ) $(RUNNER_A) $$(ALL_LIBS)
+$(CGAL_TEST): $(CGAL_TEST_OBJ) $(RUNNER_A) $(BUILD)/lib/libconica_testsupport.a $$(ALL_LIBS)
 	@mkdir -p $(@D)
-	$(CXX) $(LDFLAGS) -o $@ $(CGAL_TEST_OBJ) $(RUNNER_A) $(ALL_LIBS) $(ALL_LDLIBS) $(CGAL_LIBS)
+	$(CXX) $(LDFLAGS) -o $@ $(CGAL_TEST_OBJ) $(RUNNER_A) $(BUILD)/lib/libconica_testsupport.a $(ALL_LIBS) $(ALL_LDLIBS) $(CGAL_LIBS)
 
 TEST_BINS += $(CGAL_TEST)
