@@ -70,11 +70,9 @@ static void table_greedy(const char *splines_dir, int verbose)
         for (size_t i = 0; i < set->n; i++) {
             const conica_bspline *s = &set->s[i];
             double tol = rel_tols[ti] * conica_plot_extent(s);
-            conica_plot_settings ps = conica_plot_defaults();
-            ps.abs_tolerance = tol;
             conica_polyline pl;
             conica_polyline_init(&pl);
-            if (conica_plot(s, &ps, &pl, NULL, NULL) != CONICA_OK) {
+            if (fc_plot(s, tol, &pl) != CONICA_OK) {
                 printf("| %s: plot failed |\n", set->name[i]);
                 continue;
             }

@@ -46,12 +46,10 @@ TEST_CASE("guaranteed plots never exceed the tolerance, measured independently",
         for (size_t i = 0; i < set->n; i++) {
             const conica_bspline *s = &set->s[i];
             double tol = rel[ti] * conica_plot_extent(s), back = 0;
-            conica_plot_settings ps = conica_plot_defaults();
-            ps.abs_tolerance = tol;
             conica_polyline pl;
             conica_polyline_init(&pl);
             INFO("%s at %g of the diagonal", set->name[i], rel[ti]);
-            REQUIRE_EQ(conica_plot(s, &ps, &pl, NULL, NULL), CONICA_OK);
+            REQUIRE_EQ(fc_plot(s, tol, &pl), CONICA_OK);
             double dev = fc_plot_dev(s, &pl, &back);
             CHECK(dev >= 0);
             CHECK_LE(dev, tol);
@@ -72,12 +70,10 @@ TEST_CASE("guaranteed plots stay near the greedy reference's point count",
         for (size_t i = 0; i < set->n; i++) {
             const conica_bspline *s = &set->s[i];
             double tol = rel[ti] * conica_plot_extent(s);
-            conica_plot_settings ps = conica_plot_defaults();
-            ps.abs_tolerance = tol;
             conica_polyline pl;
             conica_polyline_init(&pl);
             INFO("%s at %g of the diagonal", set->name[i], rel[ti]);
-            REQUIRE_EQ(conica_plot(s, &ps, &pl, NULL, NULL), CONICA_OK);
+            REQUIRE_EQ(fc_plot(s, tol, &pl), CONICA_OK);
             size_t g = fc_greedy(s, tol);
             double ratio = (double)pl.n / (double)g;
             /* the greedy is optimal for a march from the start: a certified

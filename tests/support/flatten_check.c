@@ -223,6 +223,13 @@ double fc_plot_dev(const conica_bspline *s, const conica_polyline *pl, double *w
     return worst;
 }
 
+conica_code fc_plot(const conica_bspline *s, double tol, conica_polyline *pl)
+{
+    conica_plot_settings ps = conica_plot_defaults();
+    ps.abs_tolerance = tol;
+    return conica_plot(s, &ps, pl, NULL, NULL);
+}
+
 /* ------------------------------------------------------------ curve set */
 
 static uint64_t fc_rng = 0x2545F4914F6CDD1Dull;

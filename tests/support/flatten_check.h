@@ -42,6 +42,9 @@ size_t fc_greedy(const conica_bspline *s, double tol);
  * NULL. */
 double fc_plot_dev(const conica_bspline *s, const conica_polyline *pl, double *worst_back);
 
+/* Guaranteed plot of s at absolute tolerance tol into *pl (replaced). */
+conica_code fc_plot(const conica_bspline *s, double tol, conica_polyline *pl);
+
 /* The issue's kind of curve set: the thesis curves sptest0..4 (from
  * splines_dir, skipped when it is NULL or they are absent), the four
  * examples/ .spl files (from examples_dir), nrandom random B-splines of degrees
