@@ -113,15 +113,15 @@
 #define G_MAX_GROW 3
 /* A certified chord with D >= G_GOOD * tol is taken without searching on. */
 #define G_GOOD 0.6
-/* The general march of degrees G_CLOSE_MIN_P..G_CLOSE_MAX_P (and of
- * rational curves up to G_CLOSE_MAX_P) aims closer (first trial at
- * G_CLOSE_NEXT tol, search on below G_CLOSE_GOOD tol): on the random
- * B-splines of degrees 4-7 and the rational ones of bench_flatten this
- * brings the points closer to the greedy reference of the true deviation,
- * for more trials per point. Polynomial quadratics and cubics (the Bézier
- * paths of SVG and OpenSCAD, where cairo's speed is the yardstick) and
- * high degrees (sptest2, where uniform de Boor is) keep the faster
- * constants. */
+/* The general march of degrees G_CLOSE_MIN_P..G_CLOSE_MAX_P aims closer
+ * (first trial at G_CLOSE_NEXT tol, search on below G_CLOSE_GOOD tol): on
+ * the random B-splines of degrees 4-7 of bench_flatten this brings the
+ * points closer to the greedy reference of the true deviation, for more
+ * trials per point (sptest1, p = 5: 2.0 -> 3.0 per point, Table 2c).
+ * Quadratics (also the rational ones of circular arcs, whose chords
+ * conica/path.h's fit modes offset) and cubics (the Bézier paths of SVG
+ * and OpenSCAD, where cairo's speed is the yardstick) and high degrees
+ * (sptest2, where uniform de Boor is) keep the faster constants. */
 #define G_CLOSE_MIN_P 4
 #define G_CLOSE_MAX_P 8
 #define G_CLOSE_NEXT 0.92
@@ -130,11 +130,6 @@
  * its step model (G_EXTRAP) is good enough that aiming higher than
  * G_NEXT saves points without more failed trials (bench_flatten). */
 #define C3_NEXT 0.9
-/* Branch and bound of a scalar Bernstein form (scalar_bb): stop when the
- * upper bound is within this fraction of the lower one, after at most
- * G_BB_SPLITS splits. */
-#define G_BB_REL 0.01
-#define G_BB_SPLITS 12
 /* Trials per emitted point and relative bracket width that end the search. */
 #define G_MAX_TRIES 8
 #define G_BRACKET 0.03
@@ -494,82 +489,6 @@ static double scalar_halves(march *m, const double *a, const double *w, int p)
     return best;
 }
 
-/* Near-exact bound of the scalar rational Bernstein form
- * s(u) = sum B_i a_i / sum B_i w_i (w == NULL: polynomial) over [0, 1],
- * p <= G_REFINE_MAX_P, by branch and bound: a piece's coefficients bound
- * it (s is a convex combination of the a_i / w_i), the piece with the
- * largest bound is split at 1/2 (de Casteljau on a and w), and the values
- * at the pieces' ends are lower bounds. The values are distances times
- * 1 / inv (as signed_dists gives them). Returns the largest piece bound
- * (a valid bound) once it is within G_BB_REL of the lower bound or after
- * G_BB_SPLITS splits, or, as soon as the lower bound exceeds tol_eff, that
- * lower bound (the chord fails, and the value is a true deviation for the
- * step model). */
-static double scalar_bb(march *m, const double *a, const double *w, int p, double inv)
-{
-    enum { NP = G_BB_SPLITS + 1, K = G_REFINE_MAX_P + 1 };
-    double pa[NP][K], pw[NP][K], ub[NP];
-    size_t np = 1, pp = (size_t)p;
-    double lo = 0.0;
-    for (size_t i = 0; i <= pp; i++) {
-        pa[0][i] = a[i];
-        pw[0][i] = w ? w[i] : 1.0;
-    }
-    for (size_t k = 0; k < NP; k++) {
-        /* bound of each new piece (pieces 0 and np-1 are the new ones) */
-        if (k == 0) {
-            double u = 0.0;
-            for (size_t i = 0; i <= pp; i++) {
-                double v = fabs(pa[0][i]) / pw[0][i];
-                u = v > u ? v : u;
-            }
-            ub[0] = u;
-            lo = fabs(pa[0][0]) / pw[0][0];
-            double e = fabs(pa[0][pp]) / pw[0][pp];
-            lo = e > lo ? e : lo;
-        }
-        size_t best = 0;
-        double U = 0.0;
-        for (size_t j = 0; j < np; j++)
-            if (ub[j] > U) {
-                U = ub[j];
-                best = j;
-            }
-        if (lo * inv > m->tol_eff)
-            return lo;
-        if (U <= lo * (1.0 + G_BB_REL) || np == NP)
-            return U;
-        /* split piece `best` at 1/2: left part replaces it, right part is new */
-        double *ra = pa[np], *rw = pw[np], *la = pa[best], *lw = pw[best];
-        memcpy(ra, la, (pp + 1) * sizeof *ra);
-        memcpy(rw, lw, (pp + 1) * sizeof *rw);
-        for (size_t r = 1; r <= pp; r++) {
-            for (size_t i = 0; i <= pp - r; i++) {
-                ra[i] = 0.5 * (ra[i] + ra[i + 1]);
-                rw[i] = 0.5 * (rw[i] + rw[i + 1]);
-            }
-            la[r] = ra[0];
-            lw[r] = rw[0];
-        }
-        m->flops += 3.0 * (double)(p * (p + 1)) + 4.0 * (double)(p + 1);
-        double ul = 0.0, ur = 0.0;
-        for (size_t i = 0; i <= pp; i++) {
-            double vl = fabs(la[i]) / lw[i], vr = fabs(ra[i]) / rw[i];
-            ul = vl > ul ? vl : ul;
-            ur = vr > ur ? vr : ur;
-        }
-        ub[best] = ul;
-        ub[np] = ur;
-        double mid = fabs(ra[0]) / rw[0];
-        lo = mid > lo ? mid : lo;
-        np++;
-    }
-    double U = 0.0;
-    for (size_t j = 0; j < np; j++)
-        U = ub[j] > U ? ub[j] : U;
-    return U;
-}
-
 /* The planar chord from a with direction (cx, cy), |c|^2 = c2: signed
  * distances times |c| of the points i0..i1 of polygon P into s[i] (and
  * their weights into w[i] when rational). Returns 0 when a point projects
@@ -655,12 +574,9 @@ static double bez_cert(march *m, const double *P1, const double *P2, int steer)
                         s1[i] *= w1[i];
                         s2[i] *= P2 ? w2[i] : 0.0;
                     }
-                double e = p <= G_REFINE_MAX_P ? scalar_bb(m, s1, rational ? w1 : NULL, p, inv)
-                                               : scalar_halves(m, s1, rational ? w1 : NULL, p);
+                double e = scalar_halves(m, s1, rational ? w1 : NULL, p);
                 if (P2) {
-                    double e2 = p <= G_REFINE_MAX_P
-                                    ? scalar_bb(m, s2, rational ? w2 : NULL, p, inv)
-                                    : scalar_halves(m, s2, rational ? w2 : NULL, p);
+                    double e2 = scalar_halves(m, s2, rational ? w2 : NULL, p);
                     e = e2 > e ? e2 : e;
                 }
                 D = e * inv < D ? e * inv : D;
@@ -1612,7 +1528,7 @@ static conica_code general_march(const conica_bspline *g, double tol, double tol
     m->mua = p;
     m->tol = tol;
     m->tol_eff = tol_eff;
-    int close = m->p <= G_CLOSE_MAX_P && (m->p >= G_CLOSE_MIN_P || m->h > m->d);
+    int close = m->p <= G_CLOSE_MAX_P && m->p >= G_CLOSE_MIN_P;
     m->good = close ? G_CLOSE_GOOD : G_GOOD;
     m->next = close ? G_CLOSE_NEXT : G_NEXT;
     conica_code rc = CONICA_OK;
