@@ -4,8 +4,9 @@
  *
  * usage: build/bench/bench_flatten [--verbose] [--table greedy|cairo]
  *            [SPLINES_DIR]
- * (SPLINES_DIR defaults to ../shared/data/splines; run from the repository
- * root so that examples/ is found.)
+ * (SPLINES_DIR defaults to $CONICA_SHARED_DATA/splines, else
+ * ../shared/data/splines; run from the repository root so that examples/
+ * is found.)
  *
  * Table G: on the curve set of tests/support/flatten_check.h (thesis
  *   curves, examples, 50 random B-splines of degrees 2-7, rational ones,
@@ -258,8 +259,13 @@ static void table_cairo(void)
 
 int main(int argc, char **argv)
 {
-    const char *dir = "../shared/data/splines", *only = NULL;
+    const char *dir = "../shared/data/splines", *only = NULL, *env = getenv("CONICA_SHARED_DATA");
+    char envdir[2048];
     int verbose = 0;
+    if (env && *env) {
+        snprintf(envdir, sizeof envdir, "%s/splines", env);
+        dir = envdir;
+    }
     for (int i = 1; i < argc; i++) {
         if (strcmp(argv[i], "--verbose") == 0)
             verbose = 1;
