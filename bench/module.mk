@@ -35,6 +35,19 @@ $(BENCH_PLOT): $(BUILD)/obj/bench/bench_plot.o $(CORE_A)
 	$(CC) $(LDFLAGS) -o $@ $< $(CORE_A) $(CORE_LIBS)
 BENCH_BINS += $(BENCH_PLOT)
 
+# ---- bench_flatten (issue 20): guaranteed plotter vs an independent greedy
+# reference, and vs cairo's flattening when Debian's libcairo2-dev is there
+# (the benchmark only; never a dependency of the library or the tools)
+BENCH_FLATTEN := $(BUILD)/bench/bench_flatten
+CAIRO_FOUND := $(shell $(PKG_CONFIG) --exists cairo 2>/dev/null && echo yes)
+$(BUILD)/obj/bench/bench_flatten.o: CPPFLAGS += -Itests/support \
+    $(if $(CAIRO_FOUND),-DCONICA_HAVE_CAIRO $(patsubst -I%,-isystem %,$(shell $(PKG_CONFIG) --cflags cairo)))
+$(BENCH_FLATTEN): $(BUILD)/obj/bench/bench_flatten.o $(BUILD)/lib/libconica_testsupport.a $(CORE_A)
+	@mkdir -p $(@D)
+	$(CC) $(LDFLAGS) -o $@ $< $(BUILD)/lib/libconica_testsupport.a $(CORE_A) $(CORE_LIBS) \
+	    $(FT_LIBS) $(if $(CAIRO_FOUND),$(shell $(PKG_CONFIG) --libs cairo))
+BENCH_BINS += $(BENCH_FLATTEN)
+
 # ---- bench_fidelity (issue 14): conica/path.h on glyph outlines, independent checker
 BENCH_FIDELITY := $(BUILD)/bench/bench_fidelity
 $(BUILD)/obj/bench/bench_fidelity.o: CPPFLAGS += -Itests/support

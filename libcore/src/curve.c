@@ -10,6 +10,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "conica/subdiv.h"
 #include "internal.h"
 #include "numparse.h"
 
@@ -323,9 +324,10 @@ static int next_line(const char *buf, size_t len, size_t *pos, line_view *ln)
     return 1;
 }
 
-/* Parse exactly two numbers from [p, ln->e) into v[0..1]. */
+/* Parse exactly two numbers from [p, ln->e) into v[0..1], or in long
+ * double into vl[0..1] when vl is not NULL (then v is unused). */
 static conica_code parse_pair(const line_view *ln, const char *p, const char *what, double *v,
-                              conica_status *st)
+                              long double *vl, conica_status *st)
 {
     int k;
     for (k = 0; k < 2; k++) {
@@ -333,6 +335,7 @@ static conica_code parse_pair(const line_view *ln, const char *p, const char *wh
         size_t used = 0;
         int r;
         double x = 0.0;
+        long double xl = 0.0L;
         if (p < ln->e && !is_blank(*p))
             goto junk;
         while (p < ln->e && is_blank(*p))
@@ -342,7 +345,14 @@ static conica_code parse_pair(const line_view *ln, const char *p, const char *wh
                                 "'%s' line has %d number%s, expected 2", what, k,
                                 k == 1 ? "" : "s");
         tok = p;
-        r = conica__parse_double(p, (size_t)(ln->e - p), &x, &used);
+        if (vl) {
+            r = conica__parse_long_double(p, (size_t)(ln->e - p), &xl, &used);
+            /* The same numbers as the double reader accepts: normals are
+             * estimated from the points rounded to double. */
+            if (r == CONICA__NUM_OK && fabsl(xl) > (long double)DBL_MAX)
+                r = CONICA__NUM_NONFINITE;
+        } else
+            r = conica__parse_double(p, (size_t)(ln->e - p), &x, &used);
         if (r == CONICA__NUM_NONFINITE)
             return conica__fail(st, CONICA_ERR_NONFINITE, ln->no, (size_t)(tok - ln->b) + ln->offset,
                                 "'%.*s' is not a finite number", (int)(used < 40 ? used : 40), tok);
@@ -351,7 +361,10 @@ static conica_code parse_pair(const line_view *ln, const char *p, const char *wh
         p += used;
         if (p < ln->e && !is_blank(*p))
             goto junk;
-        v[k] = x;
+        if (vl)
+            vl[k] = xl;
+        else
+            v[k] = x;
         continue;
     junk: {
             const char *q = p;
@@ -377,15 +390,20 @@ conica_code conica_curve_parse(const char *buf, size_t len, conica_curve *out, c
     return conica_curve_parse_ex(buf, len, 0, out, st);
 }
 
-conica_code conica_curve_parse_ex(const char *buf, size_t len, size_t max_points,
-                                  conica_curve *out, conica_status *st)
+/* The reader behind conica_curve_parse_ex (out) and conica_curvel_parse_ex
+ * (outl): exactly one of them is not NULL. */
+static conica_code parse_any(const char *buf, size_t len, size_t max_points, conica_curve *out,
+                             conica_curvel *outl, conica_status *st)
 {
     line_view ln;
     size_t pos, nv = 0, nvn = 0, iv = 0, ivn = 0, last_vn_line = 0;
+    size_t elem = outl ? sizeof(long double) : sizeof(double);
     double *xy = NULL, *nxy = NULL;
+    long double *xyl = NULL, *nxyl = NULL;
+    void *pxy, *pnxy = NULL;
     conica_code rc;
 
-    if (!out || (len > 0 && !buf))
+    if ((!out && !outl) || (len > 0 && !buf))
         return conica__fail(st, CONICA_ERR_ARG, 0, 0, "conica_curve_parse: NULL argument");
     if (max_points == 0)
         max_points = CONICA_CURVE_MAX_INPUT_POINTS;
@@ -433,13 +451,20 @@ conica_code conica_curve_parse_ex(const char *buf, size_t len, size_t max_points
                             "give one per point, or none)",
                             nvn, nv);
 
-    xy = malloc(2 * nv * sizeof *xy);
+    pxy = malloc(2 * nv * elem);
     if (nvn)
-        nxy = malloc(2 * nvn * sizeof *nxy);
-    if (!xy || (nvn && !nxy)) {
-        free(xy);
-        free(nxy);
+        pnxy = malloc(2 * nvn * elem);
+    if (!pxy || (nvn && !pnxy)) {
+        free(pxy);
+        free(pnxy);
         return conica__fail(st, CONICA_ERR_NOMEM, 0, 0, "out of memory for %zu points", nv);
+    }
+    if (outl) {
+        xyl = pxy;
+        nxyl = pnxy;
+    } else {
+        xy = pxy;
+        nxy = pnxy;
     }
 
     /* Pass 2: read the numbers. */
@@ -449,16 +474,20 @@ conica_code conica_curve_parse_ex(const char *buf, size_t len, size_t max_points
         const char *rest;
         enum line_kind k = classify(&ln, &rest);
         if (k == LINE_V) {
-            rc = parse_pair(&ln, rest, "v", xy + 2 * iv, st);
+            rc = parse_pair(&ln, rest, "v", xy ? xy + 2 * iv : NULL, xyl ? xyl + 2 * iv : NULL,
+                            st);
             if (rc != CONICA_OK)
                 goto fail;
             iv++;
         } else if (k == LINE_VN) {
-            double *nv2 = nxy + 2 * ivn;
-            rc = parse_pair(&ln, rest, "vn", nv2, st);
+            int zero;
+            rc = parse_pair(&ln, rest, "vn", nxy ? nxy + 2 * ivn : NULL,
+                            nxyl ? nxyl + 2 * ivn : NULL, st);
             if (rc != CONICA_OK)
                 goto fail;
-            if (nv2[0] == 0.0 && nv2[1] == 0.0) {
+            zero = nxyl ? nxyl[2 * ivn] == 0.0L && nxyl[2 * ivn + 1] == 0.0L
+                        : nxy[2 * ivn] == 0.0 && nxy[2 * ivn + 1] == 0.0;
+            if (zero) {
                 rc = conica__fail(st, CONICA_ERR_DEGENERATE, ln.no, ln.offset,
                                   "zero normal 'vn 0 0' has no direction");
                 goto fail;
@@ -466,14 +495,37 @@ conica_code conica_curve_parse_ex(const char *buf, size_t len, size_t max_points
             ivn++;
         }
     }
-    curve_take(out, xy, nxy, nv, 1);
+    if (outl) {
+        conica_curvel_free(outl);
+        outl->xy = xyl;
+        outl->nxy = nxyl;
+        outl->n = outl->cap = nv;
+        outl->closed = 1;
+    } else
+        curve_take(out, xy, nxy, nv, 1);
     conica__ok(st);
     return CONICA_OK;
 
 fail:
-    free(xy);
-    free(nxy);
+    free(pxy);
+    free(pnxy);
     return rc;
+}
+
+conica_code conica_curve_parse_ex(const char *buf, size_t len, size_t max_points,
+                                  conica_curve *out, conica_status *st)
+{
+    if (!out)
+        return conica__fail(st, CONICA_ERR_ARG, 0, 0, "conica_curve_parse: NULL argument");
+    return parse_any(buf, len, max_points, out, NULL, st);
+}
+
+conica_code conica_curvel_parse_ex(const char *buf, size_t len, size_t max_points,
+                                   conica_curvel *out, conica_status *st)
+{
+    if (!out)
+        return conica__fail(st, CONICA_ERR_ARG, 0, 0, "conica_curvel_parse_ex: NULL argument");
+    return parse_any(buf, len, max_points, NULL, out, st);
 }
 
 size_t conica_curve_line_of_point(const char *buf, size_t len, size_t index, int normal)

@@ -19,6 +19,13 @@
  *    rounding of any double, so the cut never changes the result.
  *    (The Conica tools never call setlocale() anyway, so their LC_NUMERIC
  *    is "C"; the canonical token makes library callers that do safe too.)
+ * 4. The long double reader (conica__parse_long_double, for precise mode)
+ *    scans the same grammar into the same token and always calls strtold,
+ *    correctly rounded to the 64-bit significand of x87 long double by
+ *    glibc. The cut must then keep CANON_DIGITS_L digits: the longest
+ *    decimal expansion of a midpoint between two long doubles (the
+ *    smallest binade, (2^65 - 1) 2^-16446) has 11 515 significant digits
+ *    (11 564 for IEEE binary128, 768 for double).
  */
 #include "numparse.h"
 
@@ -31,6 +38,8 @@
 
 /* Significant digits kept for the slow path (> 767, see above). */
 #define CANON_DIGITS 780
+/* The same for long double (> 11 564, see above). */
+#define CANON_DIGITS_L 11600
 /* Exponents beyond this saturate: 10^100000 overflows and 10^-100000
  * underflows any double whatever the digits (at most 2^31 of them). */
 #define EXP_SATURATE 100000L
@@ -64,14 +73,25 @@ static int match_word(const char *s, size_t len, const char *word)
     return 1;
 }
 
-int conica__parse_double(const char *s, size_t len, double *out, size_t *consumed)
+/* A scanned number: significant digits canon[1..nd], value
+ * canon * 10^dexp, sticky when non-zero digits beyond `cap` were dropped. */
+typedef struct scanned {
+    size_t nd, pos;
+    long long dexp;
+    int neg, sticky;
+} scanned;
+
+/* Scan the grammar of conica__parse_double into canon (cap significant
+ * digits at most, canon holding cap + 40 bytes). Returns CONICA__NUM_OK
+ * with *sc filled (nd == 0 for a zero), or the literal's result with
+ * *consumed set for CONICA__NUM_NONFINITE. */
+static int scan_number(const char *s, size_t len, char *canon, size_t cap, scanned *sc,
+                       size_t *consumed)
 {
-    char canon[CANON_DIGITS + 40];
     size_t i = 0, nd = 0, int_digits = 0, frac_digits = 0;
     long long dexp = 0; /* value = digits-in-canon * 10^(dexp + exp10) */
     long exp10 = 0;
     int neg = 0, sticky = 0, seen_nonzero = 0;
-    size_t pos;
 
     if (i < len && (s[i] == '+' || s[i] == '-'))
         neg = s[i++] == '-';
@@ -95,7 +115,7 @@ int conica__parse_double(const char *s, size_t len, double *out, size_t *consume
         if (!seen_nonzero && d == 0)
             continue;
         seen_nonzero = 1;
-        if (nd < CANON_DIGITS)
+        if (nd < cap)
             canon[1 + nd++] = s[i];
         else {
             dexp++; /* integer digit beyond the kept ones: scales by 10 */
@@ -111,7 +131,7 @@ int conica__parse_double(const char *s, size_t len, double *out, size_t *consume
                 continue;
             }
             seen_nonzero = 1;
-            if (nd < CANON_DIGITS) {
+            if (nd < cap) {
                 canon[1 + nd++] = s[i];
                 dexp--;
             } else
@@ -136,20 +156,62 @@ int conica__parse_double(const char *s, size_t len, double *out, size_t *consume
             i = j;
         }
     }
-    pos = i;
-
-    if (nd == 0) { /* all digits zero */
-        *out = neg ? -0.0 : 0.0;
-        *consumed = pos;
+    sc->pos = i;
+    sc->neg = neg;
+    sc->nd = nd;
+    sc->sticky = sticky;
+    sc->dexp = 0;
+    if (nd == 0) /* all digits zero */
         return CONICA__NUM_OK;
-    }
     /* Trailing zeros of the kept digits only scale the value. */
     if (!sticky)
         while (nd > 1 && canon[nd] == '0') {
             nd--;
             dexp++;
         }
-    dexp += exp10;
+    sc->nd = nd;
+    sc->dexp = dexp + exp10;
+    return CONICA__NUM_OK;
+}
+
+/* Finish the canonical token "[+-]DDDD[1]e[-]N" of *sc in canon (which
+ * has 40 bytes to spare after the digits). */
+static void canon_token(char *canon, size_t size, const scanned *sc)
+{
+    size_t k = 1 + sc->nd;
+    long long dexp = sc->dexp;
+    canon[0] = sc->neg ? '-' : '+';
+    if (sc->sticky) { /* any non-zero beyond the kept digits */
+        canon[k++] = '1';
+        dexp--;
+    }
+    if (dexp > EXP_SATURATE)
+        dexp = EXP_SATURATE;
+    if (dexp < -EXP_SATURATE)
+        dexp = -EXP_SATURATE;
+    snprintf(canon + k, size - k, "e%lld", dexp);
+}
+
+int conica__parse_double(const char *s, size_t len, double *out, size_t *consumed)
+{
+    char canon[CANON_DIGITS + 40];
+    scanned sc;
+    size_t nd, pos;
+    long long dexp;
+    int neg, sticky;
+    int r = scan_number(s, len, canon, CANON_DIGITS, &sc, consumed);
+    if (r != CONICA__NUM_OK)
+        return r;
+    nd = sc.nd;
+    pos = sc.pos;
+    dexp = sc.dexp;
+    neg = sc.neg;
+    sticky = sc.sticky;
+    if (nd == 0) {
+        *out = neg ? -0.0 : 0.0;
+        *consumed = pos;
+        return CONICA__NUM_OK;
+    }
 
 #if defined(FLT_EVAL_METHOD) && FLT_EVAL_METHOD == 0
     if (!sticky && nd <= 19 && dexp >= -FAST_MAX_POW10 && dexp <= FAST_MAX_POW10 + 15) {
@@ -184,17 +246,7 @@ int conica__parse_double(const char *s, size_t len, double *out, size_t *consume
     {
         char *end;
         double v;
-        size_t k = 1 + nd;
-        canon[0] = neg ? '-' : '+';
-        if (sticky) { /* any non-zero beyond the kept digits */
-            canon[k++] = '1';
-            dexp--;
-        }
-        if (dexp > EXP_SATURATE)
-            dexp = EXP_SATURATE;
-        if (dexp < -EXP_SATURATE)
-            dexp = -EXP_SATURATE;
-        snprintf(canon + k, sizeof canon - k, "e%lld", dexp);
+        canon_token(canon, sizeof canon, &sc);
         v = strtod(canon, &end);
         if (!isfinite(v)) {
             *consumed = pos;
@@ -204,4 +256,27 @@ int conica__parse_double(const char *s, size_t len, double *out, size_t *consume
         *consumed = pos;
         return CONICA__NUM_OK;
     }
+}
+
+int conica__parse_long_double(const char *s, size_t len, long double *out, size_t *consumed)
+{
+    char canon[CANON_DIGITS_L + 40];
+    scanned sc;
+    char *end;
+    long double v;
+    int r = scan_number(s, len, canon, CANON_DIGITS_L, &sc, consumed);
+    if (r != CONICA__NUM_OK)
+        return r;
+    if (sc.nd == 0) {
+        *out = sc.neg ? -0.0L : 0.0L;
+        *consumed = sc.pos;
+        return CONICA__NUM_OK;
+    }
+    canon_token(canon, sizeof canon, &sc);
+    v = strtold(canon, &end);
+    *consumed = sc.pos;
+    if (!isfinite(v))
+        return CONICA__NUM_NONFINITE;
+    *out = v;
+    return CONICA__NUM_OK;
 }

@@ -31,4 +31,9 @@ enum {
  */
 int conica__parse_double(const char *s, size_t len, double *out, size_t *consumed);
 
+/* The same grammar and results for long double (precise mode): *out is
+ * the correctly rounded long double (the 64-bit significand of x87 long
+ * double on x86-64), CONICA__NUM_NONFINITE beyond LDBL_MAX. */
+int conica__parse_long_double(const char *s, size_t len, long double *out, size_t *consumed);
+
 #endif

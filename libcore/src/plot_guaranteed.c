@@ -113,6 +113,23 @@
 #define G_MAX_GROW 3
 /* A certified chord with D >= G_GOOD * tol is taken without searching on. */
 #define G_GOOD 0.6
+/* The general march of degrees G_CLOSE_MIN_P..G_CLOSE_MAX_P aims closer
+ * (first trial at G_CLOSE_NEXT tol, search on below G_CLOSE_GOOD tol): on
+ * the random B-splines of degrees 4-7 of bench_flatten this brings the
+ * points closer to the greedy reference of the true deviation, for more
+ * trials per point (sptest1, p = 5: 2.0 -> 3.0 per point, Table 2c).
+ * Quadratics (also the rational ones of circular arcs, whose chords
+ * conica/path.h's fit modes offset) and cubics (the Bézier paths of SVG
+ * and OpenSCAD, where cairo's speed is the yardstick) and high degrees
+ * (sptest2, where uniform de Boor is) keep the faster constants. */
+#define G_CLOSE_MIN_P 4
+#define G_CLOSE_MAX_P 8
+#define G_CLOSE_NEXT 0.92
+#define G_CLOSE_GOOD 0.85
+/* c3_march's first trial from a new point aims at this fraction of tol:
+ * its step model (G_EXTRAP) is good enough that aiming higher than
+ * G_NEXT saves points without more failed trials (bench_flatten). */
+#define C3_NEXT 0.9
 /* Trials per emitted point and relative bracket width that end the search. */
 #define G_MAX_TRIES 8
 #define G_BRACKET 0.03
@@ -140,7 +157,7 @@
 /* Try a chord across the knot when the chord reaching the knot was
  * certified with D below this fraction of tol, with at most this many
  * trials. */
-#define G_CROSS 0.5
+#define G_CROSS 0.8
 #define G_CROSS_TRIES 4
 /* When the chord over the whole rest of a piece fails with D at most
  * this multiple of G_TARGET tol, the rest takes two chords (D ~ h^2: each
@@ -177,6 +194,8 @@ typedef struct march {
     double buf[6][BZ];
     double *B, *R, *Lt, *Rt, *Lb, *Rb;
     double tol, tol_eff;
+    /* G_GOOD and G_NEXT, or their G_CLOSE_ values */
+    double good, next;
     /* chain for chords across knots: Bézier forms of the intervals
      * cmu[1..] after the current one, at C + k (p+1) h (allocated when a
      * chord first crosses a knot) */
@@ -657,7 +676,7 @@ static conica_code bez_search(march *m, double *hs, double span_all, double min_
                 swap_ptr(&m->Lt, &m->Lb);
                 swap_ptr(&m->Rt, &m->Rb);
             }
-            if (x >= bb || dev >= G_GOOD * tol || *halved)
+            if (x >= bb || dev >= m->good * tol || *halved)
                 break;
         } else {
             have_fail = 1;
@@ -842,7 +861,7 @@ static conica_code cross_search(march *m, double dev0, double b_end, double span
             } else {
                 memcpy(m->Lb, Cj, bz * sizeof *m->Lb);
             }
-            if (x >= b_end || dev >= G_GOOD * tol)
+            if (x >= b_end || dev >= m->good * tol)
                 break;
         } else {
             have_fail = 1;
@@ -909,15 +928,15 @@ static conica_code push_param(double **params, size_t *np, size_t *cap, double u
  * with a curvature estimate Ks at the new start (use_k), the extrapolated
  * model above, kept within [step / 2, 2 step]; without one, D ~ h^2 from
  * the chord alone. Shared by both marches. */
-static double next_step(int use_k, double Ks, double dev, double step, double tol)
+static double next_step(int use_k, double Ks, double dev, double step, double tol, double next)
 {
     if (use_k) {
         double Ka = G_EXTRAP * Ks + (1.0 - G_EXTRAP) * dev / (step * step);
         Ka = Ka < 0.5 * Ks ? 0.5 * Ks : Ka;
-        double h2 = Ka > 0 ? sqrt(G_NEXT * tol / Ka) : 2.0 * step;
+        double h2 = Ka > 0 ? sqrt(next * tol / Ka) : 2.0 * step;
         return h2 < 0.5 * step ? 0.5 * step : (h2 > 2.0 * step ? 2.0 * step : h2);
     }
-    double f = dev > 0 ? sqrt(G_NEXT * tol / dev) : 2.0;
+    double f = dev > 0 ? sqrt(next * tol / dev) : 2.0;
     f = f < 0.7 ? 0.7 : (f > 2.0 ? 2.0 : f);
     return step * f;
 }
@@ -1426,7 +1445,7 @@ static conica_code c3_march(const conica_bspline *g, double tol, double tol_eff,
             Ks = al > 0 ? 0.75 * cr / al * m->inv * m->inv : 0.0;
             m->flops += 30.0;
         }
-        hs = next_step(use_k, Ks, dev, step, tol);
+        hs = next_step(use_k, Ks, dev, step, tol, C3_NEXT);
     }
     stats->flops += m->flops;
     return rc;
@@ -1509,14 +1528,17 @@ static conica_code general_march(const conica_bspline *g, double tol, double tol
     m->mua = p;
     m->tol = tol;
     m->tol_eff = tol_eff;
+    int close = m->p <= G_CLOSE_MAX_P && m->p >= G_CLOSE_MIN_P;
+    m->good = close ? G_CLOSE_GOOD : G_GOOD;
+    m->next = close ? G_CLOSE_NEXT : G_NEXT;
     conica_code rc = CONICA_OK;
     double hs = b - a; /* first guess: the whole piece */
     double min_step = (b - a) * 1e-13;
     size_t splits = 0;
     enter_interval(m, next_span(m, p), 0);
     double K0 = start_k(m); /* the first trial follows the curvature at a */
-    if (K0 > 0 && sqrt(G_NEXT * tol / K0) < hs)
-        hs = sqrt(G_NEXT * tol / K0);
+    if (K0 > 0 && sqrt(m->next * tol / K0) < hs)
+        hs = sqrt(m->next * tol / K0);
     for (;;) {
         double x = b, dev = 0.0;
         int halved = 0;
@@ -1582,7 +1604,7 @@ static conica_code general_march(const conica_bspline *g, double tol, double tol
         /* predict, see G_EXTRAP and start_k (a polynomial parabola has one
          * K per interval: the chord-only rule is exact there) */
         int use_k = m->ua == x && dev > 0 && (m->p > 2 || m->h > m->d);
-        hs = next_step(use_k, use_k ? start_k(m) : 0.0, dev, step, tol);
+        hs = next_step(use_k, use_k ? start_k(m) : 0.0, dev, step, tol, m->next);
     }
 done:
     stats->flops += m->flops;

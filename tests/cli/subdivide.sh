@@ -249,4 +249,84 @@ check "ellipse -k 4" "$conica" subdivide -k 4 examples/ellipse.txt
 check_true "ellipse reproduced within 1e-13" awk '/^v / { e = $2*$2/9 + $3*$3/4 - 1; if (e < 0) e = -e;
     if (e > m) m = e } END { exit !(m < 1e-13) }' "$out"
 
+begin_case "--precise reads 25-digit samples in long double: Table 1 through the CLI"
+# The CONIS paper's Table 1 (Bügel, Romani, Kosinka), E and E_max of its
+# eqs. (13)-(14), with the reference's samples (REFERENCE.md section 1)
+# written with 25 significant digits. python3's decimal module makes the
+# samples and measures the 21-digit output, far beyond long double.
+if ! command -v python3 >/dev/null 2>&1; then
+    skip_case "python3 is not installed (needed to measure in 60-digit decimal)"
+else
+    cat >"$tmp/table1.py" <<'PY'
+import sys
+from decimal import Decimal as D, getcontext
+getcontext().prec = 60
+Q = {'circle': (1, 1, 0, -25), 'ellipse': (4, 9, 0, -36),
+     'hyperbola': (-4, 1, 0, -4), 'parabola': (1, 0, D('-0.5'), 0)}
+# f = A x^2 + B y^2 + 2 E y + F; Table 1 at k = 4, 8, 12: E then E_max
+T1 = {'circle': ('1.97e-18 4.70e-17 1.57e-14', '8.67e-18 1.35e-15 1.04e-13'),
+      'ellipse': ('1.37e-18 6.54e-17 3.46e-15', '6.17e-18 1.10e-15 1.53e-13'),
+      'hyperbola': ('1.14e-17 4.67e-15 4.55e-13', '5.97e-16 3.54e-13 2.31e-12'),
+      'parabola': ('3.54e-16 4.05e-15 3.83e-13', '3.53e-15 1.13e-12 8.09e-12')}
+def grad(q, x, y):
+    return 2 * q[0] * x, 2 * (q[1] * y + q[2])
+def err(q, x, y):
+    gx, gy = grad(q, x, y)
+    return abs(q[0] * x * x + q[1] * y * y + 2 * q[2] * y + q[3]) / (gx * gx + gy * gy).sqrt()
+if sys.argv[1] == 'make':
+    name = sys.argv[2]; q = Q[name]
+    h = D(3).sqrt() / 2
+    cs = [D(1), D('0.5'), D('-0.5'), D(-1), D('-0.5'), D('0.5')]
+    sn = [D(0), h, h, D(0), -h, -h]
+    pts = []
+    for i in range(6):
+        if name == 'circle': x, y = 5 * cs[i], 5 * sn[i]
+        elif name == 'ellipse': x, y = 3 * cs[i], 2 * sn[i]
+        elif name == 'hyperbola': x = D(-4) + D(8 * i) / 5; y = 2 * (1 + x * x).sqrt()
+        else: x = D(-4) + D(8 * i) / 6; y = x * x
+        pts.append((x, y))
+    for x, y in pts:
+        print('v', format(x, '.24e'), format(y, '.24e'))
+    for x, y in pts:
+        gx, gy = grad(q, x, y); g = (gx * gx + gy * gy).sqrt()
+        print('vn', format(gx / g, '.24e'), format(gy / g, '.24e'))
+else:
+    name, li, path = sys.argv[2], int(sys.argv[3]), sys.argv[4]
+    e = [err(Q[name], D(w[1]), D(w[2])) for w in (l.split() for l in open(path)) if w[0] == 'v']
+    E, Em = sum(e) / len(e), max(e)
+    pe, pm = D(T1[name][0].split()[li]), D(T1[name][1].split()[li])
+    print('%s k=%d: E %.3g (Table 1: %.3g), E_max %.3g (%.3g)' % (name, 4 * li + 4, E, pe, Em, pm))
+    sys.exit(0 if E <= pe and Em <= pm else 1)
+PY
+    for c in circle ellipse hyperbola parabola; do
+        python3 "$tmp/table1.py" make $c >"$tmp/t1_$c.txt"
+        mode=--closed
+        case $c in hyperbola | parabola) mode=--open ;; esac
+        for li in 0 1 2; do
+            k=$((4 * li + 4))
+            check "$c --precise -k $k" "$conica" subdivide --precise $mode -k $k "$tmp/t1_$c.txt"
+            check_true "$c k=$k: E and E_max at or below Table 1 ($(python3 "$tmp/table1.py" \
+                measure $c $li "$out"))" python3 "$tmp/table1.py" measure $c $li "$out"
+        done
+    done
+fi
+
+begin_case "--precise output round-trips: long double in, the same 21 digits out"
+# -k 0 prints the input as it was read; reading that again must give the
+# same long double, so the second pass prints the same text. The first
+# pass keeps more than double's 17 digits of the 25-digit samples.
+if [ ! -f "$tmp/t1_circle.txt" ]; then
+    skip_case "needs the samples of the previous case (python3)"
+else
+    check "-k 0 of 25-digit samples" "$conica" subdivide --precise -k 0 "$tmp/t1_circle.txt"
+    cp "$out" "$tmp/rt1.txt"
+    check "-k 0 of its output" "$conica" subdivide --precise -k 0 "$tmp/rt1.txt"
+    check_true "identical text" cmp -s "$out" "$tmp/rt1.txt"
+    # 4.330127018922193233818615 in: the nearest long double, 21 digits out
+    check_grep '^v 2\.5 4\.330127018922193233[0-9][0-9]$' "$tmp/rt1.txt" \
+        "a sample keeps long double's 19-20 digits"
+    check "default mode reads double" "$conica" subdivide -k 0 "$tmp/t1_circle.txt"
+    check_grep '^v 2\.5 4\.3301270189221936$' "$out" "double mode keeps 17 digits"
+fi
+
 finish

@@ -102,6 +102,29 @@ CONICA_API conica_code conica_curve_parse(const char *buf, size_t len, conica_cu
 CONICA_API conica_code conica_curve_parse_ex(const char *buf, size_t len, size_t max_points,
                                              conica_curve *out, conica_status *st);
 
+struct conica_curvel; /* conica/subdiv.h */
+
+/**
+ * @brief conica_curve_parse_ex() reading every number in long double, for
+ *        precise mode (`conica subdivide --precise`).
+ *
+ * Same format, errors and cap; the numbers are correctly rounded to long
+ * double (the 64-bit significand of x87 long double on x86-64), so that
+ * samples given with 21 to 25 digits are not rounded to double first.
+ * Values beyond the range of double are refused as non-finite, as
+ * conica_curve_parse() refuses them.
+ * @param[in] buf,len    text, as conica_curve_parse()
+ * @param[in] max_points as conica_curve_parse_ex()
+ * @param[out] out       receives the curve (a conica_curvel of
+ *                       conica/subdiv.h; closed flag set to 1; its previous
+ *                       content is freed on success; free with
+ *                       conica_curvel_free())
+ * @param[out] st        line of the error in st->line
+ * @return as conica_curve_parse()
+ */
+CONICA_API conica_code conica_curvel_parse_ex(const char *buf, size_t len, size_t max_points,
+                                              struct conica_curvel *out, conica_status *st);
+
 /**
  * @brief Line of the index-th `v` line (normal == 0) or `vn` line
  *        (normal != 0) of a text that conica_curve_parse() accepted, so
