@@ -41,8 +41,16 @@
 #define M_PI 3.14159265358979323846
 #endif
 
-#ifndef CONICA_SOABI
-#error "build with -DCONICA_SOABI=\"...\" (python3-config --extension-suffix)"
+/* Built against CPython's stable ABI (PEP 384) at the version below, so one
+ * _conica.abi3.so loads in every CPython from it on: Blender 3.4 (Debian),
+ * 4.1-5.x. 3.11 is the lowest version that will do: the buffer protocol
+ * (PyObject_GetBuffer, Py_buffer), which reads foreach_get's arrays without
+ * a copy per item, entered the limited API in 3.11. The Makefile defines
+ * Py_LIMITED_API to this value; tests/cli/blender.sh checks that the .so
+ * imports nothing outside the stable ABI list of that version. */
+#define CX_LIMITED_API 0x030B0000
+#if !defined(Py_LIMITED_API) || Py_LIMITED_API != CX_LIMITED_API
+#error "build with -DPy_LIMITED_API=0x030B0000 (see blender_addon/module.mk)"
 #endif
 
 /* Largest flat input the module copies (values, not points): a Blender
@@ -162,6 +170,21 @@ static int cx_float_format(const char *fmt, Py_ssize_t itemsize)
     return 0;
 }
 
+/* TypeError "what[i]: expected <expected>, got <type name>" (no [i] when
+ * i < 0). The limited API has no tp_name: the name comes from
+ * PyType_GetName (3.11). */
+static void cx_type_error(const char *what, Py_ssize_t i, const char *expected, PyObject *obj)
+{
+    PyObject *name = PyType_GetName(Py_TYPE(obj));
+    if (name == NULL)
+        return;
+    if (i >= 0)
+        PyErr_Format(PyExc_TypeError, "%s[%zd]: expected %s, got %U", what, i, expected, name);
+    else
+        PyErr_Format(PyExc_TypeError, "%s: expected %s, got %U", what, expected, name);
+    Py_DECREF(name);
+}
+
 /*
  * Copy a flat float sequence or buffer into a new double array (free with
  * PyMem_Free). Buffers (array('f'/'d'), memoryviews of them, Blender's
@@ -221,9 +244,9 @@ static int cx_read_doubles(PyObject *obj, const char *what, double **out, size_t
         return 0;
     }
     /* a list over the cap is refused before the snapshot copies it */
-    if (PyList_Check(obj) && (size_t)PyList_GET_SIZE(obj) > CX_MAX_INPUT_VALUES) {
+    if (PyList_Check(obj) && (size_t)PyList_Size(obj) > CX_MAX_INPUT_VALUES) {
         PyErr_Format(PyExc_ValueError, "%s: %zd values exceed the limit of %zu", what,
-                     PyList_GET_SIZE(obj), CX_MAX_INPUT_VALUES);
+                     PyList_Size(obj), CX_MAX_INPUT_VALUES);
         return 0;
     }
     PyObject *seq = PySequence_Tuple(obj); /* a tuple is returned as itself */
@@ -231,11 +254,10 @@ static int cx_read_doubles(PyObject *obj, const char *what, double **out, size_t
         if (PyErr_Occurred() && !PyErr_ExceptionMatches(PyExc_TypeError))
             return 0; /* MemoryError, or an error raised by the sequence itself */
         PyErr_Clear();
-        PyErr_Format(PyExc_TypeError, "%s: expected a flat sequence of numbers, got %s", what,
-                     Py_TYPE(obj)->tp_name);
+        cx_type_error(what, -1, "a flat sequence of numbers", obj);
         return 0;
     }
-    Py_ssize_t len = PyTuple_GET_SIZE(seq);
+    Py_ssize_t len = PyTuple_Size(seq);
     if ((size_t)len > CX_MAX_INPUT_VALUES) {
         Py_DECREF(seq);
         PyErr_Format(PyExc_ValueError, "%s: %zd values exceed the limit of %zu", what, len,
@@ -249,12 +271,11 @@ static int cx_read_doubles(PyObject *obj, const char *what, double **out, size_t
         return 0;
     }
     for (Py_ssize_t i = 0; i < len; i++) {
-        PyObject *item = PyTuple_GET_ITEM(seq, i); /* the tuple keeps it alive */
+        PyObject *item = PyTuple_GetItem(seq, i); /* borrowed: the tuple keeps it alive */
         double v = PyFloat_AsDouble(item);
         if (v == -1.0 && PyErr_Occurred()) {
             PyErr_Clear();
-            PyErr_Format(PyExc_TypeError, "%s[%zd]: expected a number, got %s", what, i,
-                         Py_TYPE(item)->tp_name);
+            cx_type_error(what, i, "a number", item);
             PyMem_Free(d);
             Py_DECREF(seq);
             return 0;
@@ -311,7 +332,11 @@ static PyObject *cx_make_array(cx_state *s, char typecode, const double *v, size
     PyObject *bytes = PyBytes_FromStringAndSize(NULL, (Py_ssize_t)(count * esize));
     if (bytes == NULL)
         return NULL;
-    char *raw = PyBytes_AS_STRING(bytes);
+    char *raw = PyBytes_AsString(bytes);
+    if (raw == NULL) {
+        Py_DECREF(bytes);
+        return NULL;
+    }
     if (stride == dim && typecode == 'd') {
         memcpy(raw, v, count * sizeof(double));
     } else if (stride == dim) {
@@ -355,7 +380,7 @@ static int cx_typecode(cx_state *s, PyObject *obj, char *out)
         *out = 'd';
         return 1;
     }
-    const char *t = PyUnicode_Check(obj) ? PyUnicode_AsUTF8(obj) : NULL;
+    const char *t = PyUnicode_Check(obj) ? PyUnicode_AsUTF8AndSize(obj, NULL) : NULL;
     if (t == NULL || (strcmp(t, "d") != 0 && strcmp(t, "f") != 0)) {
         PyErr_Clear();
         PyErr_SetString(s->arg_error, "typecode must be 'd' or 'f'");
@@ -1117,9 +1142,13 @@ static PyObject *cx_subdivide(PyObject *self, PyObject *args, PyObject *kw)
         al = cx_make_array(S, typecode, dim == 3 ? hl3 : hl, N, dim, dim, 0.0);
         ar = cx_make_array(S, typecode, dim == 3 ? hr3 : hr, N, dim, dim, 0.0);
     }
-    if (ap && an && aa && infl && info && (!handles || (al && ar))) {
-        for (size_t k = 0; k < job.ninflections; k++)
-            PyTuple_SET_ITEM(infl, (Py_ssize_t)k, PyLong_FromSize_t(job.inflections[k]));
+    int ok = ap && an && aa && infl && info && (!handles || (al && ar));
+    for (size_t k = 0; ok && k < job.ninflections; k++) {
+        PyObject *ik = PyLong_FromSize_t(job.inflections[k]);
+        /* PyTuple_SetItem steals ik, also when it fails */
+        ok = ik != NULL && PyTuple_SetItem(infl, (Py_ssize_t)k, ik) == 0;
+    }
+    if (ok) {
         if (handles)
             result = PyTuple_Pack(7, ap, an, aa, infl, info, al, ar);
         else
@@ -2397,9 +2426,12 @@ PyMODINIT_FUNC PyInit__conica(void)
         !(s->unsupported = cx_add_exc(m, "UnsupportedError", s->error,
                                       PyExc_NotImplementedError, "Valid but unsupported input.")))
         goto fail;
-    if (PyModule_AddStringConstant(m, "SOABI", CONICA_SOABI) < 0 ||
-        PyModule_AddObject(m, "PY_VERSION",
-                           Py_BuildValue("(ii)", PY_MAJOR_VERSION, PY_MINOR_VERSION)) < 0 ||
+    /* ABI and PY_MIN_VERSION: what the add-on's import check compares with
+     * the running Python */
+    if (PyModule_AddStringConstant(m, "ABI", "abi3") < 0 ||
+        PyModule_AddObject(m, "PY_MIN_VERSION",
+                           Py_BuildValue("(ii)", CX_LIMITED_API >> 24,
+                                         (CX_LIMITED_API >> 16) & 0xff)) < 0 ||
         PyModule_AddIntConstant(m, "MAX_LEVELS", CONICA_SUBDIV_MAX_LEVELS) < 0 ||
         PyModule_AddIntConstant(m, "MAX_POINTS", (long)CX_HARD_MAX_POINTS) < 0 ||
         PyModule_AddIntConstant(m, "MAX_PATH_LEVELS", CX_PATH_MAX_LEVELS) < 0 ||

@@ -413,11 +413,10 @@ def install_from_zip():
     report("bl_info_blender_3_4", tuple(pkg.bl_info["blender"]) <= (3, 4, 0),
            str(pkg.bl_info["blender"]))
     report("import_check_ok", pkg.IMPORT_ERROR is None, str(pkg.IMPORT_ERROR))
-    import sysconfig
     ext = pkg._conica
-    report("abi_tag", ("." + ext.SOABI + ".so") == sysconfig.get_config_var("EXT_SUFFIX")
-           and tuple(ext.PY_VERSION) == tuple(sys.version_info[:2]),
-           "%s vs %s" % (ext.SOABI, sysconfig.get_config_var("EXT_SUFFIX")))
+    report("abi_tag", ext.ABI == "abi3" and tuple(ext.PY_MIN_VERSION) == (3, 11) and
+           os.path.basename(ext.__file__) == "_conica.abi3.so",
+           "%r %r %s" % (ext.ABI, ext.PY_MIN_VERSION, ext.__file__))
     here = os.path.dirname(pkg.__file__)
     mpath = os.path.join(here, "blender_manifest.toml")
     report("manifest_in_package", os.path.isfile(mpath))
@@ -427,7 +426,7 @@ def install_from_zip():
     need = ("schema_version", "id", "version", "name", "tagline", "maintainer", "type",
             "blender_version_min", "license")
     report("manifest_fields", all(k in man for k in need) and man["type"] == "add-on" and
-           man["platforms"] == ["linux-x64"] and len(man["tagline"]) <= 64 and
+           man["platforms"] == [pkg.running_platform()] and len(man["tagline"]) <= 64 and
            man["tagline"][-1].isalnum() and
            tuple(int(x) for x in man["blender_version_min"].split(".")) >= (4, 2, 0) and
            tuple(int(x) for x in man["version"].split(".")) == tuple(pkg.bl_info["version"]),
@@ -462,29 +461,49 @@ def menus_and_search():
            "%r %r" % (tp.default, tp.subtype))
 
 
-@case
-def import_check_mismatch():
-    """A package whose binary was built for another Python says so."""
-    pkg = conica_pkg()
-    here = os.path.dirname(pkg.__file__)
-    dst = os.path.join(TMP, "fakepath", "conica_mismatch")
+def _package_copy(name, edit):
+    """A copy of the installed package as `name`, changed by edit(dir),
+    imported; returns its IMPORT_ERROR after checking that register()
+    and unregister() do not raise (only a preferences panel is made)."""
+    here = os.path.dirname(conica_pkg().__file__)
+    dst = os.path.join(TMP, "fakepath", name)
     shutil.copytree(here, dst, ignore=shutil.ignore_patterns("__pycache__"))
-    for f in os.listdir(dst):
-        if f.startswith("_conica") and f.endswith(".so"):
-            os.rename(os.path.join(dst, f),
-                      os.path.join(dst, "_conica.cpython-39-aarch64-linux-gnu.so"))
+    edit(dst)
     sys.path.insert(0, os.path.dirname(dst))
     try:
-        m = importlib.import_module("conica_mismatch")
-        msg = m.IMPORT_ERROR or ""
-        report("import_check_mismatch_message",
-               "built for" in msg and "cpython-39" in msg and "3.11" in msg.replace(
-                   "Python %d.%d" % sys.version_info[:2], "3.11"), msg)
-        m.register()  # must not raise: only a preferences panel with the message
+        m = importlib.import_module(name)
+        m.register()
         m.unregister()
-        report("import_check_mismatch_register", True)
+        return m.IMPORT_ERROR or ""
     finally:
         sys.path.pop(0)
+
+
+@case
+def import_check_mismatch():
+    """A package whose binary is not the stable-ABI module says so in one
+    sentence, naming what it has and what to rebuild."""
+    def other_binary(dst):
+        for f in os.listdir(dst):
+            if f.startswith("_conica"):
+                os.rename(os.path.join(dst, f),
+                          os.path.join(dst, "_conica.cpython-39-aarch64-linux-gnu.so"))
+    msg = _package_copy("conica_mismatch", other_binary)
+    report("import_check_mismatch_message",
+           "cpython-39" in msg and "_conica.abi3.so" in msg and "rebuild" in msg and
+           msg.count(". ") == 0, msg)
+
+    def other_platform(dst):
+        mpath = os.path.join(dst, "blender_manifest.toml")
+        with open(mpath) as f:
+            text = f.read()
+        with open(mpath, "w") as f:
+            f.write(text.replace('platforms = ["linux-x64"]', 'platforms = ["windows-x64"]'))
+    msg = _package_copy("conica_otherplatform", other_platform)
+    report("import_check_platform_message",
+           "built for windows-x64" in msg and "linux-x64" in msg and "rebuild" in msg, msg)
+    report("import_check_platform_name", conica_pkg().running_platform() == "linux-x64",
+           conica_pkg().running_platform())
 
 
 @case
