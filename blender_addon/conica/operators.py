@@ -38,6 +38,27 @@ FLOAT32_SLACK = 2.0 ** -22
 # Output budget per spline (points), far above interactive use.
 MAX_POINTS = 1 << 22
 
+# Largest coordinate magnitude the operators accept. Blender stores
+# coordinates as float32, whose finite range ends at 3.4e38, and a
+# coordinate set to inf from Python is stored as that finite 3.4e38; a
+# spline that far out has no geometry worth subdividing (the squared
+# distances the fit needs overflow float32's range long before), so
+# anything beyond 1e30 is refused like NaN, naming the point.
+MAX_COORD = 1e30
+
+# Curve to Polyline writes float32 points: each is rounded by up to half
+# the float32 spacing in each coordinate, sqrt(3)/2 spacing in all, on top
+# of the plotter's distance. The smallest tolerance the stored polyline can
+# honour is therefore FLOAT32_TOL_SPACINGS spacings of float32 at the
+# spline's largest coordinate (the curve lies in the hull of its control
+# points, so no point of it is larger); a request below that is clamped to
+# it with a warning, and the plotter runs with the rounding subtracted.
+FLOAT32_TOL_SPACINGS = 2.0
+FLOAT32_ROUNDING = math.sqrt(3.0) / 2.0
+
+# Messages number splines and points from 0, as Blender's Python tooltips
+# and console do (splines[0].points[3] is "spline 0, point 3").
+
 # Timings of the last run (seconds), read by the benchmark.
 last_timing = {}
 
@@ -97,6 +118,45 @@ class SplineData:
         pts.foreach_get("tilt", self.tilt)
         self.selected = any(sel)
 
+    def max_abs(self):
+        """Largest |coordinate| of the points and handles, after check()."""
+        return max((max(max(a), -min(a)) for a in (self.co, self.hl, self.hr) if a),
+                   default=0.0)
+
+    def check(self):
+        """Refuse NaN, infinite and huge (> MAX_COORD) coordinates, non-positive
+        weights and non-finite radius or tilt, naming the point. Whole-array
+        passes (sum, min, max run in C); the point is looked for only when one
+        of them shows a problem. Raises _conica.NonFiniteError."""
+        for arr, what in ((self.co, ""), (self.hl, "left handle "), (self.hr, "right handle ")):
+            if not arr:
+                continue
+            total = sum(arr)
+            if math.isfinite(total) and max(arr) <= MAX_COORD and -min(arr) <= MAX_COORD:
+                continue
+            for i, v in enumerate(arr):
+                axis = "xyz"[i % 3]
+                if not math.isfinite(v):
+                    raise _conica.NonFiniteError(
+                        "point %d has a non-finite %scoordinate (%s = %r)"
+                        % (i // 3, what, axis, v))
+                if abs(v) > MAX_COORD:
+                    raise _conica.NonFiniteError(
+                        "point %d has a %scoordinate beyond \u00b1%g (%s = %.3g; Blender "
+                        "stores an infinite coordinate as 3.4e+38)"
+                        % (i // 3, what, MAX_COORD, axis, v))
+        if self.weights:
+            w = self.weights
+            if not (math.isfinite(sum(w)) and min(w) > 0.0):
+                i = next(i for i, v in enumerate(w) if not (math.isfinite(v) and v > 0.0))
+                raise _conica.NonFiniteError("point %d has weight %r; weights must be "
+                                             "positive numbers" % (i, w[i]))
+        for arr, what in ((self.radius, "radius"), (self.tilt, "tilt")):
+            if not math.isfinite(sum(arr)):
+                i = next(i for i, v in enumerate(arr) if not math.isfinite(v))
+                raise _conica.NonFiniteError("point %d has a non-finite %s (%r)"
+                                             % (i, what, arr[i]))
+
     def attrs(self):
         a = _zeros(2 * self.n)
         a[0::2] = self.radius
@@ -108,6 +168,14 @@ class SplineData:
         if not vals:
             return 0.0
         return FLOAT32_SLACK * max(abs(v) for v in vals)
+
+
+def float32_spacing(m):
+    """Spacing of float32 values at magnitude m (its ulp); the smallest
+    normal spacing for m = 0."""
+    if m <= 0.0:
+        return 2.0 ** -149
+    return math.ldexp(1.0, math.frexp(m)[1] - 24)
 
 
 # ---------------------------------------------------------------- NURBS
@@ -409,8 +477,14 @@ class _CurveOperator:
         self.report({level}, message)
         last_reports.append((level, message))
 
+    def note(self, message):
+        """A warning about the spline being processed that does not stop it."""
+        self._notes.append("%s: %s" % (self._where, message))
+
     def execute(self, context):
         last_reports.clear()
+        self._notes = []
+        self._where = ""
         objs, edit = curve_objects(context)
         if not objs:
             self._report("ERROR", "No curve object selected")
@@ -437,7 +511,9 @@ class _CurveOperator:
                 t_read += time.perf_counter() - t0
                 if not self.wants(sp, data, edit):
                     continue
+                self._where = "%s, spline %d" % (ob.name, i)
                 try:
+                    data.check()
                     r = self.process(ob, sp, data)
                 except _conica.ConicaError as exc:
                     problems.append("%s, spline %d: %s" % (ob.name, i, exc))
@@ -475,7 +551,7 @@ class _CurveOperator:
         # (conversion + libcore); libcore: measured inside the C code.
         last_timing.update(total=t_end - t_start, read=t_read, extension=t_lib,
                            libcore=t_core, write=t_end - t_write, splines=done)
-        for p in problems:
+        for p in self._notes + problems:
             self._report("WARNING", p)
         if done == 0:
             if not problems:
@@ -558,7 +634,11 @@ class CURVE_OT_adaptive_to_poly(_CurveOperator, bpy.types.Operator):
 
     tolerance: FloatProperty(
         name="Tolerance", subtype="DISTANCE", default=1e-3, min=1e-7, soft_max=1.0,
-        description="Largest distance between the polyline and the curve")
+        precision=6, step=0.01,
+        description="Largest distance between the polyline and the curve. Below what "
+                    "float32 coordinates can hold at the spline's size (2 float32 "
+                    "spacings at its largest coordinate) it is raised to that, with a "
+                    "warning")
     output: EnumProperty(name="Output", items=[OUTPUT_ITEMS[0], OUTPUT_ITEMS[2]],
                          default="REPLACE")
 
@@ -567,8 +647,17 @@ class CURVE_OT_adaptive_to_poly(_CurveOperator, bpy.types.Operator):
             return None  # already a polyline
         if data.n < 2:
             raise _conica.DegenerateError("a spline needs at least 2 points, has %d" % data.n)
+        spacing = float32_spacing(data.max_abs())
+        achievable = FLOAT32_TOL_SPACINGS * spacing
+        tol = self.tolerance
+        if tol < achievable:
+            self.note("tolerance %.3g is below what float32 coordinates near %.3g can "
+                      "hold; used the achievable tolerance %.3g" %
+                      (tol, data.max_abs(), achievable))
+            tol = achievable
         t0 = time.perf_counter()
-        res = spline_curve(sp, data, mode="flatten", tolerance=self.tolerance, stride=4)
+        res = spline_curve(sp, data, mode="flatten", stride=4,
+                           tolerance=tol - FLOAT32_ROUNDING * spacing)
         t_lib = time.perf_counter() - t0
         r = _Result()
         r.kind = "POLY"

@@ -459,6 +459,9 @@ def menus_and_search():
     tp = bpy.ops.curve.adaptive_to_poly.get_rna_type().properties["tolerance"]
     report("adaptive_tolerance_prop", abs(tp.default - 1e-3) < 1e-9 and tp.subtype == "DISTANCE",
            "%r %r" % (tp.default, tp.subtype))
+    # the redo panel shows 0.001 as 0.001000, not 0.00
+    report("redo_panel_digits", tp.precision >= 5 and fi.precision >= 5,
+           "tolerance %d, fidelity %d digits" % (tp.precision, fi.precision))
 
 
 def _package_copy(name, edit):
@@ -1695,6 +1698,167 @@ def shape_keys_refused():
                curve_snapshot(ob.data) == before and keys == [6, 6] and
                reps and reps[0][0] == "WARNING" and "keyed: has shape keys" in reps[0][1],
                "%r %r %r" % (r, keys, reps))
+
+
+def bezier_deviation(sp_pts, poly, centre):
+    """Largest distance from the polyline poly (float32 points as stored)
+    to the closed Bezier circle-like spline given by sp_pts [(co, hl, hr)]
+    (double), both taken relative to centre (so the differences keep their
+    digits). Each polyline vertex and the points at 1/4, 1/2, 3/4 of every
+    segment are projected onto the Bezier by Newton's method on
+    (B(t) - q) . B'(t) = 0, started at the parameter of q's angle around
+    the centre (the spline is star-shaped around it). Independent of the
+    add-on."""
+    n = len(sp_pts)
+    segs = []
+    for i in range(n):
+        a, b = sp_pts[i], sp_pts[(i + 1) % n]
+        segs.append([tuple(p[k] - centre[k] for k in range(3))
+                     for p in (a[0], a[2], b[1], b[0])])
+
+    def at(seg, t):
+        p0, p1, p2, p3 = seg
+        u = 1.0 - t
+        pt = [u ** 3 * p0[k] + 3 * u * u * t * p1[k] + 3 * u * t * t * p2[k] + t ** 3 * p3[k]
+              for k in range(3)]
+        d1 = [3 * u * u * (p1[k] - p0[k]) + 6 * u * t * (p2[k] - p1[k]) +
+              3 * t * t * (p3[k] - p2[k]) for k in range(3)]
+        d2 = [6 * u * (p2[k] - 2 * p1[k] + p0[k]) + 6 * t * (p3[k] - 2 * p2[k] + p1[k])
+              for k in range(3)]
+        return pt, d1, d2
+
+    def distance(q):
+        ang = math.atan2(q[1], q[0]) % (2 * math.pi)
+        x = ang / (2 * math.pi) * n
+        best = float("inf")
+        for si in (int(x) % n, (int(x) + 1) % n, (int(x) - 1) % n):
+            t = min(1.0, max(0.0, x - int(x))) if si == int(x) % n else 0.5
+            for _ in range(30):
+                pt, d1, d2 = at(segs[si], t)
+                r = [pt[k] - q[k] for k in range(3)]
+                f = sum(r[k] * d1[k] for k in range(3))
+                df = sum(d1[k] * d1[k] + r[k] * d2[k] for k in range(3))
+                if df <= 0:
+                    break
+                t2 = min(1.0, max(0.0, t - f / df))
+                if abs(t2 - t) < 1e-15:
+                    t = t2
+                    break
+                t = t2
+            pt = at(segs[si], t)[0]
+            best = min(best, math.sqrt(sum((pt[k] - q[k]) ** 2 for k in range(3))))
+        return best
+
+    rel = [tuple(p[k] - centre[k] for k in range(3)) for p in poly]
+    worst = 0.0
+    m = len(rel)
+    for i in range(m):
+        a, b = rel[i], rel[(i + 1) % m]
+        for f in (0.0, 0.25, 0.5, 0.75):
+            q = tuple(a[k] + f * (b[k] - a[k]) for k in range(3))
+            worst = max(worst, distance(q))
+    return worst
+
+
+def offset_circle(name, R, centre):
+    """A 4-point Bezier circle of radius R whose stored coordinates lie
+    around centre (not an object offset: the spline's own coordinates)."""
+    ob = new_curve(name)
+    sp = circle_bezier(ob.data, R)
+    for bp in sp.bezier_points:
+        for key in ("co", "handle_left", "handle_right"):
+            v = getattr(bp, key)
+            setattr(bp, key, tuple(v[k] + centre[k] for k in range(3)))
+    pts = [(tuple(b.co), tuple(b.handle_left), tuple(b.handle_right))
+           for b in sp.bezier_points]
+    return ob, pts
+
+
+@case
+def float32_tolerance_clamped():
+    """Curve to Polyline below what float32 can hold at the spline's size:
+    clamped to the achievable tolerance with a warning stating it, and the
+    stored polyline is within that (measured against the Bezier in double);
+    a tolerance above it is kept and met, silently."""
+    ops = conica_pkg().operators
+    for R, centre, tol, label in ((1.0, (1e4, 0.0, 0.0), 1e-5, "x1e4"),
+                                  (1.0, (1e4, 0.0, 0.0), 1e-3, "x1e4_1e-3"),
+                                  (1e5, (0.0, 0.0, 0.0), 1e-7, "r1e5"),
+                                  (1.0, (1e4, 0.0, 0.0), 1e-2, "x1e4_kept")):
+        fresh_scene()
+        ob, pts = offset_circle("far", R, centre)
+        m = max(abs(c) for p in pts for v in p for c in v)
+        achievable = ops.FLOAT32_TOL_SPACINGS * ops.float32_spacing(m)
+        select_only(ob)
+        r = bpy.ops.curve.adaptive_to_poly(tolerance=tol)
+        warns = [msg for lv, msg in last_reports() if lv == "WARNING"]
+        sp = ob.data.splines[0]
+        poly = poly_co(sp)
+        dev = bezier_deviation(pts, poly, centre)
+        if tol < achievable:
+            want = "far, spline 0: tolerance %.3g is below" % tol
+            report("float32_clamp_warns_" + label, r == {"FINISHED"} and len(warns) == 1 and
+                   warns[0].startswith(want) and
+                   ("achievable tolerance %.3g" % achievable) in warns[0], repr(last_reports()))
+            report("float32_clamp_met_" + label, dev <= achievable and len(poly) < 20000,
+                   "deviation %.4g, achievable %.4g, %d points" % (dev, achievable, len(poly)))
+        else:
+            report("float32_tolerance_kept_" + label, r == {"FINISHED"} and not warns and
+                   dev <= tol, "deviation %.4g for %.4g; %r" % (dev, tol, warns))
+
+
+@case
+def huge_and_nonfinite_coordinates_refused():
+    """A coordinate beyond 1e30 (3.4e38 is what Blender stores for co = inf)
+    or NaN is refused by both operators, naming spline and point as Python
+    numbers them (from 0), and the scene stays exactly as it was."""
+    cases = [("poly_inf", "POLY", "co", float("inf"), "beyond \u00b11e+30"),
+             ("poly_nan", "POLY", "co", float("nan"), "non-finite coordinate"),
+             ("bez_inf", "BEZIER", "handle_right", float("inf"), "right handle coordinate beyond"),
+             ("bez_big", "BEZIER", "co", 2e30, "beyond \u00b11e+30")]
+    for label, kind, key, value, words in cases:
+        for op in ("conic_subdivide", "adaptive_to_poly"):
+            if kind == "POLY" and op == "adaptive_to_poly":
+                continue  # POLY splines are already polylines
+            fresh_scene()
+            ob = new_curve("huge")
+            ring = [(math.cos(i * math.pi / 6), math.sin(i * math.pi / 6), 0.0)
+                    for i in range(12)]
+            add_poly(ob.data, ring, True)  # spline 0 is fine
+            if kind == "POLY":
+                sp = add_poly(ob.data, ring, True)
+                p = sp.points[3]
+                p.co = (value, p.co[1], p.co[2], p.co[3])
+                stored = sp.points[3].co[0]
+            else:
+                sp = circle_bezier(ob.data)
+                bp = sp.bezier_points[3]
+                v = getattr(bp, key)
+                setattr(bp, key, (value, v[1], v[2]))
+                stored = getattr(sp.bezier_points[3], key)[0]
+            before = [full_snapshot(s) for s in ob.data.splines]
+            select_only(ob)
+            getattr(bpy.ops.curve, op)()
+            warns = [msg for lv, msg in last_reports() if lv == "WARNING"]
+            # spline 0 is processed; spline 1 is kept exactly as it was
+            bad_kept = full_snapshot(ob.data.splines[1]) == before[1]
+            report("refused_%s_%s" % (label, op),
+                   len(warns) == 1 and warns[0].startswith("huge, spline 1: point 3 has a") and
+                   words in warns[0] and bad_kept,
+                   "stored %r; %r" % (stored, last_reports()))
+    # the spline alone: cancelled, and the whole curve byte for byte unchanged
+    fresh_scene()
+    ob = new_curve("huge")
+    sp = circle_bezier(ob.data)
+    sp.bezier_points[2].co = (float("inf"), 0.0, 0.0)
+    report("inf_stored_as_float32_max", sp.bezier_points[2].co[0] in (float("inf"), 3.4028234663852886e38),
+           repr(sp.bezier_points[2].co[0]))
+    before = [full_snapshot(s) for s in ob.data.splines]
+    select_only(ob)
+    r1 = bpy.ops.curve.conic_subdivide()
+    r2 = bpy.ops.curve.adaptive_to_poly()
+    report("huge_only_cancelled_unchanged", r1 == r2 == {"CANCELLED"} and
+           [full_snapshot(s) for s in ob.data.splines] == before, "%r %r" % (r1, r2))
 
 
 @case
