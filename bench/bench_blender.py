@@ -252,3 +252,83 @@ def adaptive_table():
 
 
 adaptive_table()
+
+
+def large_curve():
+    """A 20 000-point cyclic POLY circle, Conic Subdivide at level 7
+    (2 560 000 points), median of BIG_REPEATS runs, object mode: the
+    operator's time against the subdivision itself (libcore's time in the
+    same call) plus Blender's own data writes of that many points (a plain
+    script's points.add + foreach_set of co, radius, tilt)."""
+    n, levels = 20000, 7
+    reps = int(os.environ.get("CONICA_BENCH_BIG_REPEATS", "3"))
+    ops = sys.modules["conica"].operators
+    import array
+
+    def make():
+        cu = bpy.data.curves.new("big", "CURVE")
+        cu.dimensions = "3D"
+        sp = cu.splines.new("POLY")
+        sp.points.add(n - 1)
+        co = array.array("f")
+        for i in range(n):
+            t = 2 * math.pi * i / n
+            co.extend((math.cos(t), math.sin(t), 0.0, 1.0))
+        sp.points.foreach_set("co", co)
+        sp.use_cyclic_u = True
+        ob = bpy.data.objects.new("big", cu)
+        bpy.context.scene.collection.objects.link(ob)
+        for o in bpy.context.view_layer.objects:
+            if o is not None:
+                o.select_set(False)
+        ob.select_set(True)
+        bpy.context.view_layer.objects.active = ob
+        bpy.context.view_layer.update()
+        return ob
+
+    rows = []
+    for _ in range(reps):
+        ob = make()
+        t0 = time.perf_counter()
+        bpy.ops.curve.conic_subdivide(levels=levels)
+        total = time.perf_counter() - t0
+        out = len(ob.data.splines[0].points)
+        rows.append((total, dict(ops.last_timing)))
+        drop(ob)
+        # Blender's own writes of as many points, into a fresh spline
+        ob = make()
+        m = out
+        co = array.array("f", bytes(16 * m))
+        one = array.array("f", [1.0]) * m
+        t0 = time.perf_counter()
+        sp = ob.data.splines.new("POLY")
+        sp.points.add(m - 1)
+        sp.points.foreach_set("co", co)
+        sp.points.foreach_set("radius", one)
+        sp.points.foreach_set("tilt", one)
+        rows[-1][1]["blender_writes"] = time.perf_counter() - t0
+        drop(ob)
+
+    def med(key):
+        return statistics.median(r[1][key] for r in rows)
+    total = statistics.median(r[0] for r in rows)
+    base = med("libcore") + med("blender_writes")
+    print()
+    print("Large curve: %d-point cyclic POLY circle, curve.conic_subdivide(levels=%d) -> "
+          "%d points, object mode, median of %d runs (wall s)" % (n, levels, out, reps))
+    print("| part | median s |")
+    print("|---|---|")
+    print("| whole operator (bpy.ops call, with Blender's evaluation of the result) | %.2f |"
+          % total)
+    print("| execute(): read (foreach_get) | %.3f |" % med("read"))
+    print("| execute(): _conica call | %.2f |" % med("extension"))
+    print("| of which libcore (the subdivision itself) | %.2f |" % med("libcore"))
+    print("| execute(): write (points.add + foreach_set) | %.2f |" % med("write"))
+    print("| Blender's own writes of %d points (points.add + foreach_set co, radius, tilt) "
+          "| %.2f |" % (out, med("blender_writes")))
+    print("ratio whole operator / (subdivision + Blender's own writes): %.2fx (goal <= 2x)"
+          % (total / base))
+
+
+if os.environ.get("CONICA_BENCH_BIG", "1") != "0":
+    large_curve()

@@ -329,18 +329,29 @@ static PyObject *cx_make_array(cx_state *s, char typecode, const double *v, size
                                  v[i], i / (size_t)dim, (double)FLT_MAX);
             }
     }
-    PyObject *bytes = PyBytes_FromStringAndSize(NULL, (Py_ssize_t)(count * esize));
-    if (bytes == NULL)
+    /* The array is made at its full size first (one zero item repeated)
+     * and filled through its buffer: no bytes object to copy from, so a
+     * result of millions of points touches its memory once (fresh pages
+     * cost more than the copy itself). */
+    char tc[2] = {typecode, '\0'};
+    static const char zeros[sizeof(double)] = {0};
+    PyObject *one = PyObject_CallFunction(s->array_type, "sy#", tc, zeros, (Py_ssize_t)esize);
+    if (one == NULL)
         return NULL;
-    char *raw = PyBytes_AsString(bytes);
-    if (raw == NULL) {
-        Py_DECREF(bytes);
+    PyObject *arr = PySequence_Repeat(one, (Py_ssize_t)count);
+    Py_DECREF(one);
+    if (arr == NULL || count == 0)
+        return arr;
+    Py_buffer view;
+    if (PyObject_GetBuffer(arr, &view, PyBUF_WRITABLE | PyBUF_C_CONTIGUOUS) < 0) {
+        Py_DECREF(arr);
         return NULL;
     }
+    char *raw = view.buf;
     if (stride == dim && typecode == 'd') {
         memcpy(raw, v, count * sizeof(double));
     } else if (stride == dim) {
-        float *f = (float *)(void *)raw; /* PyBytes data is suitably aligned */
+        float *f = (float *)(void *)raw; /* array data comes from malloc: aligned */
         for (size_t i = 0; i < count; i++)
             f[i] = (float)v[i];
     } else if (typecode == 'f') {
@@ -368,9 +379,7 @@ static PyObject *cx_make_array(cx_state *s, char typecode, const double *v, size
             }
         }
     }
-    char tc[2] = {typecode, '\0'};
-    PyObject *arr = PyObject_CallFunction(s->array_type, "sO", tc, bytes);
-    Py_DECREF(bytes);
+    PyBuffer_Release(&view);
     return arr;
 }
 
@@ -1497,6 +1506,7 @@ typedef struct cx_curve_job {
     cx_kind kind;
     size_t n;
     int closed, smooth, handles;
+    int normals; /* the caller wants onxy (else it stays NULL: less memory) */
     const double *xy, *hl, *hr; /* 2n each; hl, hr: BEZIER only */
     const double *w;            /* NURBS: n weights or NULL */
     const double *knots;        /* NURBS: n + degree + 1 */
@@ -1797,18 +1807,19 @@ static conica_code cx_curve_run(cx_curve_job *j)
     if (rc == CONICA_OK) {
         j->N = N;
         j->oxy = malloc(2 * N * sizeof *j->oxy);
-        j->onxy = malloc(2 * N * sizeof *j->onxy);
+        j->onxy = j->normals ? malloc(2 * N * sizeof *j->onxy) : NULL;
         j->exact = malloc(N * sizeof *j->exact);
         j->oattr = j->nattrs ? malloc(N * (size_t)j->nattrs * sizeof *j->oattr) : NULL;
         j->ohl = j->handles ? malloc(2 * N * sizeof *j->ohl) : NULL;
         j->ohr = j->handles ? malloc(2 * N * sizeof *j->ohr) : NULL;
-        if (!j->oxy || !j->onxy || !j->exact || (j->nattrs && !j->oattr) ||
+        if (!j->oxy || (j->normals && !j->onxy) || !j->exact || (j->nattrs && !j->oattr) ||
             (j->handles && (!j->ohl || !j->ohr)))
             rc = cx_fail(st, CONICA_ERR_NOMEM, "out of memory");
     }
     if (rc == CONICA_OK) {
         memcpy(j->oxy, L->xy, 2 * N * sizeof *j->oxy);
-        memcpy(j->onxy, L->nxy, 2 * N * sizeof *j->onxy);
+        if (j->onxy)
+            memcpy(j->onxy, L->nxy, 2 * N * sizeof *j->onxy);
         /* output points that are input points, bit for bit in the plane */
         for (size_t k = 0; k < N; k++) {
             size_t s = L->seg[k], a = CX_NONE, b = CX_NONE;
@@ -2114,6 +2125,7 @@ static PyObject *cx_curve(PyObject *self, PyObject *args, PyObject *kw)
         job.closed = closed;
         job.smooth = smooth;
         job.handles = handles;
+        job.normals = want_normals;
         job.xy = xy;
         job.hl = hl2;
         job.hr = hr2;
