@@ -7,7 +7,7 @@ bl_info = {
     "author": "Conica project",
     "version": (0, 1, 0),
     "blender": (3, 4, 0),
-    "location": "Edit Mode: Curve > Segments / context menu; "
+    "location": "Edit Mode: Segments menu / context menu; "
                 "Object Mode: Object > Convert / context menu; F3 search",
     "description": "Conic Subdivide (circles stay circles) and "
                    "Curve to Polyline (Adaptive)",

@@ -667,6 +667,167 @@ class CURVE_OT_adaptive_to_poly(_CurveOperator, bpy.types.Operator):
         return r, t_lib
 
 
+# ---------------------------------------------------------------- surfaces
+
+# Share of Surface to Mesh's tolerance given to each grid line (see execute).
+SURFACE_LINE_SHARE = 0.5
+
+
+def surface_patch(sp):
+    """(ctrl, nu, nv, degree_u, degree_v, knots_u, knots_v, weights, cyclic_u,
+    cyclic_v) of a NURBS surface spline as Blender evaluates it: the knot
+    vectors of nurbs_knots() per direction (Blender builds both with the same
+    rule from the order, Endpoint, Bezier and Cyclic settings of that
+    direction), the control net wrapped by order - 1 rows and columns in a
+    cyclic direction, in libcore's layout (index (i * nv + j), i along u).
+    Blender stores the net with u running fastest (points[v * nu + u])."""
+    pu, pv = sp.point_count_u, sp.point_count_v
+    co4 = _zeros(4 * pu * pv)
+    sp.points.foreach_get("co", co4)
+    _check_net(co4)
+    ou, ov = max(2, min(sp.order_u, pu)), max(2, min(sp.order_v, pv))
+    cu, cv = sp.use_cyclic_u, sp.use_cyclic_v
+    ku = nurbs_knots(pu, ou, cu, sp.use_endpoint_u, sp.use_bezier_u)
+    kv = nurbs_knots(pv, ov, cv, sp.use_endpoint_v, sp.use_bezier_v)
+    nu = pu + (ou - 1 if cu else 0)
+    nv = pv + (ov - 1 if cv else 0)
+    ctrl = _zeros(3 * nu * nv, "d")
+    w = _zeros(nu * nv, "d")
+    for i in range(nu):  # the control net: tens of points, not the output
+        for j in range(nv):
+            src = 4 * ((j % pv) * pu + (i % pu))
+            dst = i * nv + j
+            ctrl[3 * dst:3 * dst + 3] = array.array("d", co4[src:src + 3])
+            w[dst] = co4[src + 3]
+    return ctrl, nu, nv, ou - 1, ov - 1, ku, kv, w, cu, cv
+
+
+def _check_net(co4):
+    """Refuse NaN, huge (beyond MAX_COORD) coordinates and non-positive
+    weights of a surface's control net (x, y, z, w per point), naming the
+    point as Blender's Python numbers it (points[k], from 0)."""
+    xyz = co4[0::4] + co4[1::4] + co4[2::4]
+    w = co4[3::4]
+    if math.isfinite(sum(xyz)) and max(xyz) <= MAX_COORD and -min(xyz) <= MAX_COORD and \
+            math.isfinite(sum(w)) and min(w) > 0.0:
+        return
+    for k in range(len(w)):
+        p = co4[4 * k:4 * k + 4]
+        if not all(math.isfinite(c) and abs(c) <= MAX_COORD for c in p[:3]):
+            raise _conica.NonFiniteError(
+                "point %d has a coordinate that is not finite or beyond \u00b1%g (%s)"
+                % (k, MAX_COORD, ", ".join("%.3g" % c for c in p[:3])))
+        if not (math.isfinite(p[3]) and p[3] > 0.0):
+            raise _conica.NonFiniteError("point %d has weight %r; weights must be positive "
+                                         "numbers" % (k, p[3]))
+
+
+def surface_grid_mesh(grid, gu, gv, cyclic_u, cyclic_v):
+    """(verts, faces) of the plotted quad grid; in a cyclic direction the
+    last grid line is the first one again and is dropped, the quads wrap."""
+    pts = [(grid[3 * k], grid[3 * k + 1], grid[3 * k + 2]) for k in range(gu * gv)]
+    nu = gu - 1 if cyclic_u else gu
+    nv = gv - 1 if cyclic_v else gv
+    verts = [pts[i * gv + j] for i in range(nu) for j in range(nv)]
+    faces = []
+    for i in range(nu if cyclic_u else nu - 1):
+        i2 = (i + 1) % nu
+        for j in range(nv if cyclic_v else nv - 1):
+            j2 = (j + 1) % nv
+            faces.append((i * nv + j, i2 * nv + j, i2 * nv + j2, i * nv + j2))
+    return verts, faces
+
+
+class OBJECT_OT_conic_surface_to_mesh(bpy.types.Operator):
+    """Convert NURBS surfaces to meshes adaptively: every vertex on the surface,
+    grid lines placed where the curvature needs them (tensor-product plotting)"""
+    bl_idname = "object.conic_surface_to_mesh"
+    bl_label = "Surface to Mesh (Adaptive)"
+    bl_options = {"REGISTER", "UNDO"}
+
+    tolerance: FloatProperty(
+        name="Tolerance", subtype="DISTANCE", default=1e-3, min=1e-6, soft_max=1.0,
+        precision=6, step=0.01,
+        description="Largest distance of the mesh's faces from the surface (its grid "
+                    "lines are plotted within half of it)")
+
+    @classmethod
+    def poll(cls, context):
+        if context.mode != "OBJECT":
+            return False
+        ao = context.active_object
+        return (ao is not None and ao.type == "SURFACE") or \
+            any(o.type == "SURFACE" for o in context.selected_objects)
+
+    def _report(self, level, message):
+        self.report({level}, message)
+        last_reports.append((level, message))
+
+    def execute(self, context):
+        last_reports.clear()
+        objs = [o for o in context.selected_objects if o.type == "SURFACE"]
+        ao = context.active_object
+        if not objs and ao is not None and ao.type == "SURFACE":
+            objs = [ao]
+        plans, problems = [], []
+        for ob in objs:
+            parts = []
+            for i, sp in enumerate(ob.data.splines):
+                if sp.point_count_v < 2 or sp.point_count_u < 2:
+                    problems.append("%s, spline %d: one row of control points is a curve, "
+                                    "not a surface; left out" % (ob.name, i))
+                    continue
+                try:
+                    ctrl, nu, nv, du, dv, ku, kv, w, cu, cv = surface_patch(sp)
+                    # the plotter certifies grid lines; a quad's interior
+                    # strays from the surface by about the sum of its two
+                    # edges' distances, so the lines get half the tolerance
+                    grid, gu, gv, _info = _conica.surface(
+                        ctrl, nu=nu, nv=nv, degree_u=du, degree_v=dv, knots_u=ku,
+                        knots_v=kv, weights=w, tolerance=SURFACE_LINE_SHARE * self.tolerance,
+                        max_points=MAX_POINTS)
+                except _conica.ConicaError as exc:
+                    problems.append("%s, spline %d: %s" % (ob.name, i, exc))
+                    continue
+                parts.append((surface_grid_mesh(grid, gu, gv, cu, cv), sp.material_index))
+            if parts:
+                plans.append((ob, parts))
+        for p in problems:
+            self._report("WARNING", p)
+        if not plans:
+            if not problems:
+                self._report("WARNING", "Nothing to do: no surface object selected")
+            return {"CANCELLED"}
+        made = []
+        for ob, parts in plans:
+            verts, faces, mats = [], [], []
+            for (v, f), mat in parts:
+                base = len(verts)
+                verts.extend(v)
+                faces.extend(tuple(base + k for k in q) for q in f)
+                mats.extend([mat] * len(f))
+            me = bpy.data.meshes.new(ob.name + ".mesh")
+            me.from_pydata(verts, [], faces)
+            for m in ob.data.materials:
+                me.materials.append(m)
+            if mats:
+                me.polygons.foreach_set("material_index", array.array("i", mats))
+            me.update()
+            new = bpy.data.objects.new(ob.name + ".mesh", me)
+            new.matrix_world = ob.matrix_world.copy()
+            for coll in ob.users_collection:
+                coll.objects.link(new)
+            made.append(new)
+            ob.select_set(False)
+        for new in made:
+            new.select_set(True)
+        context.view_layer.objects.active = made[0]
+        self._report("INFO", "%s: %d object%s, %d vertices" % (
+            self.bl_label, len(made), "" if len(made) == 1 else "s",
+            sum(len(o.data.vertices) for o in made)))
+        return {"FINISHED"}
+
+
 # ---------------------------------------------------------------- menus
 
 def _menu_edit(self, context):
@@ -687,6 +848,7 @@ def _menu_convert(self, context):
     self.layout.separator()
     self.layout.operator(CURVE_OT_adaptive_to_poly.bl_idname)
     self.layout.operator(CURVE_OT_conic_subdivide.bl_idname)
+    self.layout.operator(OBJECT_OT_conic_surface_to_mesh.bl_idname)
 
 
 MENUS = [
@@ -696,7 +858,8 @@ MENUS = [
     ("VIEW3D_MT_object_context_menu", _menu_object),
 ]
 
-CLASSES = (CURVE_OT_conic_subdivide, CURVE_OT_adaptive_to_poly)
+CLASSES = (CURVE_OT_conic_subdivide, CURVE_OT_adaptive_to_poly,
+           OBJECT_OT_conic_surface_to_mesh)
 
 
 def register():

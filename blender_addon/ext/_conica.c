@@ -2316,11 +2316,120 @@ static PyObject *cx_version(PyObject *self, PyObject *unused)
     return PyUnicode_FromString(conica_version());
 }
 
+/* ------------------------------------------------------------ surface */
+
+PyDoc_STRVAR(surface_doc,
+"surface(ctrl, *, nu, nv, degree_u, degree_v, knots_u, knots_v, weights=None,\n"
+"        tolerance, max_points=4194304)\n"
+"--\n\n"
+"A tensor-product NURBS surface plotted to a quad grid by libconica's\n"
+"two-phase surface plotter (Dahl's thesis, Section 4.1.2): the isocurves at\n"
+"every distinct knot of one direction are plotted within `tolerance`\n"
+"(absolute) by the guaranteed method, the parameters they need collected,\n"
+"then the other direction likewise. ctrl: nu*nv control points, x,y,z each,\n"
+"index ((i*nv)+j)*3 (i along u); weights: nu*nv positive values or None;\n"
+"knots_u: nu + degree_u + 1 values, knots_v likewise.\n\n"
+"Returns (points, gu, gv, info): points an array('d') of gu*gv x,y,z grid\n"
+"points, index ((i*gv)+j)*3, every one on the surface; info: points, seconds.\n"
+"The grid's quads are not certified by the plotter (only its isocurves).");
+
+static PyObject *cx_surface(PyObject *self, PyObject *args, PyObject *kw)
+{
+    static char *kwlist[] = {"ctrl", "nu", "nv", "degree_u", "degree_v", "knots_u",
+                             "knots_v", "weights", "tolerance", "max_points", NULL};
+    cx_state *S = cx_get_state(self);
+    PyObject *octrl, *oku = NULL, *okv = NULL, *ow = Py_None;
+    Py_ssize_t nu = -1, nv = -1, max_points = (Py_ssize_t)CX_DEFAULT_MAX_POINTS;
+    int du = -1, dv = -1;
+    double tol = -1.0;
+    if (!PyArg_ParseTupleAndKeywords(args, kw, "O|$nniiOOOdn:surface", kwlist, &octrl, &nu,
+                                     &nv, &du, &dv, &oku, &okv, &ow, &tol, &max_points))
+        return NULL;
+    if (nu < 2 || nv < 2)
+        return cx_raisef(S->arg_error, "nu and nv must be given and >= 2, got %zd, %zd", nu,
+                         nv);
+    if (du < 1 || dv < 1)
+        return cx_raisef(S->arg_error, "degree_u and degree_v must be given and >= 1");
+    if (!(tol > 0) || !isfinite(tol))
+        return cx_raisef(S->arg_error, "tolerance must be a positive finite number");
+    if (max_points < 4 || (size_t)max_points > CX_HARD_MAX_POINTS)
+        return cx_raisef(S->limit_error, "max_points must be 4..%zu, got %zd",
+                         CX_HARD_MAX_POINTS, max_points);
+    if (oku == NULL || okv == NULL)
+        return cx_raisef(S->arg_error, "knots_u and knots_v must be given");
+
+    PyObject *result = NULL;
+    double *ctrl = NULL, *ku = NULL, *kv = NULL, *w = NULL;
+    size_t nc = 0, nku = 0, nkv = 0, nw = 0;
+    conica_bspline_surface sf;
+    conica_bspline_surface_init(&sf);
+    conica_quadgrid g;
+    conica_quadgrid_init(&g);
+    conica_status st;
+    memset(&st, 0, sizeof st);
+    if (!cx_read_checked(S, octrl, "ctrl", 0, 1, &ctrl, &nc) ||
+        !cx_read_checked(S, oku, "knots_u", 0, 0, &ku, &nku) ||
+        !cx_read_checked(S, okv, "knots_v", 0, 0, &kv, &nkv))
+        goto done;
+    if (ow != Py_None && !cx_read_checked(S, ow, "weights", 0, 0, &w, &nw))
+        goto done;
+    if ((size_t)nu > CX_MAX_INPUT_VALUES / (size_t)nv ||
+        nc != 3 * (size_t)nu * (size_t)nv) {
+        cx_raisef(S->arg_error, "ctrl: %zu values, %zd x %zd control points need %zu", nc, nu,
+                  nv, 3 * (size_t)nu * (size_t)nv);
+        goto done;
+    }
+    if (w && nw != (size_t)nu * (size_t)nv) {
+        cx_raisef(S->arg_error, "weights: %zu values for %zd x %zd control points", nw, nu, nv);
+        goto done;
+    }
+    conica_code rc;
+    double seconds = 0.0;
+    Py_BEGIN_ALLOW_THREADS
+    rc = conica_bspline_surface_set(du, dv, 3, ku, nku, kv, nkv, ctrl, (size_t)nu, (size_t)nv,
+                                    w, &sf, &st);
+    if (rc == CONICA_OK) {
+        conica_plot_settings set = conica_plot_defaults();
+        set.method = CONICA_PLOT_GUARANTEED;
+        set.abs_tolerance = tol;
+        set.max_points = (size_t)max_points;
+        conica_plot_stats stats;
+        memset(&stats, 0, sizeof stats);
+        double t0 = cx_now();
+        rc = conica_plot_surface_envelope(&sf, &set, &g, &stats, &st);
+        seconds = cx_now() - t0;
+    }
+    Py_END_ALLOW_THREADS
+    if (rc != CONICA_OK) {
+        cx_raise(S, rc, &st);
+        goto done;
+    }
+    {
+        PyObject *ap = cx_make_array(S, 'd', g.xyz, g.nu * g.nv, 3, 3, 0.0);
+        PyObject *info = Py_BuildValue("{s:n,s:d}", "points", (Py_ssize_t)(g.nu * g.nv),
+                                       "seconds", seconds);
+        if (ap && info)
+            result = Py_BuildValue("(OnnO)", ap, (Py_ssize_t)g.nu, (Py_ssize_t)g.nv, info);
+        Py_XDECREF(ap);
+        Py_XDECREF(info);
+    }
+done:
+    PyMem_Free(ctrl);
+    PyMem_Free(ku);
+    PyMem_Free(kv);
+    PyMem_Free(w);
+    conica_bspline_surface_free(&sf);
+    conica_quadgrid_free(&g);
+    return result;
+}
+
 static PyMethodDef cx_methods[] = {
     {"subdivide", (PyCFunction)(void (*)(void))cx_subdivide, METH_VARARGS | METH_KEYWORDS,
      subdivide_doc},
     {"curve", (PyCFunction)(void (*)(void))cx_curve, METH_VARARGS | METH_KEYWORDS, curve_doc},
     {"plot", (PyCFunction)(void (*)(void))cx_plot, METH_VARARGS | METH_KEYWORDS, plot_doc},
+    {"surface", (PyCFunction)(void (*)(void))cx_surface, METH_VARARGS | METH_KEYWORDS,
+     surface_doc},
     {"fit_plane", cx_fit_plane_py, METH_O, fit_plane_doc},
     {"version", cx_version, METH_NOARGS, version_doc},
     {NULL, NULL, 0, NULL}};

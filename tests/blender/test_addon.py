@@ -1861,6 +1861,77 @@ def huge_and_nonfinite_coordinates_refused():
            [full_snapshot(s) for s in ob.data.splines] == before, "%r %r" % (r1, r2))
 
 
+def surface_eval():
+    sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+    try:
+        import surface_eval as se
+    finally:
+        sys.path.pop(0)
+    return se
+
+
+@case
+def surface_to_mesh_within_tolerance():
+    """Surface to Mesh (Adaptive) on Blender's own Add > Surface primitives:
+    measured by an evaluator of the test's own (tests/blender/surface_eval.py,
+    from the control net, weights, orders and knots Blender exposes; first
+    checked against Blender's own conversion), every vertex lies on the
+    surface and every face (centre and edge midpoints) within the
+    tolerance."""
+    se = surface_eval()
+    ops = conica_pkg().operators
+    tol = 1e-2
+    for prim in ("surface", "sphere", "torus"):
+        fresh_scene()
+        getattr(bpy.ops.surface, "primitive_nurbs_surface_%s_add" % prim)()
+        ob = bpy.context.active_object
+        sp = ob.data.splines[0]
+        dist = se.Distance(se.Surface(sp, ops.nurbs_knots))
+        dg = bpy.context.evaluated_depsgraph_get()
+        ev = ob.evaluated_get(dg)
+        me = ev.to_mesh()
+        ref = max(dist(tuple(v.co)) for v in me.vertices)
+        nb = len(me.vertices)
+        ev.to_mesh_clear()
+        # the evaluator and Blender agree: Blender's own vertices are on it
+        report("surface_eval_matches_blender_" + prim, ref < 1e-5,
+               "Blender's %d vertices up to %.3g off the evaluated surface" % (nb, ref))
+        select_only(ob)
+        r = bpy.ops.object.conic_surface_to_mesh(tolerance=tol)
+        new = bpy.context.active_object
+        ok = r == {"FINISHED"} and new is not ob and new.type == "MESH"
+        report("surface_to_mesh_runs_" + prim, ok, "%r %r" % (r, last_reports()))
+        if not ok:
+            continue
+        dv, df = se.mesh_deviation(new.data, dist)
+        report("surface_vertices_on_surface_" + prim, dv < 1e-5,
+               "vertices up to %.3g off" % dv)
+        report("surface_faces_within_tolerance_" + prim, df <= tol,
+               "faces up to %.4g off for %g (%d vertices; Blender's default %d)"
+               % (df, tol, len(new.data.vertices), nb))
+        report("surface_original_kept_" + prim, ob.name in bpy.data.objects and
+               not ob.select_get() and new.select_get())
+    # a surface with a huge coordinate is refused, nothing made
+    fresh_scene()
+    bpy.ops.surface.primitive_nurbs_surface_surface_add()
+    ob = bpy.context.active_object
+    ob.data.splines[0].points[5].co = (float("inf"), 0.0, 0.0, 1.0)
+    select_only(ob)
+    n_objects = len(bpy.data.objects)
+    r = bpy.ops.object.conic_surface_to_mesh(tolerance=tol)
+    warns = [m for lv, m in last_reports() if lv == "WARNING"]
+    report("surface_huge_refused", r == {"CANCELLED"} and len(bpy.data.objects) == n_objects and
+           len(warns) == 1 and warns[0].startswith("SurfPatch, spline 0: point 5 has a "
+                                                    "coordinate that is not finite or beyond"),
+           "%r %r" % (r, last_reports()))
+    # poll: not for a curve object
+    fresh_scene()
+    ob = new_curve("notsurface")
+    circle_bezier(ob.data)
+    select_only(ob)
+    report("surface_poll_false_for_curve", not bpy.ops.object.conic_surface_to_mesh.poll())
+
+
 @case
 def save_and_reload():
     fresh_scene()
