@@ -9,8 +9,8 @@ bl_info = {
     "blender": (3, 4, 0),
     "location": "Edit Mode: Segments menu / context menu; "
                 "Object Mode: Object > Convert / context menu; F3 search",
-    "description": "Conic Subdivide (circles stay circles) and "
-                   "Curve to Polyline (Adaptive)",
+    "description": "Conic Subdivide (circles stay circles), "
+                   "Curve to Polyline (Adaptive) and Surface to Mesh (Adaptive)",
     "category": "Add Curve",
     "support": "COMMUNITY",
 }

@@ -245,8 +245,10 @@ CONICA_API conica_code conica_plot_surface(const conica_bspline_surface *s,
  *        step allows where it lies (and no distinct knot is skipped). The
  *        union grows with the number of isocurves when their parameters
  *        do not line up (a rational sphere's meridians: 290 x 29 lines
- *        for 1e-2 on the unit sphere); the envelope keeps each direction
- *        near the count of its most demanding isocurve. Grid lines are
+ *        for 1e-2 on Blender's unit sphere, 17 x 29 with the envelope);
+ *        each direction stays near the count of its most demanding
+ *        isocurve. A step may end on a parameter of the union when that
+ *        keeps 90% of it. Grid lines are
  *        not isocurves that were plotted, so neither they nor the quads
  *        are certified; the Blender suite measures the result.
  * @return as conica_plot
