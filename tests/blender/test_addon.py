@@ -1924,6 +1924,25 @@ def surface_to_mesh_within_tolerance():
            len(warns) == 1 and warns[0].startswith("SurfPatch, spline 0: point 5 has a "
                                                     "coordinate that is not finite or beyond"),
            "%r %r" % (r, last_reports()))
+    # undo (the steps the UI would push around it) removes the mesh and
+    # leaves the surface exactly as it was; redo brings the mesh back
+    fresh_scene()
+    bpy.ops.surface.primitive_nurbs_surface_torus_add()
+    ob = bpy.context.active_object
+    name = ob.name
+    before = (sorted(o.name for o in bpy.data.objects), full_snapshot(ob.data.splines[0]))
+    select_only(ob)
+    bpy.ops.ed.undo_push(message="before surface to mesh")
+    bpy.ops.object.conic_surface_to_mesh(tolerance=tol)
+    bpy.ops.ed.undo_push(message="Surface to Mesh (Adaptive)")
+    made = name + ".mesh" in bpy.data.objects
+    r = bpy.ops.ed.undo()
+    after = (sorted(o.name for o in bpy.data.objects),
+             full_snapshot(bpy.data.objects[name].data.splines[0]))
+    report("surface_undo_restores", made and r == {"FINISHED"} and after == before,
+           "%r %r" % (r, after[0]))
+    bpy.ops.ed.redo()
+    report("surface_redo_reapplies", name + ".mesh" in bpy.data.objects)
     # poll: not for a curve object
     fresh_scene()
     ob = new_curve("notsurface")
