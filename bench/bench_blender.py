@@ -31,6 +31,16 @@ def setup():
     bpy.context.view_layer.update()
 
 
+def link_selected(ob):
+    """Link ob to the scene as the only selected, active object."""
+    bpy.context.scene.collection.objects.link(ob)
+    for o in bpy.context.view_layer.objects:
+        if o is not None:
+            o.select_set(False)
+    ob.select_set(True)
+    bpy.context.view_layer.objects.active = ob
+
+
 def make_curve(name):
     cu = bpy.data.curves.new(name, "CURVE")
     cu.dimensions = "3D"
@@ -44,12 +54,7 @@ def make_curve(name):
     sp.points.foreach_set("co", co)
     sp.use_cyclic_u = True
     ob = bpy.data.objects.new(name, cu)
-    bpy.context.scene.collection.objects.link(ob)
-    for o in bpy.context.view_layer.objects:
-        if o is not None:
-            o.select_set(False)
-    ob.select_set(True)
-    bpy.context.view_layer.objects.active = ob
+    link_selected(ob)
     return ob
 
 
@@ -215,12 +220,7 @@ def adaptive_table():
             bp.handle_right = (c - s * k, s + c * k, 0)
         sp.use_cyclic_u = True
         ob = bpy.data.objects.new("bez", cu)
-        bpy.context.scene.collection.objects.link(ob)
-        for o in bpy.context.view_layer.objects:
-            if o is not None:
-                o.select_set(False)
-        ob.select_set(True)
-        bpy.context.view_layer.objects.active = ob
+        link_selected(ob)
         # reference: the cubic itself, densely sampled
         ref = []
         for i in range(4):
@@ -252,3 +252,128 @@ def adaptive_table():
 
 
 adaptive_table()
+
+
+def large_curve():
+    """A 20 000-point cyclic POLY circle, Conic Subdivide at level 7
+    (2 560 000 points), median of BIG_REPEATS runs, object mode: the
+    operator's time against the subdivision itself (libcore's time in the
+    same call) plus Blender's own data writes of that many points (a plain
+    script's points.add + foreach_set of co, radius, tilt)."""
+    n, levels = 20000, 7
+    reps = int(os.environ.get("CONICA_BENCH_BIG_REPEATS", "3"))
+    ops = sys.modules["conica"].operators
+    import array
+
+    def make():
+        cu = bpy.data.curves.new("big", "CURVE")
+        cu.dimensions = "3D"
+        sp = cu.splines.new("POLY")
+        sp.points.add(n - 1)
+        co = array.array("f")
+        for i in range(n):
+            t = 2 * math.pi * i / n
+            co.extend((math.cos(t), math.sin(t), 0.0, 1.0))
+        sp.points.foreach_set("co", co)
+        sp.use_cyclic_u = True
+        ob = bpy.data.objects.new("big", cu)
+        link_selected(ob)
+        bpy.context.view_layer.update()
+        return ob
+
+    rows = []
+    for _ in range(reps):
+        ob = make()
+        t0 = time.perf_counter()
+        bpy.ops.curve.conic_subdivide(levels=levels)
+        total = time.perf_counter() - t0
+        out = len(ob.data.splines[0].points)
+        rows.append((total, dict(ops.last_timing)))
+        drop(ob)
+        # Blender's own writes of as many points, into a fresh spline
+        ob = make()
+        m = out
+        co = array.array("f", bytes(16 * m))
+        one = array.array("f", [1.0]) * m
+        t0 = time.perf_counter()
+        sp = ob.data.splines.new("POLY")
+        sp.points.add(m - 1)
+        sp.points.foreach_set("co", co)
+        sp.points.foreach_set("radius", one)
+        sp.points.foreach_set("tilt", one)
+        rows[-1][1]["blender_writes"] = time.perf_counter() - t0
+        drop(ob)
+
+    def med(key):
+        return statistics.median(r[1][key] for r in rows)
+    total = statistics.median(r[0] for r in rows)
+    base = med("libcore") + med("blender_writes")
+    print()
+    print("Large curve: %d-point cyclic POLY circle, curve.conic_subdivide(levels=%d) -> "
+          "%d points, object mode, median of %d runs (wall s)" % (n, levels, out, reps))
+    print("| part | median s |")
+    print("|---|---|")
+    print("| whole operator (bpy.ops call, with Blender's evaluation of the result) | %.2f |"
+          % total)
+    print("| execute(): read (foreach_get) | %.3f |" % med("read"))
+    print("| execute(): _conica call | %.2f |" % med("extension"))
+    print("| of which libcore (the subdivision itself) | %.2f |" % med("libcore"))
+    print("| execute(): write (points.add + foreach_set) | %.2f |" % med("write"))
+    print("| Blender's own writes of %d points (points.add + foreach_set co, radius, tilt) "
+          "| %.2f |" % (out, med("blender_writes")))
+    print("ratio whole operator / (subdivision + Blender's own writes): %.2fx (goal <= 2x)"
+          % (total / base))
+
+
+if os.environ.get("CONICA_BENCH_BIG", "1") != "0":
+    large_curve()
+
+
+def surface_table():
+    """Surface to Mesh (Adaptive) on Blender's Add > Surface primitives at
+    three tolerances: vertices and measured deviation (vertices, face
+    centres and edge midpoints projected onto the surface by
+    tests/blender/surface_eval.py), against Blender's own uniform
+    conversion (the evaluated mesh at resolution_u = resolution_v = r) at
+    the smallest r whose measured deviation is no larger."""
+    here = os.path.dirname(os.path.abspath(__file__))
+    sys.path.insert(0, os.path.join(here, "..", "tests", "blender"))
+    import surface_eval as se
+    ops = sys.modules["conica"].operators
+    print()
+    print("Surfaces: Surface to Mesh (Adaptive) vs Blender's uniform conversion at the same "
+          "measured deviation")
+    print("| primitive | tolerance | adaptive vertices | adaptive deviation | Blender r | "
+          "Blender vertices | Blender deviation |")
+    print("|---|---|---|---|---|---|---|")
+    for prim in ("surface", "cylinder", "sphere", "torus"):
+        for tol in (1e-2, 5e-3, 2e-3):
+            for ob in list(bpy.data.objects):
+                bpy.data.objects.remove(ob, do_unlink=True)
+            getattr(bpy.ops.surface, "primitive_nurbs_surface_%s_add" % prim)()
+            ob = bpy.context.active_object
+            dist = se.Distance(se.Surface(ob.data.splines[0], ops.nurbs_knots))
+            bpy.ops.object.conic_surface_to_mesh(tolerance=tol)
+            new = bpy.context.active_object
+            dev = max(se.mesh_deviation(new.data, dist))
+            nv = len(new.data.vertices)
+            bpy.data.objects.remove(new, do_unlink=True)
+            row = None
+            for r in range(1, 65):
+                for sp in ob.data.splines:
+                    sp.resolution_u = sp.resolution_v = r
+                dg = bpy.context.evaluated_depsgraph_get()
+                ev = ob.evaluated_get(dg)
+                me = ev.to_mesh()
+                d = max(se.mesh_deviation(me, dist))
+                n = len(me.vertices)
+                ev.to_mesh_clear()
+                if d <= dev:
+                    row = (r, n, d)
+                    break
+            b = ("%d | %d | %.3g" % row) if row else "> 64 | - | -"
+            print("| %s | %g | %d | %.3g | %s |" % (prim, tol, nv, dev, b))
+
+
+if os.environ.get("CONICA_BENCH_SURFACES", "1") != "0":
+    surface_table()

@@ -22,7 +22,7 @@ BLENDER_USER_SCRIPTS=$tmp/scripts BLENDER_USER_CONFIG=$tmp/config CONICA_ZIP=$zi
     >"$tmp/log" 2>&1
 rc=$?
 # Blender's own chatter (version banner, "Info:" lines) is left out.
-grep -E '^(\||Blender|Conic Subdivide|ratio)' "$tmp/log"
+grep -E '^(\||Blender|Conic Subdivide|ratio|Large curve|Surfaces)' "$tmp/log"
 if [ "$rc" -ne 0 ]; then
     echo "bench-blender: error: Blender exited $rc:" >&2
     tail -n 30 "$tmp/log" >&2

@@ -847,3 +847,72 @@ TEST_CASE("surface: two-phase quad grid (Section 4.1.2)", "[plot][surface]")
     conica_quadgrid_free(&g);
     conica_bspline_surface_free(&s);
 }
+
+TEST_CASE("surface: envelope grid, no union of unaligned isocurve parameters", "[plot][surface]")
+{
+    conica_bspline_surface s;
+    conica_bspline_surface_init(&s);
+    conica_plot_settings set = conica_plot_defaults();
+    set.abs_tolerance = 1e-2;
+    conica_quadgrid g, e;
+    conica_quadgrid_init(&g);
+    conica_quadgrid_init(&e);
+    /* a surface of revolution: the rational quadratic quarter circle in u
+     * (weights 1, sqrt(1/2), 1) swept along a rational quarter circle in v,
+     * so the weights of the u-isocurves differ from v to v and their
+     * plotted parameters do not line up */
+    const double k[] = {0, 0, 0, 1, 1, 1};
+    const double r = sqrt(0.5);
+    const double prof[3][2] = {{1, 0}, {1, 1}, {0, 1}}; /* (radius, height) */
+    const double sweep[3][2] = {{1, 0}, {1, 1}, {0, 1}};
+    const double wp[3] = {1, r, 1}, ws[3] = {1, r, 1};
+    double c[27], w[9];
+    for (int i = 0; i < 3; i++)
+        for (int j = 0; j < 3; j++) {
+            double *p = c + (i * 3 + j) * 3;
+            p[0] = prof[i][0] * sweep[j][0];
+            p[1] = prof[i][0] * sweep[j][1];
+            p[2] = prof[i][1];
+            w[i * 3 + j] = wp[i] * ws[j];
+        }
+    REQUIRE_EQ(conica_bspline_surface_set(2, 2, 3, k, 6, k, 6, c, 3, 3, w, &s, NULL), CONICA_OK);
+    REQUIRE_EQ(conica_plot_surface(&s, &set, &g, NULL, NULL), CONICA_OK);
+    REQUIRE_EQ(conica_plot_surface_envelope(&s, &set, &e, NULL, NULL), CONICA_OK);
+    /* never more grid lines than the union (here their parameters line
+     * up: the same), and every point on the unit sphere */
+    CHECK_LE((double)e.nu, (double)g.nu);
+    CHECK_LE((double)e.nv, (double)g.nv);
+    CHECK_NEAR(e.u[0], 0.0, 0.0);
+    CHECK_NEAR(e.u[e.nu - 1], 1.0, 0.0);
+    CHECK_NEAR(e.v[0], 0.0, 0.0);
+    CHECK_NEAR(e.v[e.nv - 1], 1.0, 0.0);
+    double worst = 0;
+    for (size_t i = 0; i < e.nu * e.nv; i++) {
+        const double *p = e.xyz + 3 * i;
+        double d = fabs(sqrt(p[0] * p[0] + p[1] * p[1] + p[2] * p[2]) - 1.0);
+        worst = d > worst ? d : worst;
+    }
+    CHECK_LE(worst, 1e-14);
+    /* the grid lines are on circles of the sphere: the chord sagitta of each
+     * step along a meridian (fixed v) stays within the tolerance */
+    for (size_t j = 0; j < e.nv; j++)
+        for (size_t i = 0; i + 1 < e.nu; i++) {
+            const double *a0 = e.xyz + (i * e.nv + j) * 3, *a1 = e.xyz + ((i + 1) * e.nv + j) * 3;
+            double ch = sqrt((a1[0] - a0[0]) * (a1[0] - a0[0]) + (a1[1] - a0[1]) * (a1[1] - a0[1]) +
+                             (a1[2] - a0[2]) * (a1[2] - a0[2]));
+            CHECK_LE(1.0 - sqrt(1.0 - ch * ch / 4.0), 1e-2 * 1.0001);
+        }
+    /* the middle weight of the last column changed: the u-isocurves'
+     * weights are no longer proportional from v to v, their plotted
+     * parameters do not line up, and the union grows past the envelope */
+    for (int i = 0; i < 3; i++)
+        w[i * 3 + 2] = i == 1 ? 0.25 : 1.0;
+    REQUIRE_EQ(conica_bspline_surface_set(2, 2, 3, k, 6, k, 6, c, 3, 3, w, &s, NULL), CONICA_OK);
+    REQUIRE_EQ(conica_plot_surface(&s, &set, &g, NULL, NULL), CONICA_OK);
+    REQUIRE_EQ(conica_plot_surface_envelope(&s, &set, &e, NULL, NULL), CONICA_OK);
+    CHECK_LT((double)e.nu, (double)g.nu);
+    CHECK_LE((double)e.nv, (double)g.nv);
+    conica_quadgrid_free(&g);
+    conica_quadgrid_free(&e);
+    conica_bspline_surface_free(&s);
+}

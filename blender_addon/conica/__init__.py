@@ -7,41 +7,78 @@ bl_info = {
     "author": "Conica project",
     "version": (0, 1, 0),
     "blender": (3, 4, 0),
-    "location": "Edit Mode: Curve > Segments / context menu; "
+    "location": "Edit Mode: Segments menu / context menu; "
                 "Object Mode: Object > Convert / context menu; F3 search",
-    "description": "Conic Subdivide (circles stay circles) and "
-                   "Curve to Polyline (Adaptive)",
+    "description": "Conic Subdivide (circles stay circles), "
+                   "Curve to Polyline (Adaptive) and Surface to Mesh (Adaptive)",
     "category": "Add Curve",
     "support": "COMMUNITY",
 }
 
 import importlib
+import importlib.machinery
 import os
 import platform
+import re
 import sys
-import sysconfig
 
-# The add-on works only with the binary built for the running Python. Check
-# before importing it, so a mismatch gives a sentence, not a traceback.
-_EXPECTED_SUFFIX = sysconfig.get_config_var("EXT_SUFFIX") or ""
+# The compiled module is built against CPython's stable ABI (abi3) at
+# Python 3.11, so one binary serves every CPython from 3.11 on of the
+# platform it was built for. Check what matters before importing it (the
+# ABI tag, the Python version, the platform), so a mismatch gives one
+# sentence, not a traceback.
+MIN_PYTHON = (3, 11)
 IMPORT_ERROR = None
+
+
+def running_platform():
+    """The running system in the words of blender_manifest.toml's
+    `platforms` (linux-x64, windows-x64, macos-arm64, ...)."""
+    system = {"linux": "linux", "darwin": "macos", "win32": "windows"}.get(
+        sys.platform, sys.platform)
+    machine = platform.machine().lower()
+    machine = {"x86_64": "x64", "amd64": "x64", "aarch64": "arm64"}.get(machine, machine)
+    return "%s-%s" % (system, machine)
+
+
+def built_platforms(here):
+    """The platforms the package's binary was built for, as its manifest
+    lists them (a regular expression: tomllib is not in Python 3.10)."""
+    try:
+        with open(os.path.join(here, "blender_manifest.toml"), encoding="utf-8") as f:
+            text = f.read()
+    except OSError:
+        return []
+    m = re.search(r"^platforms\s*=\s*\[([^\]]*)\]", text, re.M)
+    return re.findall(r'"([^"]+)"', m.group(1)) if m else []
 
 
 def _binary_problem():
     here = os.path.dirname(os.path.abspath(__file__))
-    found = sorted(f for f in os.listdir(here) if f.startswith("_conica") and
+    found = sorted(f for f in os.listdir(here) if f.startswith("_conica.") and
                    (f.endswith(".so") or f.endswith(".pyd")))
-    running = "Python %d.%d on %s-%s" % (sys.version_info[0], sys.version_info[1],
-                                         sys.platform, platform.machine())
+    want = "_conica.pyd" if sys.platform == "win32" else "_conica.abi3.so"
+    pyver = "%d.%d" % sys.version_info[:2]
+    rebuild = "rebuild the zip there with `make blender-addon` (docs/blender.md)"
     if not found:
-        return ("Conica: the compiled module _conica is missing from %s; "
-                "install the zip built by `make blender-addon`." % here)
-    if "_conica" + _EXPECTED_SUFFIX not in found:
-        return ("Conica: this add-on was built for %s, but Blender runs %s "
-                "(it needs _conica%s). Rebuild it with that Python's "
-                "python3-config (`make blender-addon`)."
-                % (", ".join(f[len("_conica"):] for f in found), running,
-                   _EXPECTED_SUFFIX))
+        return ("Conica: the compiled module %s is missing from %s; install the zip "
+                "built by `make blender-addon`." % (want, here))
+    if sys.implementation.name != "cpython" or sys.version_info[:2] < MIN_PYTHON:
+        return ("Conica needs a Blender whose Python is CPython %d.%d or later "
+                "(Blender 4.1 and newer, or Debian's 3.4), but this one runs %s %s."
+                % (MIN_PYTHON + (sys.implementation.name, pyver)))
+    plats = built_platforms(here)
+    if plats and running_platform() not in plats:
+        return ("Conica: this zip was built for %s but Blender runs on %s: %s."
+                % (", ".join(plats), running_platform(), rebuild))
+    if want not in found:
+        return ("Conica: this zip holds %s, not the stable-ABI module %s that Python %s "
+                "on %s loads: %s." % (", ".join(found), want, pyver, running_platform(),
+                                      rebuild))
+    abi3 = ".pyd" if sys.platform == "win32" else ".abi3.so"
+    if abi3 not in importlib.machinery.EXTENSION_SUFFIXES:
+        return ("Conica: this Python %s does not load stable-ABI (%s) modules: %s."
+                % (pyver, abi3, rebuild))
     return None
 
 
@@ -56,10 +93,12 @@ if IMPORT_ERROR is None:
         IMPORT_ERROR = "Conica: the compiled module could not be loaded: %s" % exc
         _conica = None
     else:
-        if tuple(_conica.PY_VERSION) != tuple(sys.version_info[:2]):
-            IMPORT_ERROR = ("Conica: the compiled module was built for Python %d.%d, "
-                            "Blender runs %d.%d." % (tuple(_conica.PY_VERSION) +
-                                                      tuple(sys.version_info[:2])))
+        if getattr(_conica, "ABI", None) != "abi3" or \
+                tuple(_conica.PY_MIN_VERSION) > tuple(sys.version_info[:2]):
+            IMPORT_ERROR = ("Conica: the compiled module needs Python %d.%d or later "
+                            "(stable ABI), Blender runs %d.%d." %
+                            (tuple(getattr(_conica, "PY_MIN_VERSION", MIN_PYTHON)) +
+                             tuple(sys.version_info[:2])))
             _conica = None
 
 if IMPORT_ERROR is None:

@@ -38,6 +38,27 @@ FLOAT32_SLACK = 2.0 ** -22
 # Output budget per spline (points), far above interactive use.
 MAX_POINTS = 1 << 22
 
+# Largest coordinate magnitude the operators accept. Blender stores
+# coordinates as float32, whose finite range ends at 3.4e38, and a
+# coordinate set to inf from Python is stored as that finite 3.4e38; a
+# spline that far out has no geometry worth subdividing (the squared
+# distances the fit needs overflow float32's range long before), so
+# anything beyond 1e30 is refused like NaN, naming the point.
+MAX_COORD = 1e30
+
+# Curve to Polyline writes float32 points: each is rounded by up to half
+# the float32 spacing in each coordinate, sqrt(3)/2 spacing in all, on top
+# of the plotter's distance. The smallest tolerance the stored polyline can
+# honour is therefore FLOAT32_TOL_SPACINGS spacings of float32 at the
+# spline's largest coordinate (the curve lies in the hull of its control
+# points, so no point of it is larger); a request below that is clamped to
+# it with a warning, and the plotter runs with the rounding subtracted.
+FLOAT32_TOL_SPACINGS = 2.0
+FLOAT32_ROUNDING = math.sqrt(3.0) / 2.0
+
+# Messages number splines and points from 0, as Blender's Python tooltips
+# and console do (splines[0].points[3] is "spline 0, point 3").
+
 # Timings of the last run (seconds), read by the benchmark.
 last_timing = {}
 
@@ -97,6 +118,45 @@ class SplineData:
         pts.foreach_get("tilt", self.tilt)
         self.selected = any(sel)
 
+    def max_abs(self):
+        """Largest |coordinate| of the points and handles, after check()."""
+        return max((max(max(a), -min(a)) for a in (self.co, self.hl, self.hr) if a),
+                   default=0.0)
+
+    def check(self):
+        """Refuse NaN, infinite and huge (> MAX_COORD) coordinates, non-positive
+        weights and non-finite radius or tilt, naming the point. Whole-array
+        passes (sum, min, max run in C); the point is looked for only when one
+        of them shows a problem. Raises _conica.NonFiniteError."""
+        for arr, what in ((self.co, ""), (self.hl, "left handle "), (self.hr, "right handle ")):
+            if not arr:
+                continue
+            total = sum(arr)
+            if math.isfinite(total) and max(arr) <= MAX_COORD and -min(arr) <= MAX_COORD:
+                continue
+            for i, v in enumerate(arr):
+                axis = "xyz"[i % 3]
+                if not math.isfinite(v):
+                    raise _conica.NonFiniteError(
+                        "point %d has a non-finite %scoordinate (%s = %r)"
+                        % (i // 3, what, axis, v))
+                if abs(v) > MAX_COORD:
+                    raise _conica.NonFiniteError(
+                        "point %d has a %scoordinate beyond \u00b1%g (%s = %.3g; Blender "
+                        "stores an infinite coordinate as 3.4e+38)"
+                        % (i // 3, what, MAX_COORD, axis, v))
+        if self.weights:
+            w = self.weights
+            if not (math.isfinite(sum(w)) and min(w) > 0.0):
+                i = next(i for i, v in enumerate(w) if not (math.isfinite(v) and v > 0.0))
+                raise _conica.NonFiniteError("point %d has weight %r; weights must be "
+                                             "positive numbers" % (i, w[i]))
+        for arr, what in ((self.radius, "radius"), (self.tilt, "tilt")):
+            if not math.isfinite(sum(arr)):
+                i = next(i for i, v in enumerate(arr) if not math.isfinite(v))
+                raise _conica.NonFiniteError("point %d has a non-finite %s (%r)"
+                                             % (i, what, arr[i]))
+
     def attrs(self):
         a = _zeros(2 * self.n)
         a[0::2] = self.radius
@@ -108,6 +168,14 @@ class SplineData:
         if not vals:
             return 0.0
         return FLOAT32_SLACK * max(abs(v) for v in vals)
+
+
+def float32_spacing(m):
+    """Spacing of float32 values at magnitude m (its ulp); the smallest
+    normal spacing for m = 0."""
+    if m <= 0.0:
+        return 2.0 ** -149
+    return math.ldexp(1.0, math.frexp(m)[1] - 24)
 
 
 # ---------------------------------------------------------------- NURBS
@@ -409,8 +477,14 @@ class _CurveOperator:
         self.report({level}, message)
         last_reports.append((level, message))
 
+    def note(self, message):
+        """A warning about the spline being processed that does not stop it."""
+        self._notes.append("%s: %s" % (self._where, message))
+
     def execute(self, context):
         last_reports.clear()
+        self._notes = []
+        self._where = ""
         objs, edit = curve_objects(context)
         if not objs:
             self._report("ERROR", "No curve object selected")
@@ -437,7 +511,9 @@ class _CurveOperator:
                 t_read += time.perf_counter() - t0
                 if not self.wants(sp, data, edit):
                     continue
+                self._where = "%s, spline %d" % (ob.name, i)
                 try:
+                    data.check()
                     r = self.process(ob, sp, data)
                 except _conica.ConicaError as exc:
                     problems.append("%s, spline %d: %s" % (ob.name, i, exc))
@@ -475,7 +551,7 @@ class _CurveOperator:
         # (conversion + libcore); libcore: measured inside the C code.
         last_timing.update(total=t_end - t_start, read=t_read, extension=t_lib,
                            libcore=t_core, write=t_end - t_write, splines=done)
-        for p in problems:
+        for p in self._notes + problems:
             self._report("WARNING", p)
         if done == 0:
             if not problems:
@@ -558,7 +634,11 @@ class CURVE_OT_adaptive_to_poly(_CurveOperator, bpy.types.Operator):
 
     tolerance: FloatProperty(
         name="Tolerance", subtype="DISTANCE", default=1e-3, min=1e-7, soft_max=1.0,
-        description="Largest distance between the polyline and the curve")
+        precision=6, step=0.01,
+        description="Largest distance between the polyline and the curve. Below what "
+                    "float32 coordinates can hold at the spline's size (2 float32 "
+                    "spacings at its largest coordinate) it is raised to that, with a "
+                    "warning")
     output: EnumProperty(name="Output", items=[OUTPUT_ITEMS[0], OUTPUT_ITEMS[2]],
                          default="REPLACE")
 
@@ -567,8 +647,17 @@ class CURVE_OT_adaptive_to_poly(_CurveOperator, bpy.types.Operator):
             return None  # already a polyline
         if data.n < 2:
             raise _conica.DegenerateError("a spline needs at least 2 points, has %d" % data.n)
+        spacing = float32_spacing(data.max_abs())
+        achievable = FLOAT32_TOL_SPACINGS * spacing
+        tol = self.tolerance
+        if tol < achievable:
+            self.note("tolerance %.3g is below what float32 coordinates near %.3g can "
+                      "hold; used the achievable tolerance %.3g" %
+                      (tol, data.max_abs(), achievable))
+            tol = achievable
         t0 = time.perf_counter()
-        res = spline_curve(sp, data, mode="flatten", tolerance=self.tolerance, stride=4)
+        res = spline_curve(sp, data, mode="flatten", stride=4,
+                           tolerance=tol - FLOAT32_ROUNDING * spacing)
         t_lib = time.perf_counter() - t0
         r = _Result()
         r.kind = "POLY"
@@ -576,6 +665,167 @@ class CURVE_OT_adaptive_to_poly(_CurveOperator, bpy.types.Operator):
         r.co, r.attrs = res[0], res[2]
         r.hl = r.hr = None
         return r, t_lib
+
+
+# ---------------------------------------------------------------- surfaces
+
+# Share of Surface to Mesh's tolerance given to each grid line (see execute).
+SURFACE_LINE_SHARE = 0.5
+
+
+def surface_patch(sp):
+    """(ctrl, nu, nv, degree_u, degree_v, knots_u, knots_v, weights, cyclic_u,
+    cyclic_v) of a NURBS surface spline as Blender evaluates it: the knot
+    vectors of nurbs_knots() per direction (Blender builds both with the same
+    rule from the order, Endpoint, Bezier and Cyclic settings of that
+    direction), the control net wrapped by order - 1 rows and columns in a
+    cyclic direction, in libcore's layout (index (i * nv + j), i along u).
+    Blender stores the net with u running fastest (points[v * nu + u])."""
+    pu, pv = sp.point_count_u, sp.point_count_v
+    co4 = _zeros(4 * pu * pv)
+    sp.points.foreach_get("co", co4)
+    _check_net(co4)
+    ou, ov = max(2, min(sp.order_u, pu)), max(2, min(sp.order_v, pv))
+    cu, cv = sp.use_cyclic_u, sp.use_cyclic_v
+    ku = nurbs_knots(pu, ou, cu, sp.use_endpoint_u, sp.use_bezier_u)
+    kv = nurbs_knots(pv, ov, cv, sp.use_endpoint_v, sp.use_bezier_v)
+    nu = pu + (ou - 1 if cu else 0)
+    nv = pv + (ov - 1 if cv else 0)
+    ctrl = _zeros(3 * nu * nv, "d")
+    w = _zeros(nu * nv, "d")
+    for i in range(nu):  # the control net: tens of points, not the output
+        for j in range(nv):
+            src = 4 * ((j % pv) * pu + (i % pu))
+            dst = i * nv + j
+            ctrl[3 * dst:3 * dst + 3] = array.array("d", co4[src:src + 3])
+            w[dst] = co4[src + 3]
+    return ctrl, nu, nv, ou - 1, ov - 1, ku, kv, w, cu, cv
+
+
+def _check_net(co4):
+    """Refuse NaN, huge (beyond MAX_COORD) coordinates and non-positive
+    weights of a surface's control net (x, y, z, w per point), naming the
+    point as Blender's Python numbers it (points[k], from 0)."""
+    xyz = co4[0::4] + co4[1::4] + co4[2::4]
+    w = co4[3::4]
+    if math.isfinite(sum(xyz)) and max(xyz) <= MAX_COORD and -min(xyz) <= MAX_COORD and \
+            math.isfinite(sum(w)) and min(w) > 0.0:
+        return
+    for k in range(len(w)):
+        p = co4[4 * k:4 * k + 4]
+        if not all(math.isfinite(c) and abs(c) <= MAX_COORD for c in p[:3]):
+            raise _conica.NonFiniteError(
+                "point %d has a coordinate that is not finite or beyond \u00b1%g (%s)"
+                % (k, MAX_COORD, ", ".join("%.3g" % c for c in p[:3])))
+        if not (math.isfinite(p[3]) and p[3] > 0.0):
+            raise _conica.NonFiniteError("point %d has weight %r; weights must be positive "
+                                         "numbers" % (k, p[3]))
+
+
+def surface_grid_mesh(grid, gu, gv, cyclic_u, cyclic_v):
+    """(verts, faces) of the plotted quad grid; in a cyclic direction the
+    last grid line is the first one again and is dropped, the quads wrap."""
+    pts = [(grid[3 * k], grid[3 * k + 1], grid[3 * k + 2]) for k in range(gu * gv)]
+    nu = gu - 1 if cyclic_u else gu
+    nv = gv - 1 if cyclic_v else gv
+    verts = [pts[i * gv + j] for i in range(nu) for j in range(nv)]
+    faces = []
+    for i in range(nu if cyclic_u else nu - 1):
+        i2 = (i + 1) % nu
+        for j in range(nv if cyclic_v else nv - 1):
+            j2 = (j + 1) % nv
+            faces.append((i * nv + j, i2 * nv + j, i2 * nv + j2, i * nv + j2))
+    return verts, faces
+
+
+class OBJECT_OT_conic_surface_to_mesh(bpy.types.Operator):
+    """Convert NURBS surfaces to meshes adaptively: every vertex on the surface,
+    grid lines placed where the curvature needs them (tensor-product plotting)"""
+    bl_idname = "object.conic_surface_to_mesh"
+    bl_label = "Surface to Mesh (Adaptive)"
+    bl_options = {"REGISTER", "UNDO"}
+
+    tolerance: FloatProperty(
+        name="Tolerance", subtype="DISTANCE", default=1e-3, min=1e-6, soft_max=1.0,
+        precision=6, step=0.01,
+        description="Largest distance of the mesh's faces from the surface (its grid "
+                    "lines are plotted within half of it)")
+
+    @classmethod
+    def poll(cls, context):
+        if context.mode != "OBJECT":
+            return False
+        ao = context.active_object
+        return (ao is not None and ao.type == "SURFACE") or \
+            any(o.type == "SURFACE" for o in context.selected_objects)
+
+    def _report(self, level, message):
+        self.report({level}, message)
+        last_reports.append((level, message))
+
+    def execute(self, context):
+        last_reports.clear()
+        objs = [o for o in context.selected_objects if o.type == "SURFACE"]
+        ao = context.active_object
+        if not objs and ao is not None and ao.type == "SURFACE":
+            objs = [ao]
+        plans, problems = [], []
+        for ob in objs:
+            parts = []
+            for i, sp in enumerate(ob.data.splines):
+                if sp.point_count_v < 2 or sp.point_count_u < 2:
+                    problems.append("%s, spline %d: one row of control points is a curve, "
+                                    "not a surface; left out" % (ob.name, i))
+                    continue
+                try:
+                    ctrl, nu, nv, du, dv, ku, kv, w, cu, cv = surface_patch(sp)
+                    # the plotter certifies grid lines; a quad's interior
+                    # strays from the surface by about the sum of its two
+                    # edges' distances, so the lines get half the tolerance
+                    grid, gu, gv, _info = _conica.surface(
+                        ctrl, nu=nu, nv=nv, degree_u=du, degree_v=dv, knots_u=ku,
+                        knots_v=kv, weights=w, tolerance=SURFACE_LINE_SHARE * self.tolerance,
+                        max_points=MAX_POINTS)
+                except _conica.ConicaError as exc:
+                    problems.append("%s, spline %d: %s" % (ob.name, i, exc))
+                    continue
+                parts.append((surface_grid_mesh(grid, gu, gv, cu, cv), sp.material_index))
+            if parts:
+                plans.append((ob, parts))
+        for p in problems:
+            self._report("WARNING", p)
+        if not plans:
+            if not problems:
+                self._report("WARNING", "Nothing to do: no surface object selected")
+            return {"CANCELLED"}
+        made = []
+        for ob, parts in plans:
+            verts, faces, mats = [], [], []
+            for (v, f), mat in parts:
+                base = len(verts)
+                verts.extend(v)
+                faces.extend(tuple(base + k for k in q) for q in f)
+                mats.extend([mat] * len(f))
+            me = bpy.data.meshes.new(ob.name + ".mesh")
+            me.from_pydata(verts, [], faces)
+            for m in ob.data.materials:
+                me.materials.append(m)
+            if mats:
+                me.polygons.foreach_set("material_index", array.array("i", mats))
+            me.update()
+            new = bpy.data.objects.new(ob.name + ".mesh", me)
+            new.matrix_world = ob.matrix_world.copy()
+            for coll in ob.users_collection:
+                coll.objects.link(new)
+            made.append(new)
+            ob.select_set(False)
+        for new in made:
+            new.select_set(True)
+        context.view_layer.objects.active = made[0]
+        self._report("INFO", "%s: %d object%s, %d vertices" % (
+            self.bl_label, len(made), "" if len(made) == 1 else "s",
+            sum(len(o.data.vertices) for o in made)))
+        return {"FINISHED"}
 
 
 # ---------------------------------------------------------------- menus
@@ -598,6 +848,7 @@ def _menu_convert(self, context):
     self.layout.separator()
     self.layout.operator(CURVE_OT_adaptive_to_poly.bl_idname)
     self.layout.operator(CURVE_OT_conic_subdivide.bl_idname)
+    self.layout.operator(OBJECT_OT_conic_surface_to_mesh.bl_idname)
 
 
 MENUS = [
@@ -607,7 +858,8 @@ MENUS = [
     ("VIEW3D_MT_object_context_menu", _menu_object),
 ]
 
-CLASSES = (CURVE_OT_conic_subdivide, CURVE_OT_adaptive_to_poly)
+CLASSES = (CURVE_OT_conic_subdivide, CURVE_OT_adaptive_to_poly,
+           OBJECT_OT_conic_surface_to_mesh)
 
 
 def register():

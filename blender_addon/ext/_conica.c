@@ -41,8 +41,16 @@
 #define M_PI 3.14159265358979323846
 #endif
 
-#ifndef CONICA_SOABI
-#error "build with -DCONICA_SOABI=\"...\" (python3-config --extension-suffix)"
+/* Built against CPython's stable ABI (PEP 384) at the version below, so one
+ * _conica.abi3.so loads in every CPython from it on: Blender 3.4 (Debian),
+ * 4.1-5.x. 3.11 is the lowest version that will do: the buffer protocol
+ * (PyObject_GetBuffer, Py_buffer), which reads foreach_get's arrays without
+ * a copy per item, entered the limited API in 3.11. The Makefile defines
+ * Py_LIMITED_API to this value; tests/cli/blender.sh checks that the .so
+ * imports nothing outside the stable ABI list of that version. */
+#define CX_LIMITED_API 0x030B0000
+#if !defined(Py_LIMITED_API) || Py_LIMITED_API != CX_LIMITED_API
+#error "build with -DPy_LIMITED_API=0x030B0000 (see blender_addon/module.mk)"
 #endif
 
 /* Largest flat input the module copies (values, not points): a Blender
@@ -162,6 +170,21 @@ static int cx_float_format(const char *fmt, Py_ssize_t itemsize)
     return 0;
 }
 
+/* TypeError "what[i]: expected <expected>, got <type name>" (no [i] when
+ * i < 0). The limited API has no tp_name: the name comes from
+ * PyType_GetName (3.11). */
+static void cx_type_error(const char *what, Py_ssize_t i, const char *expected, PyObject *obj)
+{
+    PyObject *name = PyType_GetName(Py_TYPE(obj));
+    if (name == NULL)
+        return;
+    if (i >= 0)
+        PyErr_Format(PyExc_TypeError, "%s[%zd]: expected %s, got %U", what, i, expected, name);
+    else
+        PyErr_Format(PyExc_TypeError, "%s: expected %s, got %U", what, expected, name);
+    Py_DECREF(name);
+}
+
 /*
  * Copy a flat float sequence or buffer into a new double array (free with
  * PyMem_Free). Buffers (array('f'/'d'), memoryviews of them, Blender's
@@ -221,9 +244,9 @@ static int cx_read_doubles(PyObject *obj, const char *what, double **out, size_t
         return 0;
     }
     /* a list over the cap is refused before the snapshot copies it */
-    if (PyList_Check(obj) && (size_t)PyList_GET_SIZE(obj) > CX_MAX_INPUT_VALUES) {
+    if (PyList_Check(obj) && (size_t)PyList_Size(obj) > CX_MAX_INPUT_VALUES) {
         PyErr_Format(PyExc_ValueError, "%s: %zd values exceed the limit of %zu", what,
-                     PyList_GET_SIZE(obj), CX_MAX_INPUT_VALUES);
+                     PyList_Size(obj), CX_MAX_INPUT_VALUES);
         return 0;
     }
     PyObject *seq = PySequence_Tuple(obj); /* a tuple is returned as itself */
@@ -231,11 +254,10 @@ static int cx_read_doubles(PyObject *obj, const char *what, double **out, size_t
         if (PyErr_Occurred() && !PyErr_ExceptionMatches(PyExc_TypeError))
             return 0; /* MemoryError, or an error raised by the sequence itself */
         PyErr_Clear();
-        PyErr_Format(PyExc_TypeError, "%s: expected a flat sequence of numbers, got %s", what,
-                     Py_TYPE(obj)->tp_name);
+        cx_type_error(what, -1, "a flat sequence of numbers", obj);
         return 0;
     }
-    Py_ssize_t len = PyTuple_GET_SIZE(seq);
+    Py_ssize_t len = PyTuple_Size(seq);
     if ((size_t)len > CX_MAX_INPUT_VALUES) {
         Py_DECREF(seq);
         PyErr_Format(PyExc_ValueError, "%s: %zd values exceed the limit of %zu", what, len,
@@ -249,12 +271,11 @@ static int cx_read_doubles(PyObject *obj, const char *what, double **out, size_t
         return 0;
     }
     for (Py_ssize_t i = 0; i < len; i++) {
-        PyObject *item = PyTuple_GET_ITEM(seq, i); /* the tuple keeps it alive */
+        PyObject *item = PyTuple_GetItem(seq, i); /* borrowed: the tuple keeps it alive */
         double v = PyFloat_AsDouble(item);
         if (v == -1.0 && PyErr_Occurred()) {
             PyErr_Clear();
-            PyErr_Format(PyExc_TypeError, "%s[%zd]: expected a number, got %s", what, i,
-                         Py_TYPE(item)->tp_name);
+            cx_type_error(what, i, "a number", item);
             PyMem_Free(d);
             Py_DECREF(seq);
             return 0;
@@ -308,14 +329,29 @@ static PyObject *cx_make_array(cx_state *s, char typecode, const double *v, size
                                  v[i], i / (size_t)dim, (double)FLT_MAX);
             }
     }
-    PyObject *bytes = PyBytes_FromStringAndSize(NULL, (Py_ssize_t)(count * esize));
-    if (bytes == NULL)
+    /* The array is made at its full size first (one zero item repeated)
+     * and filled through its buffer: no bytes object to copy from, so a
+     * result of millions of points touches its memory once (fresh pages
+     * cost more than the copy itself). */
+    char tc[2] = {typecode, '\0'};
+    static const char zeros[sizeof(double)] = {0};
+    PyObject *one = PyObject_CallFunction(s->array_type, "sy#", tc, zeros, (Py_ssize_t)esize);
+    if (one == NULL)
         return NULL;
-    char *raw = PyBytes_AS_STRING(bytes);
+    PyObject *arr = PySequence_Repeat(one, (Py_ssize_t)count);
+    Py_DECREF(one);
+    if (arr == NULL || count == 0)
+        return arr;
+    Py_buffer view;
+    if (PyObject_GetBuffer(arr, &view, PyBUF_WRITABLE | PyBUF_C_CONTIGUOUS) < 0) {
+        Py_DECREF(arr);
+        return NULL;
+    }
+    char *raw = view.buf;
     if (stride == dim && typecode == 'd') {
         memcpy(raw, v, count * sizeof(double));
     } else if (stride == dim) {
-        float *f = (float *)(void *)raw; /* PyBytes data is suitably aligned */
+        float *f = (float *)(void *)raw; /* array data comes from malloc: aligned */
         for (size_t i = 0; i < count; i++)
             f[i] = (float)v[i];
     } else if (typecode == 'f') {
@@ -343,9 +379,7 @@ static PyObject *cx_make_array(cx_state *s, char typecode, const double *v, size
             }
         }
     }
-    char tc[2] = {typecode, '\0'};
-    PyObject *arr = PyObject_CallFunction(s->array_type, "sO", tc, bytes);
-    Py_DECREF(bytes);
+    PyBuffer_Release(&view);
     return arr;
 }
 
@@ -355,7 +389,7 @@ static int cx_typecode(cx_state *s, PyObject *obj, char *out)
         *out = 'd';
         return 1;
     }
-    const char *t = PyUnicode_Check(obj) ? PyUnicode_AsUTF8(obj) : NULL;
+    const char *t = PyUnicode_Check(obj) ? PyUnicode_AsUTF8AndSize(obj, NULL) : NULL;
     if (t == NULL || (strcmp(t, "d") != 0 && strcmp(t, "f") != 0)) {
         PyErr_Clear();
         PyErr_SetString(s->arg_error, "typecode must be 'd' or 'f'");
@@ -1117,9 +1151,13 @@ static PyObject *cx_subdivide(PyObject *self, PyObject *args, PyObject *kw)
         al = cx_make_array(S, typecode, dim == 3 ? hl3 : hl, N, dim, dim, 0.0);
         ar = cx_make_array(S, typecode, dim == 3 ? hr3 : hr, N, dim, dim, 0.0);
     }
-    if (ap && an && aa && infl && info && (!handles || (al && ar))) {
-        for (size_t k = 0; k < job.ninflections; k++)
-            PyTuple_SET_ITEM(infl, (Py_ssize_t)k, PyLong_FromSize_t(job.inflections[k]));
+    int ok = ap && an && aa && infl && info && (!handles || (al && ar));
+    for (size_t k = 0; ok && k < job.ninflections; k++) {
+        PyObject *ik = PyLong_FromSize_t(job.inflections[k]);
+        /* PyTuple_SetItem steals ik, also when it fails */
+        ok = ik != NULL && PyTuple_SetItem(infl, (Py_ssize_t)k, ik) == 0;
+    }
+    if (ok) {
         if (handles)
             result = PyTuple_Pack(7, ap, an, aa, infl, info, al, ar);
         else
@@ -1468,6 +1506,7 @@ typedef struct cx_curve_job {
     cx_kind kind;
     size_t n;
     int closed, smooth, handles;
+    int normals; /* the caller wants onxy (else it stays NULL: less memory) */
     const double *xy, *hl, *hr; /* 2n each; hl, hr: BEZIER only */
     const double *w;            /* NURBS: n weights or NULL */
     const double *knots;        /* NURBS: n + degree + 1 */
@@ -1768,18 +1807,19 @@ static conica_code cx_curve_run(cx_curve_job *j)
     if (rc == CONICA_OK) {
         j->N = N;
         j->oxy = malloc(2 * N * sizeof *j->oxy);
-        j->onxy = malloc(2 * N * sizeof *j->onxy);
+        j->onxy = j->normals ? malloc(2 * N * sizeof *j->onxy) : NULL;
         j->exact = malloc(N * sizeof *j->exact);
         j->oattr = j->nattrs ? malloc(N * (size_t)j->nattrs * sizeof *j->oattr) : NULL;
         j->ohl = j->handles ? malloc(2 * N * sizeof *j->ohl) : NULL;
         j->ohr = j->handles ? malloc(2 * N * sizeof *j->ohr) : NULL;
-        if (!j->oxy || !j->onxy || !j->exact || (j->nattrs && !j->oattr) ||
+        if (!j->oxy || (j->normals && !j->onxy) || !j->exact || (j->nattrs && !j->oattr) ||
             (j->handles && (!j->ohl || !j->ohr)))
             rc = cx_fail(st, CONICA_ERR_NOMEM, "out of memory");
     }
     if (rc == CONICA_OK) {
         memcpy(j->oxy, L->xy, 2 * N * sizeof *j->oxy);
-        memcpy(j->onxy, L->nxy, 2 * N * sizeof *j->onxy);
+        if (j->onxy)
+            memcpy(j->onxy, L->nxy, 2 * N * sizeof *j->onxy);
         /* output points that are input points, bit for bit in the plane */
         for (size_t k = 0; k < N; k++) {
             size_t s = L->seg[k], a = CX_NONE, b = CX_NONE;
@@ -2085,6 +2125,7 @@ static PyObject *cx_curve(PyObject *self, PyObject *args, PyObject *kw)
         job.closed = closed;
         job.smooth = smooth;
         job.handles = handles;
+        job.normals = want_normals;
         job.xy = xy;
         job.hl = hl2;
         job.hr = hr2;
@@ -2275,11 +2316,120 @@ static PyObject *cx_version(PyObject *self, PyObject *unused)
     return PyUnicode_FromString(conica_version());
 }
 
+/* ------------------------------------------------------------ surface */
+
+PyDoc_STRVAR(surface_doc,
+"surface(ctrl, *, nu, nv, degree_u, degree_v, knots_u, knots_v, weights=None,\n"
+"        tolerance, max_points=4194304)\n"
+"--\n\n"
+"A tensor-product NURBS surface plotted to a quad grid by libconica's\n"
+"two-phase surface plotter (Dahl's thesis, Section 4.1.2): the isocurves at\n"
+"every distinct knot of one direction are plotted within `tolerance`\n"
+"(absolute) by the guaranteed method, the parameters they need collected,\n"
+"then the other direction likewise. ctrl: nu*nv control points, x,y,z each,\n"
+"index ((i*nv)+j)*3 (i along u); weights: nu*nv positive values or None;\n"
+"knots_u: nu + degree_u + 1 values, knots_v likewise.\n\n"
+"Returns (points, gu, gv, info): points an array('d') of gu*gv x,y,z grid\n"
+"points, index ((i*gv)+j)*3, every one on the surface; info: points, seconds.\n"
+"The grid's quads are not certified by the plotter (only its isocurves).");
+
+static PyObject *cx_surface(PyObject *self, PyObject *args, PyObject *kw)
+{
+    static char *kwlist[] = {"ctrl", "nu", "nv", "degree_u", "degree_v", "knots_u",
+                             "knots_v", "weights", "tolerance", "max_points", NULL};
+    cx_state *S = cx_get_state(self);
+    PyObject *octrl, *oku = NULL, *okv = NULL, *ow = Py_None;
+    Py_ssize_t nu = -1, nv = -1, max_points = (Py_ssize_t)CX_DEFAULT_MAX_POINTS;
+    int du = -1, dv = -1;
+    double tol = -1.0;
+    if (!PyArg_ParseTupleAndKeywords(args, kw, "O|$nniiOOOdn:surface", kwlist, &octrl, &nu,
+                                     &nv, &du, &dv, &oku, &okv, &ow, &tol, &max_points))
+        return NULL;
+    if (nu < 2 || nv < 2)
+        return cx_raisef(S->arg_error, "nu and nv must be given and >= 2, got %zd, %zd", nu,
+                         nv);
+    if (du < 1 || dv < 1)
+        return cx_raisef(S->arg_error, "degree_u and degree_v must be given and >= 1");
+    if (!(tol > 0) || !isfinite(tol))
+        return cx_raisef(S->arg_error, "tolerance must be a positive finite number");
+    if (max_points < 4 || (size_t)max_points > CX_HARD_MAX_POINTS)
+        return cx_raisef(S->limit_error, "max_points must be 4..%zu, got %zd",
+                         CX_HARD_MAX_POINTS, max_points);
+    if (oku == NULL || okv == NULL)
+        return cx_raisef(S->arg_error, "knots_u and knots_v must be given");
+
+    PyObject *result = NULL;
+    double *ctrl = NULL, *ku = NULL, *kv = NULL, *w = NULL;
+    size_t nc = 0, nku = 0, nkv = 0, nw = 0;
+    conica_bspline_surface sf;
+    conica_bspline_surface_init(&sf);
+    conica_quadgrid g;
+    conica_quadgrid_init(&g);
+    conica_status st;
+    memset(&st, 0, sizeof st);
+    if (!cx_read_checked(S, octrl, "ctrl", 0, 1, &ctrl, &nc) ||
+        !cx_read_checked(S, oku, "knots_u", 0, 0, &ku, &nku) ||
+        !cx_read_checked(S, okv, "knots_v", 0, 0, &kv, &nkv))
+        goto done;
+    if (ow != Py_None && !cx_read_checked(S, ow, "weights", 0, 0, &w, &nw))
+        goto done;
+    if ((size_t)nu > CX_MAX_INPUT_VALUES / (size_t)nv ||
+        nc != 3 * (size_t)nu * (size_t)nv) {
+        cx_raisef(S->arg_error, "ctrl: %zu values, %zd x %zd control points need %zu", nc, nu,
+                  nv, 3 * (size_t)nu * (size_t)nv);
+        goto done;
+    }
+    if (w && nw != (size_t)nu * (size_t)nv) {
+        cx_raisef(S->arg_error, "weights: %zu values for %zd x %zd control points", nw, nu, nv);
+        goto done;
+    }
+    conica_code rc;
+    double seconds = 0.0;
+    Py_BEGIN_ALLOW_THREADS
+    rc = conica_bspline_surface_set(du, dv, 3, ku, nku, kv, nkv, ctrl, (size_t)nu, (size_t)nv,
+                                    w, &sf, &st);
+    if (rc == CONICA_OK) {
+        conica_plot_settings set = conica_plot_defaults();
+        set.method = CONICA_PLOT_GUARANTEED;
+        set.abs_tolerance = tol;
+        set.max_points = (size_t)max_points;
+        conica_plot_stats stats;
+        memset(&stats, 0, sizeof stats);
+        double t0 = cx_now();
+        rc = conica_plot_surface_envelope(&sf, &set, &g, &stats, &st);
+        seconds = cx_now() - t0;
+    }
+    Py_END_ALLOW_THREADS
+    if (rc != CONICA_OK) {
+        cx_raise(S, rc, &st);
+        goto done;
+    }
+    {
+        PyObject *ap = cx_make_array(S, 'd', g.xyz, g.nu * g.nv, 3, 3, 0.0);
+        PyObject *info = Py_BuildValue("{s:n,s:d}", "points", (Py_ssize_t)(g.nu * g.nv),
+                                       "seconds", seconds);
+        if (ap && info)
+            result = Py_BuildValue("(OnnO)", ap, (Py_ssize_t)g.nu, (Py_ssize_t)g.nv, info);
+        Py_XDECREF(ap);
+        Py_XDECREF(info);
+    }
+done:
+    PyMem_Free(ctrl);
+    PyMem_Free(ku);
+    PyMem_Free(kv);
+    PyMem_Free(w);
+    conica_bspline_surface_free(&sf);
+    conica_quadgrid_free(&g);
+    return result;
+}
+
 static PyMethodDef cx_methods[] = {
     {"subdivide", (PyCFunction)(void (*)(void))cx_subdivide, METH_VARARGS | METH_KEYWORDS,
      subdivide_doc},
     {"curve", (PyCFunction)(void (*)(void))cx_curve, METH_VARARGS | METH_KEYWORDS, curve_doc},
     {"plot", (PyCFunction)(void (*)(void))cx_plot, METH_VARARGS | METH_KEYWORDS, plot_doc},
+    {"surface", (PyCFunction)(void (*)(void))cx_surface, METH_VARARGS | METH_KEYWORDS,
+     surface_doc},
     {"fit_plane", cx_fit_plane_py, METH_O, fit_plane_doc},
     {"version", cx_version, METH_NOARGS, version_doc},
     {NULL, NULL, 0, NULL}};
@@ -2397,9 +2547,12 @@ PyMODINIT_FUNC PyInit__conica(void)
         !(s->unsupported = cx_add_exc(m, "UnsupportedError", s->error,
                                       PyExc_NotImplementedError, "Valid but unsupported input.")))
         goto fail;
-    if (PyModule_AddStringConstant(m, "SOABI", CONICA_SOABI) < 0 ||
-        PyModule_AddObject(m, "PY_VERSION",
-                           Py_BuildValue("(ii)", PY_MAJOR_VERSION, PY_MINOR_VERSION)) < 0 ||
+    /* ABI and PY_MIN_VERSION: what the add-on's import check compares with
+     * the running Python */
+    if (PyModule_AddStringConstant(m, "ABI", "abi3") < 0 ||
+        PyModule_AddObject(m, "PY_MIN_VERSION",
+                           Py_BuildValue("(ii)", CX_LIMITED_API >> 24,
+                                         (CX_LIMITED_API >> 16) & 0xff)) < 0 ||
         PyModule_AddIntConstant(m, "MAX_LEVELS", CONICA_SUBDIV_MAX_LEVELS) < 0 ||
         PyModule_AddIntConstant(m, "MAX_POINTS", (long)CX_HARD_MAX_POINTS) < 0 ||
         PyModule_AddIntConstant(m, "MAX_PATH_LEVELS", CX_PATH_MAX_LEVELS) < 0 ||

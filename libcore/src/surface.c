@@ -272,6 +272,135 @@ static conica_code iso_plot(const conica_bspline_surface *s, int fix_v, double x
     return rc;
 }
 
+/* One isocurve's plot parameters (sorted, unique) per entry, for the
+ * envelope merge. */
+typedef struct psets {
+    pset *v;
+    size_t n, cap;
+} psets;
+
+static void psets_free(psets *S)
+{
+    for (size_t k = 0; k < S->n; k++)
+        free(S->v[k].v);
+    free(S->v);
+    S->v = NULL;
+    S->n = S->cap = 0;
+}
+
+/* A new empty set at the end of S; NULL when out of memory. */
+static pset *psets_push(psets *S)
+{
+    if (S->n == S->cap) {
+        size_t nc = S->cap ? 2 * S->cap : 16;
+        pset *v = realloc(S->v, nc * sizeof *v);
+        if (!v)
+            return NULL;
+        S->v = v;
+        S->cap = nc;
+    }
+    pset *ps = &S->v[S->n++];
+    ps->v = NULL;
+    ps->n = ps->cap = 0;
+    return ps;
+}
+
+/* Index j of the certified interval [P[j], P[j+1]] of P that holds t
+ * (the last one for t at or past its end). P->n >= 2. The envelope asks
+ * for s + eps: a step start that equals a point of P up to the union's
+ * grain belongs to the interval that starts there. */
+static size_t pset_interval(const pset *P, double t)
+{
+    size_t lo = 0, hi = P->n - 1; /* P[lo] <= t < P[hi] once narrowed */
+    while (hi - lo > 1) {
+        size_t mid = lo + (hi - lo) / 2;
+        if (P->v[mid] <= t)
+            lo = mid;
+        else
+            hi = mid;
+    }
+    return lo;
+}
+
+/* Share of an envelope step kept at least when its end moves back onto a
+ * parameter of the union. */
+#define ENVELOPE_SNAP 0.9
+
+/* The envelope of the isocurves' parameter sets S over [a, b]: from s = a,
+ * the next grid parameter e is as far as every isocurve allows: no
+ * certified interval of any of them that [s, e] overlaps is shorter than
+ * e - s, and no distinct knot lies inside (s, e). Each grid step is thus
+ * at most each isocurve's own certified step where it lies, instead of the
+ * union of all their parameters, which grows with the number of
+ * isocurves when their parameters do not line up (a rational sphere's
+ * meridians). Returns 0 when out of memory or past cap parameters. */
+static int pset_envelope(const psets *S, const double *knots, size_t nk, double a, double b,
+                         size_t cap, pset *out)
+{
+    double range = b - a, eps = 1e-12 * range;
+    /* the union of the sets: a step may end on one of its parameters */
+    pset all = {NULL, 0, 0};
+    for (size_t k = 0; k < S->n; k++)
+        if (!pset_add(&all, S->v[k].v, S->v[k].n)) {
+            free(all.v);
+            return 0;
+        }
+    pset_unique(&all, range);
+    if (!pset_add(out, &a, 1)) {
+        free(all.v);
+        return 0;
+    }
+    double s = a;
+    while (s < b - eps) {
+        double e = b;
+        for (size_t k = 0; k < S->n; k++) {
+            const pset *P = &S->v[k];
+            if (P->n < 2)
+                continue;
+            size_t j = pset_interval(P, s + eps);
+            double h = P->v[j + 1] - P->v[j];
+            if (s + h < e)
+                e = s + h;
+        }
+        /* shrink until no overlapped certified interval is shorter */
+        for (int changed = 1; changed;) {
+            changed = 0;
+            for (size_t k = 0; k < S->n; k++) {
+                const pset *P = &S->v[k];
+                if (P->n < 2)
+                    continue;
+                for (size_t j = pset_interval(P, s + eps); j + 1 < P->n && P->v[j] < e - eps; j++) {
+                    double h = P->v[j + 1] - P->v[j];
+                    if (h < e - s - eps) {
+                        e = s + h;
+                        changed = 1;
+                    }
+                }
+            }
+        }
+        for (size_t i = 0; i < nk; i++)
+            if (knots[i] > s + eps && knots[i] < e - eps)
+                e = knots[i];
+        if (all.n >= 2) { /* end on an isocurve's parameter when that costs
+                             * little of the step: aligned sets stay aligned */
+            size_t j = pset_interval(&all, e + eps);
+            if (all.v[j] > s + eps && all.v[j] <= e + eps &&
+                all.v[j] >= s + ENVELOPE_SNAP * (e - s))
+                e = all.v[j];
+        }
+        if (!(e > s + eps))
+            e = s + eps > b ? b : s + eps; /* no step below the uniqueness grain */
+        if (out->n >= cap || !pset_add(out, &e, 1)) {
+            free(all.v);
+            return 0;
+        }
+        s = e;
+    }
+    out->v[out->n - 1] = b;
+    free(all.v);
+    return 1;
+}
+
 static double surf_diag(const conica_bspline_surface *s)
 {
     double lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
@@ -291,8 +420,44 @@ static double surf_diag(const conica_bspline_surface *s)
     return sqrt(d2);
 }
 
+/* One direction's isocurves, each plotted into a set of its own (merge:
+ * for the envelope) or all into `all` (the union of Section 4.1.2). */
+static conica_code iso_plot_into(const conica_bspline_surface *s, int fix_v, double x, double tol,
+                                 const conica_plot_settings *set, int merge, pset *all,
+                                 psets *each, conica_plot_stats *stats, conica_status *st)
+{
+    if (!merge)
+        return iso_plot(s, fix_v, x, tol, set, all, stats, st);
+    pset *ps = psets_push(each);
+    if (!ps)
+        return conica__fail(st, CONICA_ERR_NOMEM, 0, 0, "out of memory");
+    conica_code rc = iso_plot(s, fix_v, x, tol, set, ps, stats, st);
+    if (rc == CONICA_OK)
+        pset_unique(ps, fix_v ? s->knots_u[s->nu] - s->knots_u[s->degree_u]
+                              : s->knots_v[s->nv] - s->knots_v[s->degree_v]);
+    return rc;
+}
+
+static conica_code plot_surface(const conica_bspline_surface *s, const conica_plot_settings *set,
+                                int merge, conica_quadgrid *out, conica_plot_stats *stats,
+                                conica_status *st);
+
 conica_code conica_plot_surface(const conica_bspline_surface *s, const conica_plot_settings *set,
                                 conica_quadgrid *out, conica_plot_stats *stats,
+                                conica_status *st)
+{
+    return plot_surface(s, set, 0, out, stats, st);
+}
+
+conica_code conica_plot_surface_envelope(const conica_bspline_surface *s,
+                                         const conica_plot_settings *set, conica_quadgrid *out,
+                                         conica_plot_stats *stats, conica_status *st)
+{
+    return plot_surface(s, set, 1, out, stats, st);
+}
+
+static conica_code plot_surface(const conica_bspline_surface *s, const conica_plot_settings *set,
+                                int merge, conica_quadgrid *out, conica_plot_stats *stats,
                                 conica_status *st)
 {
     if (!s || !s->ctrl || !set || !out)
@@ -315,6 +480,7 @@ conica_code conica_plot_surface(const conica_bspline_surface *s, const conica_pl
     memset(&sx, 0, sizeof sx);
     sx.tolerance = tol;
     pset vs = {NULL, 0, 0}, us = {NULL, 0, 0};
+    psets each = {NULL, 0, 0};
     conica_code rc = CONICA_OK;
     const double *ku = s->knots_u, *kv = s->knots_v;
     double ua = ku[s->degree_u], ub = ku[s->nu], va = kv[s->degree_v], vb = kv[s->nv];
@@ -322,14 +488,26 @@ conica_code conica_plot_surface(const conica_bspline_surface *s, const conica_pl
     for (size_t i = (size_t)s->degree_u; i <= s->nu && rc == CONICA_OK; i++) {
         if (i > (size_t)s->degree_u && ku[i] == ku[i - 1])
             continue;
-        rc = iso_plot(s, 0, ku[i], tol, set, &vs, &sx, st);
+        rc = iso_plot_into(s, 0, ku[i], tol, set, merge, &vs, &each, &sx, st);
     }
+    if (rc == CONICA_OK && merge &&
+        !pset_envelope(&each, kv + s->degree_v, s->nv - (size_t)s->degree_v + 1, va, vb,
+                       set->max_points, &vs))
+        rc = conica__fail(st, CONICA_ERR_LIMIT, 0, 0, "v grid exceeds %zu lines (max_points)",
+                          set->max_points);
+    psets_free(&each);
     if (rc == CONICA_OK) {
         pset_unique(&vs, vb - va);
         /* phase 2: v = every refined v parameter -> u parameters */
         for (size_t j = 0; j < vs.n && rc == CONICA_OK; j++)
-            rc = iso_plot(s, 1, vs.v[j], tol, set, &us, &sx, st);
+            rc = iso_plot_into(s, 1, vs.v[j], tol, set, merge, &us, &each, &sx, st);
     }
+    if (rc == CONICA_OK && merge &&
+        !pset_envelope(&each, ku + s->degree_u, s->nu - (size_t)s->degree_u + 1, ua, ub,
+                       set->max_points, &us))
+        rc = conica__fail(st, CONICA_ERR_LIMIT, 0, 0, "u grid exceeds %zu lines (max_points)",
+                          set->max_points);
+    psets_free(&each);
     if (rc == CONICA_OK) {
         pset_unique(&us, ub - ua);
         if (us.n == 0 || vs.n == 0 || us.n > set->max_points / vs.n)

@@ -12,6 +12,72 @@ zip=$build/conica-blender.zip
 blender=${BLENDER:-blender}
 log=$tmp/blender.log
 
+so=$build/blender/conica/_conica.abi3.so
+abi=tests/blender/stable_abi.txt
+
+# The stable ABI is what lets one binary load in every Python from 3.11 on:
+# the module is compiled with -DPy_LIMITED_API=0x030B0000, and here every
+# Py* symbol it imports must be in CPython 3.11's stable ABI list. A symbol
+# outside it (a non-limited call, a private helper) would load in one
+# CPython and fail with "undefined symbol" in the next.
+# abi_outside LIST: the Py* symbols the .so imports that LIST lacks.
+abi_outside() {
+    nm -D --undefined-only "$so" | awk '{print $NF}' | sed 's/@.*//' |
+        grep -E '^_?Py' | sort -u >"$tmp/imports"
+    grep -v '^#' "$1" | sort -u >"$tmp/abi"
+    comm -23 "$tmp/imports" "$tmp/abi"
+}
+begin_case "blender: _conica.abi3.so imports only stable-ABI symbols"
+if ! command -v nm >/dev/null 2>&1; then
+    skip_case "nm (binutils) is not installed"
+else
+    check_true "$so exists (make BUILD=$build blender-addon)" test -f "$so"
+    abi_outside "$abi" >"$tmp/outside"
+    check_true "symbols outside the stable ABI: $(tr '\n' ' ' <"$tmp/outside")" \
+        test ! -s "$tmp/outside"
+    check_true "it imports Py* symbols at all ($(wc -l <"$tmp/imports") of them)" \
+        test -s "$tmp/imports"
+    check_true "it uses the buffer protocol, the 3.11 part of the stable ABI" \
+        grep -qx PyObject_GetBuffer "$tmp/imports"
+    # the check can fail: without PyObject_GetBuffer in the list it says so
+    grep -vx PyObject_GetBuffer "$abi" >"$tmp/abi-3.10"
+    check_true "a list without PyObject_GetBuffer is caught" \
+        sh -c 'test "$1" = PyObject_GetBuffer' sh "$(abi_outside "$tmp/abi-3.10")"
+fi
+
+# The zip is a Blender 4.2+ extension and a 3.x legacy add-on at once:
+# tests/blender/check_manifest.py reads it against the extension rules
+# (no Blender needed); each rule is a case. A zip with a broken manifest
+# must fail those rules.
+begin_case "blender: the manifest checker runs to its end"
+python=${CONICA_PYTHON:-/usr/bin/python3}
+"$python" tests/blender/check_manifest.py "$zip" >"$tmp/manifest.log" 2>&1
+check_grep '^SUMMARY ' "$tmp/manifest.log" "check_manifest.py ran to its end"
+grep -E '^(PASS|FAIL) ' "$tmp/manifest.log" | while IFS= read -r line; do
+    printf '%s\n' "$line"
+done >"$tmp/manifest.results"
+while IFS= read -r line; do
+    rest=${line#* }
+    name=${rest%%:*}
+    begin_case "blender: manifest: $name"
+    check_true "$rest" test "${line%% *}" = PASS
+done <"$tmp/manifest.results"
+begin_case "blender: manifest: a broken manifest is refused"
+mkdir -p "$tmp/bad/conica"
+(cd "$tmp/bad" && "$python" -c 'import sys, zipfile
+z = zipfile.ZipFile(sys.argv[1]); z.extractall("."); z.close()' "$(cd "$OLDPWD" && pwd)/$zip")
+sed -e 's/^tagline = .*/tagline = "Subdivides curves so that circles stay round, and much more besides."/' \
+    -e '/^maintainer/d' -e 's/^tags = .*/tags = ["Curves"]/' \
+    "$tmp/bad/conica/blender_manifest.toml" >"$tmp/bad/m" && mv "$tmp/bad/m" "$tmp/bad/conica/blender_manifest.toml"
+(cd "$tmp/bad" && "$python" -c 'import sys, zipfile, os
+z = zipfile.ZipFile("bad.zip", "w")
+[z.write(os.path.join("conica", f)) for f in sorted(os.listdir("conica"))]
+z.close()')
+"$python" tests/blender/check_manifest.py "$tmp/bad/bad.zip" >"$tmp/bad.log" 2>&1
+check_grep '^FAIL manifest_tagline: .*characters, at most 64' "$tmp/bad.log" "a long tagline ending in '.' fails"
+check_grep '^FAIL manifest_required_fields: missing: maintainer' "$tmp/bad.log" "a missing maintainer fails"
+check_grep "^FAIL manifest_tags: unknown tags \['Curves'\]" "$tmp/bad.log" "an unknown tag fails"
+
 begin_case "blender: the add-on suite runs to its end"
 if ! command -v "$blender" >/dev/null 2>&1; then
     skip_case "blender is not installed (scripts/deps.sh test installs it)"
