@@ -286,6 +286,13 @@ typedef struct conica_svg_settings {
      *  0: straight segments stay straight. polygon and polyline elements
      *  are always samples. */
     int lines_as_samples;
+    /** SMOOTH: > 0 simplifies samples subpaths (polygons, polylines and,
+     *  with it, path subpaths made only of straight segments: traced
+     *  outlines) before smoothing: the fewest vertices whose smoothed curve
+     *  passes within this distance (user units) of every original vertex,
+     *  corners kept (conica/simplify.h). Default 0: every vertex is
+     *  interpolated. */
+    double simplify;
     /** Non-zero: open subpaths are closed with a straight edge, as SVG
      *  fills them (for tools that need regions). */
     int close_open;

@@ -1303,6 +1303,8 @@ static conica_code check_settings(const conica_svg_settings *s, conica_status *s
                                 CONICA_SUBDIV_MAX_LEVELS);
     if (!(s->tolerance >= 0.0) || !isfinite(s->tolerance))
         return conica__fail(st, CONICA_ERR_ARG, 0, 0, "tolerance must be finite and >= 0");
+    if (!(s->simplify >= 0.0) || !isfinite(s->simplify))
+        return conica__fail(st, CONICA_ERR_ARG, 0, 0, "simplify must be finite and >= 0");
     if (!(s->corner_angle_deg >= 0.0))
         return conica__fail(st, CONICA_ERR_ARG, 0, 0, "corner angle must be >= 0");
     if (s->precision < 1 || s->precision > 17)
