@@ -56,6 +56,7 @@ typedef struct outcome {
     double to_samples; /* largest distance of a sample from the smoothed curve */
     double to_truth;   /* largest distance of the smoothed curve from the true one */
     int has[8];        /* whether the checked indices were kept */
+    int near[8];       /* whether a kept vertex lies within the tolerance of them */
 } outcome;
 
 /* Simplify, smooth the kept vertices as the tools do, and measure. */
@@ -82,9 +83,13 @@ static outcome run(const double *xy, size_t n, int closed, double tol, const dou
             REQUIRE(keep[i] > keep[i - 1]);
         kxy[2 * i] = xy[2 * keep[i]];
         kxy[2 * i + 1] = xy[2 * keep[i] + 1];
-        for (j = 0; j < nwant; j++)
+        for (j = 0; j < nwant; j++) {
             if (keep[i] == want[j])
                 o.has[j] = 1;
+            if (hypot(xy[2 * keep[i]] - xy[2 * want[j]], xy[2 * keep[i] + 1] - xy[2 * want[j] + 1]) <=
+                tol)
+                o.near[j] = 1;
+        }
     }
     o.kept = m;
     conica_path_init(&p);
@@ -174,6 +179,52 @@ TEST_CASE("simplify: a jittered square keeps its four corners", "[simplify]")
     INFO("%zu of 160 kept, %.4f from the samples", o.kept, o.to_samples);
     for (k = 0; k < 4; k++)
         CHECK(o.has[k]);
+    CHECK_LE(o.to_samples, tol * (1 + 1e-9));
+    CHECK_LE(o.kept, (size_t)40);
+}
+
+TEST_CASE("simplify: dense traces, jitter above the spacing: few vertices, no false corners, "
+          "true corners kept",
+          "[simplify]")
+{
+    static double xy[2 * 8000];
+    const double tol = 0.05;
+    size_t n = 8000, i, corners[4] = {0, 2000, 4000, 6000}, k;
+    uint64_t seed = 99;
+    outcome o;
+    /* a circle of radius 10 sampled every 0.008, jitter up to 0.02 */
+    for (i = 0; i < n; i++) {
+        double t = 2 * M_PI * (double)i / (double)n, a = 2 * M_PI * rnd(&seed);
+        double rr = 0.4 * tol * rnd(&seed);
+        xy[2 * i] = 10 * cos(t) + rr * cos(a);
+        xy[2 * i + 1] = 10 * sin(t) + rr * sin(a);
+    }
+    o = run(xy, n, 1, tol, NULL, 0, NULL, 0);
+    INFO("circle: %zu of %zu kept, %.4f from the samples", o.kept, n, o.to_samples);
+    CHECK_LE(o.to_samples, tol * (1 + 1e-9));
+    CHECK_LE(o.kept, (size_t)24);
+    /* a square of side 10 sampled every 0.005, edges jittered, corners exact */
+    for (i = 0; i < n; i++) {
+        double t = (double)(i % 2000) / 200, x, y;
+        switch (i / 2000) {
+        case 0: x = t, y = 0; break;
+        case 1: x = 10, y = t; break;
+        case 2: x = 10 - t, y = 10; break;
+        default: x = 0, y = 10 - t; break;
+        }
+        if (i % 2000) {
+            x += (rnd(&seed) - 0.5) * 0.4 * tol;
+            y += (rnd(&seed) - 0.5) * 0.4 * tol;
+        }
+        xy[2 * i] = x;
+        xy[2 * i + 1] = y;
+    }
+    o = run(xy, n, 1, tol, NULL, 0, corners, 4);
+    INFO("square: %zu of %zu kept, %.4f from the samples", o.kept, n, o.to_samples);
+    /* judged at the tolerance's scale, the corner may be a neighbour of the
+     * exact vertex within the jitter */
+    for (k = 0; k < 4; k++)
+        CHECK(o.near[k]);
     CHECK_LE(o.to_samples, tol * (1 + 1e-9));
     CHECK_LE(o.kept, (size_t)40);
 }

@@ -24,6 +24,18 @@
 
 #define SIMPLIFY_MAX_ROUNDS 1024
 #define SIMPLIFY_DEFAULT_WORK ((size_t)1 << 24)
+/* Corners are judged at the scale of the tolerance: the turn at a vertex is
+ * measured towards the nearest vertices farther than this many tolerances
+ * on each side (jitter within the tolerance makes no corner), at most
+ * SIMPLIFY_CORNER_WINDOW vertices away; with the tolerance below the
+ * spacing of the vertices it is conica/path.h's rule on the neighbours. */
+#define SIMPLIFY_CORNER_SCALE 2.0
+/* Dropping a vertex is judged on this many kept vertices on each side of
+ * it, measuring SIMPLIFY_REACH arcs on each side; the whole curve is
+ * checked again at the end. */
+#define SIMPLIFY_WINDOW 10
+#define SIMPLIFY_REACH 4
+#define SIMPLIFY_CORNER_WINDOW 256
 
 conica_simplify_settings conica_simplify_defaults(void)
 {
@@ -69,6 +81,54 @@ static double seg_dist(const double *p, const double *a, const double *b)
     return hypot(p[0] - a[0] - t * ex, p[1] - a[1] - t * ey);
 }
 
+/* The vertices at which the turn towards the nearest vertices farther than
+ * `reach` on each side is above `angle`, and the largest such turn among
+ * the vertices between those two (one corner, not the run of vertices
+ * around it that see it too). fixed[i] set for each; returns how many.
+ * turn[] is scratch of m doubles. */
+static size_t find_corners(const double *P, size_t m, int closed, double angle, double reach,
+                           unsigned char *fixed, double *turn, size_t *lo, size_t *hi)
+{
+    size_t i, k, count = 0, wmax = closed ? (m - 1) / 2 : m;
+    if (wmax > SIMPLIFY_CORNER_WINDOW)
+        wmax = SIMPLIFY_CORNER_WINDOW;
+    for (i = 0; i < m; i++) {
+        size_t b = 1, f = 1;
+        turn[i] = 0;
+        lo[i] = hi[i] = 0;
+        if (!closed && (i == 0 || i + 1 == m))
+            continue;
+        /* k steps back / forward: index (i - k) mod m, (i + k) mod m */
+        while (b < wmax && (closed || b < i) &&
+               hypot(P[2 * ((i + m - b) % m)] - P[2 * i], P[2 * ((i + m - b) % m) + 1] - P[2 * i + 1]) <= reach)
+            b++;
+        while (f < wmax && (closed || i + f + 1 < m) &&
+               hypot(P[2 * ((i + f) % m)] - P[2 * i], P[2 * ((i + f) % m) + 1] - P[2 * i + 1]) <= reach)
+            f++;
+        lo[i] = b;
+        hi[i] = f;
+        turn[i] = turn_at(P + 2 * ((i + m - b) % m), P + 2 * i, P + 2 * ((i + f) % m));
+    }
+    for (i = 0; i < m; i++) {
+        int best = turn[i] > angle;
+        for (k = 1; best && k < lo[i]; k++) {
+            size_t j = (i + m - k) % m;
+            if (turn[j] >= turn[i]) /* ties: the earlier vertex */
+                best = 0;
+        }
+        for (k = 1; best && k < hi[i]; k++) {
+            size_t j = (i + k) % m;
+            if (turn[j] > turn[i])
+                best = 0;
+        }
+        if (best) {
+            fixed[i] = 1;
+            count++;
+        }
+    }
+    return count;
+}
+
 /* Douglas–Peucker on the vertices strictly between a and b (indices mod m,
  * b reached from a going forward): keep the farthest from the chord while
  * it is over the tolerance. Explicit stack of at most m ranges. */
@@ -101,34 +161,40 @@ static int seed_dp(sctx *c, size_t a, size_t b, size_t *stack)
     return 1;
 }
 
-/* Smooth the kept vertices and measure. Returns CONICA_OK with c->add
- * filled (all SIZE_MAX: the check passed), CONICA_ERR_DEGENERATE when the
- * kept set cannot be judged (the caller keeps more), or an error. */
-static conica_code check(sctx *c, conica_status *st)
+/* The kept vertices, ascending, into c->K (c->nk of them). */
+static void gather(sctx *c)
+{
+    size_t i, nk = 0;
+    for (i = 0; i < c->m; i++)
+        if (c->kept[i])
+            c->K[nk++] = i;
+    c->nk = nk;
+}
+
+/* Smooth `cnt` consecutive kept vertices from kept position `from` (mod nk;
+ * a closed run when `closed`) and measure the arcs from local positions
+ * `alo` to `ahi` (exclusive): c->add[global arc] gets the vertex to insert
+ * there, or stays SIZE_MAX. Returns CONICA_OK, CONICA_ERR_DEGENERATE when
+ * the run cannot be judged (the caller keeps more), or an error. */
+static conica_code measure(sctx *c, size_t from, size_t cnt, int closed, size_t alo, size_t ahi,
+                           conica_status *st)
 {
     conica_path p;
     conica_path_result r;
     conica_code rc;
-    size_t i, j, m = c->m, nk = 0, narcs;
+    size_t i, t, m = c->m, nk = c->nk;
     const conica_path_polyline *L;
-    for (i = 0; i < m; i++)
-        if (c->kept[i]) {
-            c->K[nk] = i;
-            c->kxy[2 * nk] = c->P[2 * i];
-            c->kxy[2 * nk + 1] = c->P[2 * i + 1];
-            nk++;
-        }
-    c->nk = nk;
-    narcs = c->closed ? nk : nk - 1;
-    for (j = 0; j < nk; j++)
-        c->add[j] = SIZE_MAX;
-    c->deviation = 0;
-    if (nk < (c->closed ? 3u : 2u))
+    if (cnt < (closed ? 3u : 2u))
         return CONICA_ERR_DEGENERATE;
+    for (t = 0; t < cnt; t++) {
+        size_t v = c->K[(from + t) % nk];
+        c->kxy[2 * t] = c->P[2 * v];
+        c->kxy[2 * t + 1] = c->P[2 * v + 1];
+    }
     conica_path_init(&p);
     conica_path_result_init(&r);
-    rc = conica_path_samples(&p, c->kxy, NULL, nk, c->closed, 0, st);
-    if (rc == CONICA_OK && (p.nsub != 1 || p.sub[0].n != nk))
+    rc = conica_path_samples(&p, c->kxy, NULL, cnt, closed, 0, st);
+    if (rc == CONICA_OK && (p.nsub != 1 || p.sub[0].n != cnt))
         rc = CONICA_ERR_DEGENERATE; /* kept vertices merged: judged with more */
     if (rc == CONICA_OK)
         rc = conica_path_smooth(&p, c->ps, &r, st);
@@ -138,17 +204,17 @@ static conica_code check(sctx *c, conica_status *st)
         return rc == CONICA_ERR_NOMEM || rc == CONICA_ERR_LIMIT ? rc : CONICA_ERR_DEGENERATE;
     }
     L = &r.lines[0];
-    for (j = 0; j < nk; j++)
-        c->pos[j] = SIZE_MAX;
+    for (t = 0; t < cnt; t++)
+        c->pos[t] = SIZE_MAX;
     for (i = 0; i < L->n; i++)
-        if ((L->flags[i] & CONICA_PATH_PT_VERTEX) && L->seg[i] < nk && c->pos[L->seg[i]] == SIZE_MAX)
+        if ((L->flags[i] & CONICA_PATH_PT_VERTEX) && L->seg[i] < cnt && c->pos[L->seg[i]] == SIZE_MAX)
             c->pos[L->seg[i]] = i;
-    for (j = 0; j < nk; j++)
-        if (c->pos[j] == SIZE_MAX)
+    for (t = 0; t < cnt; t++)
+        if (c->pos[t] == SIZE_MAX)
             rc = CONICA_ERR_DEGENERATE;
-    for (j = 0; j < narcs && rc == CONICA_OK; j++) {
-        size_t a = c->K[j], b = j + 1 < nk ? c->K[j + 1] : c->K[0] + m;
-        size_t pa = c->pos[j], pb = c->pos[j + 1 < nk ? j + 1 : 0];
+    for (t = alo; t < ahi && rc == CONICA_OK; t++) {
+        size_t g = (from + t) % nk, a = c->K[g], b = g + 1 < nk ? c->K[g + 1] : c->K[0] + m;
+        size_t pa = c->pos[t], pb = c->pos[t + 1 < cnt ? t + 1 : 0];
         size_t worst = SIZE_MAX;
         double wd = c->tol;
         if (pb <= pa)
@@ -166,7 +232,7 @@ static conica_code check(sctx *c, conica_status *st)
                 worst = i % m;
             }
         }
-        c->add[j] = worst;
+        c->add[g] = worst;
     }
     conica_path_result_free(&r);
     conica_path_free(&p);
@@ -174,29 +240,84 @@ static conica_code check(sctx *c, conica_status *st)
         return rc;
     /* corners: the kept polygon turns sharply exactly at the input's corners
      * (conica_path_smooth() splits there by the same rule) */
-    for (j = 0; j < nk && c->ps->corner_angle < M_PI; j++) {
-        size_t pj = j ? j - 1 : nk - 1, nj = j + 1 < nk ? j + 1 : 0, v = c->K[j];
+    for (t = alo; t <= ahi && t < cnt && c->ps->corner_angle < M_PI; t++) {
+        size_t g = (from + t) % nk, v = c->K[g], pg = (g + nk - 1) % nk, ng = (g + 1) % nk;
+        size_t near[2], arcs[2], k;
         int sharp;
-        size_t near[2], arcs[2], s;
-        if (!c->closed && (j == 0 || j + 1 == nk))
+        if ((!closed && (t == 0 || t + 1 == cnt)) || (!c->closed && (g == 0 || g + 1 == nk)))
             continue;
-        sharp = turn_at(c->kxy + 2 * pj, c->kxy + 2 * j, c->kxy + 2 * nj) > c->ps->corner_angle;
+        sharp = turn_at(c->P + 2 * c->K[pg], c->P + 2 * v, c->P + 2 * c->K[ng]) >
+                c->ps->corner_angle;
         if (sharp == (c->fixed[v] != 0))
             continue;
         /* a lost corner gets its neighbours back; a new one, the middles */
-        arcs[0] = pj;
-        arcs[1] = j;
+        arcs[0] = pg;
+        arcs[1] = g;
         near[0] = (v + m - 1) % m;
         near[1] = (v + 1) % m;
-        for (s = 0; s < 2; s++) {
-            size_t arc = arcs[s], a = c->K[arc];
+        for (k = 0; k < 2; k++) {
+            size_t arc = arcs[k], a = c->K[arc];
             size_t b = arc + 1 < nk ? c->K[arc + 1] : c->K[0] + m;
             if (b < a + 2 || c->add[arc] != SIZE_MAX)
                 continue; /* no vertex between them, or one already coming */
-            c->add[arc] = c->fixed[v] ? near[s] : (a + (b - a) / 2) % m;
+            c->add[arc] = c->fixed[v] ? near[k] : (a + (b - a) / 2) % m;
         }
     }
     return CONICA_OK;
+}
+
+/* Smooth all kept vertices and measure every arc. */
+static conica_code check(sctx *c, conica_status *st)
+{
+    size_t j;
+    gather(c);
+    for (j = 0; j < c->nk; j++)
+        c->add[j] = SIZE_MAX;
+    c->deviation = 0;
+    if (c->nk < (c->closed ? 3u : 2u))
+        return CONICA_ERR_DEGENERATE;
+    return measure(c, 0, c->nk, c->closed, 0, c->closed ? c->nk : c->nk - 1, st);
+}
+
+/* After kept vertex v was dropped: smooth only the SIMPLIFY_WINDOW kept
+ * vertices on each side of the gap and measure the SIMPLIFY_REACH arcs on
+ * each side (the subdivision is local: a kept vertex moves the curve only
+ * a few arcs away, through the normals estimated from its neighbours), or
+ * everything when there are few. */
+static conica_code check_near(sctx *c, size_t v, conica_status *st)
+{
+    size_t j, q = 0, nk, from, cnt, alo, ahi;
+    gather(c);
+    nk = c->nk;
+    for (j = 0; j < nk; j++)
+        c->add[j] = SIZE_MAX;
+    c->deviation = 0;
+    if (nk <= 2 * SIMPLIFY_WINDOW + 2)
+        return check(c, st);
+    while (q < nk && c->K[q] < v)
+        q++; /* the first kept vertex after the gap (nk: wraps to 0) */
+    if (c->closed) {
+        q %= nk;
+        from = (q + nk - SIMPLIFY_WINDOW) % nk;
+        cnt = 2 * SIMPLIFY_WINDOW;
+        alo = SIMPLIFY_WINDOW - SIMPLIFY_REACH;
+        ahi = SIMPLIFY_WINDOW + SIMPLIFY_REACH - 1;
+    } else {
+        size_t lo = q >= SIMPLIFY_WINDOW ? q - SIMPLIFY_WINDOW : 0;
+        size_t hi = q + SIMPLIFY_WINDOW < nk ? q + SIMPLIFY_WINDOW : nk; /* exclusive */
+        size_t mlo = q >= SIMPLIFY_REACH ? q - SIMPLIFY_REACH : 0;
+        size_t mhi = q + SIMPLIFY_REACH - 1 < nk - 1 ? q + SIMPLIFY_REACH - 1 : nk - 1;
+        from = lo;
+        cnt = hi - lo;
+        /* the window's own ends are not the curve's: their arcs stay unmeasured */
+        alo = mlo - lo;
+        ahi = mhi - lo;
+        if (lo > 0 && alo == 0)
+            alo = 1;
+        if (hi < nk && ahi + 1 >= cnt)
+            ahi = cnt - 2;
+    }
+    return measure(c, from, cnt, 0, alo, ahi, st);
 }
 
 static int passed(const sctx *c)
@@ -218,7 +339,7 @@ conica_code conica_simplify(const double *xy, size_t n, int closed,
     size_t i, m = 0, *u = NULL, *stack = NULL, nfixed = 0, rounds = 0;
     double *P = NULL, lo[2] = {HUGE_VAL, HUGE_VAL}, hi[2] = {-HUGE_VAL, -HUGE_VAL};
     conica_code rc = CONICA_OK;
-    int all = 0;
+    int all = 0, dropping_done = 0;
     if (!xy || !keep || !nkeep)
         return conica__fail(st, CONICA_ERR_ARG, 0, 0, "conica_simplify: NULL argument");
     if (!s)
@@ -278,15 +399,16 @@ conica_code conica_simplify(const double *xy, size_t n, int closed,
         all = 1;
         goto out;
     }
-    /* fixed: the open ends and the corners (conica/path.h's rule) */
-    for (i = 0; i < m; i++) {
-        if (!closed && (i == 0 || i + 1 == m))
-            c.fixed[i] = 1;
-        else if (s->path.corner_angle < M_PI &&
-                 turn_at(P + 2 * ((i + m - 1) % m), P + 2 * i, P + 2 * ((i + 1) % m)) >
-                     s->path.corner_angle)
-            c.fixed[i] = 1;
-        nfixed += c.fixed[i];
+    /* fixed: the open ends and the corners (conica/path.h's rule, at the
+     * scale of the tolerance) */
+    if (s->path.corner_angle < M_PI) {
+        /* scratch borrowed: kxy holds 2m doubles, pos and add m sizes each */
+        nfixed = find_corners(P, m, c.closed, s->path.corner_angle,
+                              SIMPLIFY_CORNER_SCALE * c.tol, c.fixed, c.kxy, c.pos, c.add);
+    }
+    if (!closed) {
+        c.fixed[0] = c.fixed[m - 1] = 1;
+        nfixed += 2;
     }
     memcpy(c.kept, c.fixed, m);
     if (nfixed == 0) {
@@ -329,47 +451,49 @@ conica_code conica_simplify(const double *xy, size_t n, int closed,
             c.kept[(first + 2 * m / 3) % m] = 1;
         }
     }
-    /* insertion rounds */
-    while (!all) {
-        size_t j;
-        rc = check(&c, st);
-        if (rc == CONICA_ERR_DEGENERATE) {
-            all = 1;
-            rc = CONICA_OK;
-            break;
+    for (;;) {
+        /* insertion rounds */
+        while (!all) {
+            size_t j;
+            rc = check(&c, st);
+            if (rc == CONICA_ERR_DEGENERATE) {
+                all = 1;
+                rc = CONICA_OK;
+                break;
+            }
+            if (rc != CONICA_OK)
+                goto done;
+            if (passed(&c))
+                break;
+            if (++rounds > (size_t)s->max_rounds) {
+                all = 1;
+                break;
+            }
+            for (j = 0; j < c.nk; j++)
+                if (c.add[j] != SIZE_MAX)
+                    c.kept[c.add[j]] = 1;
         }
-        if (rc != CONICA_OK)
-            goto done;
-        if (passed(&c))
+        if (all || dropping_done)
             break;
-        if (++rounds > (size_t)s->max_rounds) {
-            all = 1;
-            break;
-        }
-        for (j = 0; j < c.nk; j++)
-            if (c.add[j] != SIZE_MAX)
-                c.kept[c.add[j]] = 1;
-    }
-    /* dropping pass: single vertices whose removal still passes */
-    if (!all) {
-        double dev = c.deviation;
+        inf.deviation = c.deviation;
+        /* dropping pass: single vertices whose removal still passes near
+         * them; then the rounds again check the whole curve */
+        dropping_done = 1;
         for (i = 0; i < m && c.work < s->max_work; i++) {
             if (!c.kept[i] || c.fixed[i])
                 continue;
             c.kept[i] = 0;
-            rc = check(&c, st);
+            rc = check_near(&c, i, st);
             if (rc == CONICA_ERR_NOMEM || rc == CONICA_ERR_LIMIT)
                 goto done;
-            if (rc == CONICA_OK && passed(&c)) {
+            if (rc == CONICA_OK && passed(&c))
                 inf.dropped++;
-                dev = c.deviation;
-            } else {
+            else
                 c.kept[i] = 1;
-            }
             rc = CONICA_OK;
         }
-        inf.deviation = dev;
     }
+    inf.deviation = c.deviation;
 out:
     *nkeep = 0;
     for (i = 0; i < m; i++)

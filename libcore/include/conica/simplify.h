@@ -11,19 +11,25 @@
  * vertices such that the curve conica_path_smooth() makes of the subset,
  * with the same settings (so normals are estimated and corners split as
  * there), lies within `tolerance` of every original vertex. Corners of
- * the original polygon (a turn above the corner angle of the path
- * settings, the rule of conica/path.h) and the ends of an open polyline
- * are always kept, and a kept vertex that is no corner of the input never
- * becomes one of the kept polygon.
+ * the original polygon and the ends of an open polyline are always kept,
+ * and a kept vertex that is no corner of the input never becomes one of
+ * the kept polygon. A corner is conica/path.h's rule (a turn above the
+ * path settings' corner angle) judged at the scale of the tolerance: the
+ * turn at a vertex towards the nearest vertices more than twice the
+ * tolerance away on each side, the largest such turn among its
+ * neighbours (jitter within the tolerance makes no corner; with the
+ * tolerance below the spacing of the vertices this is the turn between
+ * neighbours).
  *
  * Method: Douglas–Peucker seeding between the fixed vertices (chord
  * distance within the tolerance), then rounds of verification: the kept
  * vertices are smoothed, every original vertex is measured against the
  * smoothed polyline between its two kept neighbours, and each arc where
  * one strays gets its worst vertex back; then single vertices are dropped
- * again where the check still passes. Rounds and work are capped; if the
- * cap is met before the check passes, every vertex is kept (the result is
- * never outside the tolerance). Deterministic.
+ * again where the check, on the ten kept vertices each side, still passes,
+ * and the rounds check the whole curve once more. Rounds and work are
+ * capped; if the round cap is met before the check passes, every vertex is
+ * kept (the result is never outside the tolerance). Deterministic.
  *
  * Example:
  * @code
