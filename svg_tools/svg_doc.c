@@ -313,6 +313,23 @@ static const char *scan_skip_decl(const char *p, const char *end)
     return NULL;
 }
 
+/* At p, just after a '<': past the comment, CDATA section, DOCTYPE or
+ * processing instruction that starts there (NULL when it does not end), or
+ * p itself when none does. */
+static const char *scan_skip_markup(const char *p, const char *end)
+{
+    if (*p == '!') {
+        if (end - p >= 3 && memcmp(p, "!--", 3) == 0)
+            return scan_find(p + 3, end, "-->", 3);
+        if (end - p >= 8 && memcmp(p, "![CDATA[", 8) == 0)
+            return scan_find(p + 8, end, "]]>", 3);
+        return scan_skip_decl(p + 1, end);
+    }
+    if (*p == '?')
+        return scan_find(p + 1, end, "?>", 2);
+    return p;
+}
+
 /* Line of byte `at` of buf (1-based). */
 static size_t scan_line(const char *buf, const char *at)
 {
@@ -348,26 +365,15 @@ static int scan_start_tags(const char *buf, size_t len, const conica_svg_limits 
     size_t nscope = 0, cap = 0, depth = 0, in_scope = 0;
     int verdict = 0;
     while (!verdict && p < end && (p = memchr(p, '<', (size_t)(end - p))) != NULL) {
-        const char *tag = p, *name;
+        const char *tag = p, *name, *q;
         size_t natt = 0, nns = 0, nlen;
         p++;
         if (p == end)
             break;
-        if (*p == '!') {
-            if (end - p >= 3 && memcmp(p, "!--", 3) == 0)
-                p = scan_find(p + 3, end, "-->", 3);
-            else if (end - p >= 8 && memcmp(p, "![CDATA[", 8) == 0)
-                p = scan_find(p + 8, end, "]]>", 3);
-            else
-                p = scan_skip_decl(p + 1, end);
-            if (!p)
+        if ((q = scan_skip_markup(p, end)) != p) {
+            if (!q)
                 break;
-            continue;
-        }
-        if (*p == '?') {
-            p = scan_find(p + 1, end, "?>", 2);
-            if (!p)
-                break;
+            p = q;
             continue;
         }
         if (*p == '/') {
@@ -862,26 +868,14 @@ static int splice(const conica_svg_doc *doc, save_sink *k)
     if (!root || memchr(doc->src, '\0', doc->srclen))
         return 0; /* UTF-16 and other encodings this byte scan cannot read */
     while (ok && p < end && (p = memchr(p, '<', (size_t)(end - p))) != NULL) {
-        const char *name;
+        const char *name, *q;
         size_t nlen;
         p++;
         if (p == end)
             break;
-        if (*p == '!') {
-            if (end - p >= 3 && memcmp(p, "!--", 3) == 0)
-                p = scan_find(p + 3, end, "-->", 3);
-            else if (end - p >= 8 && memcmp(p, "![CDATA[", 8) == 0)
-                p = scan_find(p + 8, end, "]]>", 3);
-            else
-                p = scan_skip_decl(p + 1, end);
-            if (!p)
-                ok = 0;
-            continue;
-        }
-        if (*p == '?') {
-            p = scan_find(p + 1, end, "?>", 2);
-            if (!p)
-                ok = 0;
+        if ((q = scan_skip_markup(p, end)) != p) {
+            ok = q != NULL;
+            p = q;
             continue;
         }
         if (*p == '/') {

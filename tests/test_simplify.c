@@ -27,14 +27,15 @@ static double rnd(uint64_t *s)
     return (double)((*s * 2685821657736338717ULL) >> 11) / 9007199254740992.0;
 }
 
+/* Distance of p to segment ab: to the line where the foot of the
+ * perpendicular falls inside, else to the nearer end. */
 static double seg_dist(const double *p, const double *a, const double *b)
 {
-    double ex = b[0] - a[0], ey = b[1] - a[1], l2 = ex * ex + ey * ey, t = 0;
-    if (l2 > 0) {
-        t = ((p[0] - a[0]) * ex + (p[1] - a[1]) * ey) / l2;
-        t = t < 0 ? 0 : t > 1 ? 1 : t;
-    }
-    return hypot(p[0] - a[0] - t * ex, p[1] - a[1] - t * ey);
+    double ux = b[0] - a[0], uy = b[1] - a[1], len = hypot(ux, uy);
+    double along = len > 0 ? ((p[0] - a[0]) * ux + (p[1] - a[1]) * uy) / len : -1;
+    if (along < 0 || along > len)
+        return fmin(hypot(p[0] - a[0], p[1] - a[1]), hypot(p[0] - b[0], p[1] - b[1]));
+    return fabs((p[0] - a[0]) * uy - (p[1] - a[1]) * ux) / len;
 }
 
 /* Distance of p to the polyline q (closed: with its closing edge). */
