@@ -201,9 +201,16 @@ CONICA_API conica_code conica_svg_doc_load(const char *buf, size_t len,
 CONICA_API void conica_svg_doc_free(conica_svg_doc *doc);
 
 /**
- * @brief Serialise the document without reformatting (the input's XML
- *        declaration verbatim, none if it had none; a document without a
- *        declared encoding is written as UTF-8).
+ * @brief Serialise the document byte for byte as it was read, except the
+ *        attribute values conica_svg_process() rewrote: the loaded bytes
+ *        (kept by conica_svg_doc_load()) with the new values spliced in at
+ *        their attributes (same quote, its entity rules), new attributes
+ *        after an element's last one, a converted shape renamed in both
+ *        tags and without its geometry attributes. Where the bytes cannot
+ *        be matched to the tree (a UTF-16 document), libxml2 serialises it
+ *        without reformatting (the input's XML declaration verbatim, none
+ *        if it had none; a document without a declared encoding is written
+ *        as UTF-8).
  * @param[out] buf new buffer (free with conica_svg_buffer_free()), NUL-terminated
  * @param[out] len its length without the NUL
  * @return CONICA_OK, CONICA_ERR_NOMEM, CONICA_ERR_IO
