@@ -231,6 +231,8 @@ int main(int argc, char **argv)
         return cli_usage_error(PROG, "--flatten needs --tolerance T");
     if (flatten && have_levels)
         return cli_usage_error(PROG, "--flatten takes --tolerance, not --levels");
+    if (flatten && set.simplify > 0)
+        return cli_usage_error(PROG, "--simplify cleans outlines for smoothing, not with --flatten");
     if (in_place && (out_path || !strcmp(in, "-")))
         return cli_usage_error(PROG, "--in-place needs a named input file and no -o");
     if (flatten)
