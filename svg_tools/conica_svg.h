@@ -184,7 +184,8 @@ typedef struct conica_svg_doc conica_svg_doc;
  *        namespace prefix): st->message then starts with what was wrong and
  *        quotes libxml2's first message; libxml2 prints nothing itself.
  *        Blank text, comments, namespaces and unknown nodes are
- *        kept so a save reproduces them.
+ *        kept, and the document keeps a copy of buf, so a save reproduces
+ *        them byte for byte (conica_svg_doc_save()).
  * @param[in]  buf  document bytes
  * @param[in]  len  length
  * @param[in]  lim  caps, or NULL for defaults
