@@ -81,9 +81,9 @@ for x, y in kept[:tip + 1]:
 PY
     "$conica" combs --open --signed -o "$out/svg-traced-leaf.$v.comb.svg" \
         "$out/svg-traced-leaf.$v.right.txt"
-    echo "  traced leaf ($v): $(grep -c '^v' "$out/svg-traced-leaf.$v.right.txt") vertices on the right side," \
-         "comb $out/svg-traced-leaf.$v.comb.svg"
 done
+echo "  traced leaf, --simplify 1: $(grep -c '^v' "$out/svg-traced-leaf.simplify.right.txt") vertices on the right side" \
+     "instead of $(grep -c '^v' "$out/svg-traced-leaf.all.right.txt"), combs $out/svg-traced-leaf.{all,simplify}.comb.svg
 [ "$have_rsvg" -eq 1 ] || exit 0
 for v in all simplify; do
     rsvg-convert -w 360 -b white -o "$out/svg-traced-leaf.$v.png" "$out/svg-traced-leaf.$v.svg"
