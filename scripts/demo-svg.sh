@@ -83,7 +83,7 @@ PY
         "$out/svg-traced-leaf.$v.right.txt"
 done
 echo "  traced leaf, --simplify 1: $(grep -c '^v' "$out/svg-traced-leaf.simplify.right.txt") vertices on the right side" \
-     "instead of $(grep -c '^v' "$out/svg-traced-leaf.all.right.txt"), combs $out/svg-traced-leaf.{all,simplify}.comb.svg
+     "instead of $(grep -c '^v' "$out/svg-traced-leaf.all.right.txt") (combs: $out/svg-traced-leaf.*.comb.svg)"
 [ "$have_rsvg" -eq 1 ] || exit 0
 for v in all simplify; do
     rsvg-convert -w 360 -b white -o "$out/svg-traced-leaf.$v.png" "$out/svg-traced-leaf.$v.svg"
