@@ -53,3 +53,54 @@ EOF
     echo "  close-up ($zoom): $out/$name.zoom.png"
 done
 [ "$have_rsvg" -eq 1 ] || echo "  (rsvg-convert not installed: no PNGs; scripts/deps.sh demo installs it)"
+
+# The traced leaf cleaned: every traced point interpolated (--lines-as-samples)
+# beside --simplify 1 (the fewest vertices whose smoothed curve stays within
+# 1 unit of every traced point), and the curvature combs of the right side
+# (base to tip, between the two corners) through the vertices each keeps.
+leaf=examples/traced-leaf.svg
+[ -f "$leaf" ] || exit 0
+"$svgsmooth" --lines-as-samples --precision 12 -o "$out/svg-traced-leaf.all.svg" "$leaf"
+"$svgsmooth" --simplify 1 --precision 12 -o "$out/svg-traced-leaf.simplify.svg" "$leaf"
+conica=$build/bin/conica
+for v in all simplify; do
+    # the kept vertices are the output points equal to a traced one (the
+    # subdivision keeps its control points bit for bit)
+    python3 - "$leaf" "$out/svg-traced-leaf.$v.svg" >"$out/svg-traced-leaf.$v.right.txt" <<'PY'
+import re, sys
+num = re.compile(r'[-+]?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?')
+def pts(f):
+    d = re.search(r'id="leaf" d="([^"]*)"', open(f).read()).group(1)
+    v = [float(x) for x in num.findall(d)]
+    return list(zip(v[0::2], v[1::2]))
+traced = pts(sys.argv[1])
+kept = [p for p in pts(sys.argv[2]) if p in set(traced)]
+tip = kept.index((100.0, 30.0))
+for x, y in kept[:tip + 1]:
+    print('v %r %r' % (x, y))
+PY
+    "$conica" combs --open --signed -o "$out/svg-traced-leaf.$v.comb.svg" \
+        "$out/svg-traced-leaf.$v.right.txt"
+done
+echo "  traced leaf, --simplify 1: $(grep -c '^v' "$out/svg-traced-leaf.simplify.right.txt") vertices on the right side" \
+     "instead of $(grep -c '^v' "$out/svg-traced-leaf.all.right.txt") (combs: $out/svg-traced-leaf.*.comb.svg)"
+[ "$have_rsvg" -eq 1 ] || exit 0
+for v in all simplify; do
+    rsvg-convert -w 360 -b white -o "$out/svg-traced-leaf.$v.png" "$out/svg-traced-leaf.$v.svg"
+    rsvg-convert -w 360 -b white -o "$out/svg-traced-leaf.$v.comb.png" "$out/svg-traced-leaf.$v.comb.svg"
+done
+cat >"$out/svg-traced-leaf.simplify.cmp.svg" <<EOF2
+<svg xmlns="http://www.w3.org/2000/svg" xmlns:xlink="http://www.w3.org/1999/xlink" width="740" height="780">
+  <rect width="740" height="780" fill="#fff"/>
+  <g font-family="sans-serif" font-size="16" text-anchor="middle">
+    <text x="180" y="20">every traced point interpolated</text><text x="560" y="20">svgsmooth --simplify 1</text>
+    <text x="180" y="410">signed curvature comb, right side</text><text x="560" y="410">signed curvature comb, right side</text>
+  </g>
+  <image x="0" y="30" width="360" height="360" xlink:href="svg-traced-leaf.all.png"/>
+  <image x="380" y="30" width="360" height="360" xlink:href="svg-traced-leaf.simplify.png"/>
+  <image x="0" y="420" width="360" height="360" preserveAspectRatio="xMidYMid meet" xlink:href="svg-traced-leaf.all.comb.png"/>
+  <image x="380" y="420" width="360" height="360" preserveAspectRatio="xMidYMid meet" xlink:href="svg-traced-leaf.simplify.comb.png"/>
+</svg>
+EOF2
+(cd "$out" && rsvg-convert -o svg-traced-leaf.clean.png svg-traced-leaf.simplify.cmp.svg)
+echo "  traced leaf cleaned: $out/svg-traced-leaf.clean.png"

@@ -184,7 +184,8 @@ typedef struct conica_svg_doc conica_svg_doc;
  *        namespace prefix): st->message then starts with what was wrong and
  *        quotes libxml2's first message; libxml2 prints nothing itself.
  *        Blank text, comments, namespaces and unknown nodes are
- *        kept so a save reproduces them.
+ *        kept, and the document keeps a copy of buf, so a save reproduces
+ *        them byte for byte (conica_svg_doc_save()).
  * @param[in]  buf  document bytes
  * @param[in]  len  length
  * @param[in]  lim  caps, or NULL for defaults
@@ -201,9 +202,16 @@ CONICA_API conica_code conica_svg_doc_load(const char *buf, size_t len,
 CONICA_API void conica_svg_doc_free(conica_svg_doc *doc);
 
 /**
- * @brief Serialise the document without reformatting (the input's XML
- *        declaration verbatim, none if it had none; a document without a
- *        declared encoding is written as UTF-8).
+ * @brief Serialise the document byte for byte as it was read, except the
+ *        attribute values conica_svg_process() rewrote: the loaded bytes
+ *        (kept by conica_svg_doc_load()) with the new values spliced in at
+ *        their attributes (same quote, its entity rules), new attributes
+ *        after an element's last one, a converted shape renamed in both
+ *        tags and without its geometry attributes. Where the bytes cannot
+ *        be matched to the tree (a UTF-16 document), libxml2 serialises it
+ *        without reformatting (the input's XML declaration verbatim, none
+ *        if it had none; a document without a declared encoding is written
+ *        as UTF-8).
  * @param[out] buf new buffer (free with conica_svg_buffer_free()), NUL-terminated
  * @param[out] len its length without the NUL
  * @return CONICA_OK, CONICA_ERR_NOMEM, CONICA_ERR_IO
@@ -286,6 +294,13 @@ typedef struct conica_svg_settings {
      *  0: straight segments stay straight. polygon and polyline elements
      *  are always samples. */
     int lines_as_samples;
+    /** SMOOTH: > 0 simplifies samples subpaths (polygons, polylines and,
+     *  with it, path subpaths made only of straight segments: traced
+     *  outlines) before smoothing: the fewest vertices whose smoothed curve
+     *  passes within this distance (user units) of every original vertex,
+     *  corners kept (conica/simplify.h). Default 0: every vertex is
+     *  interpolated. */
+    double simplify;
     /** Non-zero: open subpaths are closed with a straight edge, as SVG
      *  fills them (for tools that need regions). */
     int close_open;

@@ -5,6 +5,7 @@
 #include "svg_internal.h"
 
 #include <math.h>
+#include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -42,6 +43,8 @@
 struct conica_svg_doc {
     xmlDocPtr xml;
     char decl[SVG_MAX_DECL + 1]; /* the input's XML declaration, verbatim ("" if none) */
+    char *src;                   /* the input's bytes, which a save splices into */
+    size_t srclen;
 };
 
 conica_svg_limits conica_svg_limits_defaults(void)
@@ -310,6 +313,23 @@ static const char *scan_skip_decl(const char *p, const char *end)
     return NULL;
 }
 
+/* At p, just after a '<': past the comment, CDATA section, DOCTYPE or
+ * processing instruction that starts there (NULL when it does not end), or
+ * p itself when none does. */
+static const char *scan_skip_markup(const char *p, const char *end)
+{
+    if (*p == '!') {
+        if (end - p >= 3 && memcmp(p, "!--", 3) == 0)
+            return scan_find(p + 3, end, "-->", 3);
+        if (end - p >= 8 && memcmp(p, "![CDATA[", 8) == 0)
+            return scan_find(p + 8, end, "]]>", 3);
+        return scan_skip_decl(p + 1, end);
+    }
+    if (*p == '?')
+        return scan_find(p + 1, end, "?>", 2);
+    return p;
+}
+
 /* Line of byte `at` of buf (1-based). */
 static size_t scan_line(const char *buf, const char *at)
 {
@@ -345,26 +365,15 @@ static int scan_start_tags(const char *buf, size_t len, const conica_svg_limits 
     size_t nscope = 0, cap = 0, depth = 0, in_scope = 0;
     int verdict = 0;
     while (!verdict && p < end && (p = memchr(p, '<', (size_t)(end - p))) != NULL) {
-        const char *tag = p, *name;
+        const char *tag = p, *name, *q;
         size_t natt = 0, nns = 0, nlen;
         p++;
         if (p == end)
             break;
-        if (*p == '!') {
-            if (end - p >= 3 && memcmp(p, "!--", 3) == 0)
-                p = scan_find(p + 3, end, "-->", 3);
-            else if (end - p >= 8 && memcmp(p, "![CDATA[", 8) == 0)
-                p = scan_find(p + 8, end, "]]>", 3);
-            else
-                p = scan_skip_decl(p + 1, end);
-            if (!p)
+        if ((q = scan_skip_markup(p, end)) != p) {
+            if (!q)
                 break;
-            continue;
-        }
-        if (*p == '?') {
-            p = scan_find(p + 1, end, "?>", 2);
-            if (!p)
-                break;
+            p = q;
             continue;
         }
         if (*p == '/') {
@@ -590,6 +599,15 @@ conica_code conica_svg_doc_load(const char *buf, size_t len, const conica_svg_li
         return conica__fail(st, CONICA_ERR_NOMEM, 0, 0, "out of memory");
     }
     doc->xml = xml;
+    doc->src = malloc(len ? len : 1);
+    if (!doc->src) {
+        xmlFreeDoc(xml);
+        free(doc);
+        return conica__fail(st, CONICA_ERR_NOMEM, 0, 0, "out of memory");
+    }
+    if (len)
+        memcpy(doc->src, buf, len);
+    doc->srclen = len;
     i = 0;
     if (len >= 3 && (unsigned char)buf[0] == 0xEF && (unsigned char)buf[1] == 0xBB &&
         (unsigned char)buf[2] == 0xBF)
@@ -615,6 +633,7 @@ void conica_svg_doc_free(conica_svg_doc *doc)
     if (!doc)
         return;
     xmlFreeDoc(doc->xml);
+    free(doc->src);
     free(doc);
 }
 
@@ -664,6 +683,278 @@ static int save_close(void *ctx)
     return 0;
 }
 
+/* ------------------------------------------------------------ byte-true save */
+
+/* One attribute of a start tag in the original bytes: from the white space
+ * before its name to the byte after its closing quote. */
+typedef struct src_attr {
+    const char *lead;  /* the white space before the name */
+    const char *name;
+    size_t nlen;
+    const char *val;   /* after the opening quote */
+    size_t vlen;
+    char quote;
+} src_attr;
+
+/* The next attribute of a start tag at *p (after the name or the previous
+ * attribute): 1 with *a filled and *p past it, 0 at the tag's end (*p at
+ * '/' or '>'), -1 when the bytes are not what the parser accepted. */
+static int src_next_attr(const char **p, const char *end, src_attr *a)
+{
+    const char *q = *p;
+    a->lead = q;
+    while (q < end && scan_space(*q))
+        q++;
+    if (q == end)
+        return -1;
+    if (*q == '>' || *q == '/') {
+        *p = q;
+        return 0;
+    }
+    if (q == a->lead)
+        return -1; /* attributes are separated by white space */
+    a->name = q;
+    while (q < end && *q != '=' && !scan_space(*q) && *q != '>' && *q != '/')
+        q++;
+    a->nlen = (size_t)(q - a->name);
+    while (q < end && scan_space(*q))
+        q++;
+    if (q == end || *q != '=' || a->nlen == 0)
+        return -1;
+    q++;
+    while (q < end && scan_space(*q))
+        q++;
+    if (q == end || (*q != '"' && *q != '\''))
+        return -1;
+    a->quote = *q;
+    a->val = q + 1;
+    q = memchr(q + 1, a->quote, (size_t)(end - q - 1));
+    if (!q)
+        return -1;
+    a->vlen = (size_t)(q - a->val);
+    *p = q + 1;
+    return 1;
+}
+
+/* The element's own attribute `name` (not a default declared in a DTD,
+ * which xmlHasNsProp() also returns), or NULL. */
+static xmlAttrPtr own_attr(xmlNodePtr n, const char *name)
+{
+    xmlAttrPtr a = xmlHasNsProp(n, BAD_CAST name, NULL);
+    return a && a->type == XML_ATTRIBUTE_NODE ? a : NULL;
+}
+
+/* conica_svg_process() marks each element whose geometry attribute it
+ * rewrote in the node's application field (_private): 1 `d`, 2 `points`. */
+static void mark_rewritten(xmlNodePtr n, int points)
+{
+    n->_private = (void *)(uintptr_t)(points ? 2u : 1u);
+}
+
+static const char *mark_name(xmlNodePtr n)
+{
+    return (uintptr_t)n->_private == 2u ? "points" : "d";
+}
+
+/* Does the n-byte qualified name s name element or attribute node x? */
+static int same_qname(const char *s, size_t n, const xmlChar *prefix, const xmlChar *name)
+{
+    size_t pl = prefix ? strlen((const char *)prefix) : 0, nl = strlen((const char *)name);
+    if (pl)
+        return n == pl + 1 + nl && memcmp(s, prefix, pl) == 0 && s[pl] == ':' &&
+               memcmp(s + pl + 1, name, nl) == 0;
+    return n == nl && memcmp(s, name, nl) == 0;
+}
+
+/* A rewritten value with the entity rules of its quote. */
+static void put_escaped(save_sink *k, const char *v, char quote)
+{
+    const char *run = v;
+    for (; *v; v++) {
+        const char *ent = *v == '&'                   ? "&amp;"
+                          : *v == '<'                 ? "&lt;"
+                          : *v == '>'                 ? "&gt;"
+                          : *v == quote && *v == '"'  ? "&quot;"
+                          : *v == quote && *v == '\'' ? "&apos;"
+                                                      : NULL;
+        if (!ent)
+            continue;
+        sink_put(k, run, (size_t)(v - run));
+        sink_put(k, ent, strlen(ent));
+        run = v + 1;
+    }
+    sink_put(k, run, (size_t)(v - run));
+}
+
+/* The rewritten value of attribute `name` of n (its single text child, as
+ * conica_svg_process() left it), or NULL. */
+static const char *new_value(xmlNodePtr n, const char *name)
+{
+    xmlAttrPtr a = xmlHasNsProp(n, BAD_CAST name, NULL);
+    if (!a || a->type != XML_ATTRIBUTE_NODE || !a->children || a->children != a->last ||
+        a->children->type != XML_TEXT_NODE || !a->children->content)
+        return NULL;
+    return (const char *)a->children->content;
+}
+
+/* Write a start tag of element n whose attribute `mark` was rewritten (and
+ * which conica_svg_process() may have renamed and stripped of attributes):
+ * every byte outside what changed as it was. *p is after "<name"; returns
+ * 0 when the bytes do not match the element. */
+static int splice_tag(save_sink *k, xmlNodePtr n, const char *mark, const char **p,
+                      const char *end)
+{
+    const char *v = new_value(n, mark), *cur;
+    src_attr a;
+    int r, seen = 0;
+    if (!v)
+        return 0;
+    if (k)
+        sink_put(k, (const char *)n->name, strlen((const char *)n->name));
+    cur = *p;
+    while ((r = src_next_attr(p, end, &a)) == 1) {
+        int is_mark = a.nlen == strlen(mark) && memcmp(a.name, mark, a.nlen) == 0;
+        int prefixed = memchr(a.name, ':', a.nlen) != NULL ||
+                       (a.nlen >= 5 && memcmp(a.name, "xmlns", 5) == 0);
+        if (is_mark) {
+            if (k) {
+                sink_put(k, cur, (size_t)(a.val - cur));
+                put_escaped(k, v, a.quote);
+            }
+            cur = a.val + a.vlen;
+            seen = 1;
+        } else if (!prefixed) {
+            char an[64];
+            if (a.nlen >= sizeof an)
+                continue; /* not one conica_svg_process() removes: kept */
+            memcpy(an, a.name, a.nlen);
+            an[a.nlen] = '\0';
+            if (!own_attr(n, an)) { /* removed (a converted shape's geometry) */
+                if (k)
+                    sink_put(k, cur, (size_t)(a.lead - cur));
+                cur = *p;
+            }
+        }
+    }
+    if (r < 0)
+        return 0;
+    if (k) {
+        sink_put(k, cur, (size_t)(*p - cur));
+        if (!seen) { /* a new attribute goes last, before the tag's end */
+            char q = '"';
+            sink_put(k, " ", 1);
+            sink_put(k, mark, strlen(mark));
+            sink_put(k, "=\"", 2);
+            put_escaped(k, v, q);
+            sink_put(k, "\"", 1);
+        }
+    }
+    return 1;
+}
+
+/* Write the original bytes with the rewritten attribute values spliced in,
+ * element by element: the start tags of the bytes (a scan that skips
+ * comments, CDATA, processing instructions and the DOCTYPE, as
+ * scan_start_tags() does) are matched in order to the tree's elements, by
+ * name. With k NULL nothing is written: 1 when the bytes and the tree
+ * match (so a second call with k writes the whole document), else 0. */
+static int splice(const conica_svg_doc *doc, save_sink *k)
+{
+    const char *p = doc->src, *end = doc->src + doc->srclen, *cur = doc->src;
+    xmlNodePtr root = xmlDocGetRootElement(doc->xml), n = NULL, e;
+    xmlNodePtr *open = NULL; /* the open elements: an end tag must name its element */
+    size_t depth = 0, cap = 0, tdepth = 0;
+    int ok = 1;
+    if (!root || memchr(doc->src, '\0', doc->srclen))
+        return 0; /* UTF-16 and other encodings this byte scan cannot read */
+    while (ok && p < end && (p = memchr(p, '<', (size_t)(end - p))) != NULL) {
+        const char *name, *q;
+        size_t nlen;
+        p++;
+        if (p == end)
+            break;
+        if ((q = scan_skip_markup(p, end)) != p) {
+            ok = q != NULL;
+            p = q;
+            continue;
+        }
+        if (*p == '/') {
+            p++;
+            if (!depth) {
+                ok = 0;
+                break;
+            }
+            name = p;
+            while (p < end && !scan_space(*p) && *p != '>')
+                p++;
+            e = open[--depth];
+            if (!same_qname(name, (size_t)(p - name), e->ns ? e->ns->prefix : NULL, e->name)) {
+                if (!e->_private) {
+                    ok = 0;
+                    break;
+                }
+                /* a renamed element (a shape converted to a path) */
+                if (k) {
+                    sink_put(k, cur, (size_t)(name - cur));
+                    sink_put(k, (const char *)e->name, strlen((const char *)e->name));
+                }
+                cur = p;
+            }
+            continue;
+        }
+        name = p;
+        while (p < end && !scan_space(*p) && *p != '>' && *p != '/')
+            p++;
+        nlen = (size_t)(p - name);
+        n = n ? next_element(n, root, &tdepth) : root;
+        if (!n) {
+            ok = 0;
+            break;
+        }
+        if (depth == cap) {
+            size_t nc = cap ? 2 * cap : 64;
+            xmlNodePtr *t = realloc(open, nc * sizeof *t);
+            if (!t) {
+                ok = 0;
+                break;
+            }
+            open = t;
+            cap = nc;
+        }
+        open[depth] = n;
+        if (n->_private) {
+            if (k)
+                sink_put(k, cur, (size_t)(name - cur));
+            if (!splice_tag(k, n, mark_name(n), &p, end)) {
+                ok = 0;
+                break;
+            }
+            cur = p;
+        } else {
+            src_attr a;
+            int r;
+            if (!same_qname(name, nlen, n->ns ? n->ns->prefix : NULL, n->name)) {
+                ok = 0;
+                break;
+            }
+            while ((r = src_next_attr(&p, end, &a)) == 1)
+                ;
+            if (r < 0) {
+                ok = 0;
+                break;
+            }
+        }
+        if (*p != '/')
+            depth++;
+    }
+    if (ok && (depth != 0 || (n ? next_element(n, root, &tdepth) : root) != NULL))
+        ok = 0; /* the tree holds elements the bytes do not */
+    if (ok && k)
+        sink_put(k, cur, (size_t)(end - cur));
+    free(open);
+    return ok;
+}
+
 /* Serialise into k (memory or file): the input's declaration, the tree,
  * a final newline. */
 static conica_code save_to(const conica_svg_doc *doc, save_sink *k, conica_status *st)
@@ -671,6 +962,14 @@ static conica_code save_to(const conica_svg_doc *doc, save_sink *k, conica_statu
     xmlSaveCtxtPtr sc;
     int opts = doc->decl[0] ? 0 : XML_SAVE_NO_DECL;
     long r;
+    /* byte for byte as read, the rewritten values spliced in */
+    if (splice(doc, NULL)) {
+        splice(doc, k);
+        if (k->failed)
+            return conica__fail(st, k->f ? CONICA_ERR_IO : CONICA_ERR_NOMEM, 0, 0,
+                                k->f ? "write error" : "out of memory");
+        return CONICA_OK;
+    }
     /* the input's declaration verbatim in place of libxml2's */
     sink_put(k, doc->decl, strlen(doc->decl));
     k->skip_decl = doc->decl[0] != '\0';
@@ -1303,6 +1602,8 @@ static conica_code check_settings(const conica_svg_settings *s, conica_status *s
                                 CONICA_SUBDIV_MAX_LEVELS);
     if (!(s->tolerance >= 0.0) || !isfinite(s->tolerance))
         return conica__fail(st, CONICA_ERR_ARG, 0, 0, "tolerance must be finite and >= 0");
+    if (!(s->simplify >= 0.0) || !isfinite(s->simplify))
+        return conica__fail(st, CONICA_ERR_ARG, 0, 0, "simplify must be finite and >= 0");
     if (!(s->corner_angle_deg >= 0.0))
         return conica__fail(st, CONICA_ERR_ARG, 0, 0, "corner angle must be >= 0");
     if (s->precision < 1 || s->precision > 17)
@@ -1606,14 +1907,6 @@ static xmlNodePtr text_node(xmlDocPtr doc, char *text)
     return t;
 }
 
-/* The element's own attribute `name` (not a default declared in a DTD,
- * which xmlHasNsProp() also returns), or NULL. */
-static xmlAttrPtr own_attr(xmlNodePtr n, const char *name)
-{
-    xmlAttrPtr a = xmlHasNsProp(n, BAD_CAST name, NULL);
-    return a && a->type == XML_ATTRIBUTE_NODE ? a : NULL;
-}
-
 conica_code conica_svg_process(conica_svg_doc *doc, const conica_svg_settings *s,
                                conica_svg_stats *stats, conica_status *st)
 {
@@ -1702,6 +1995,7 @@ conica_code conica_svg_process(conica_svg_doc *doc, const conica_svg_settings *s
             a->children = a->last = texts[i];
             texts[i]->parent = (xmlNodePtr)a;
             texts[i] = NULL;
+            mark_rewritten(n, items[i].kind == 1 || items[i].kind == 2);
         }
     }
     if (stats)

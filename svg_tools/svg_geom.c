@@ -7,8 +7,9 @@
  *
  *  - path data: M/L/H/V/Q/T/C/S/A/Z as drawn segments (arcs as exact
  *    rational quadratics), each subpath open or closed as written;
- *  - polygon and polyline elements (and, with lines_as_samples, path
- *    subpaths made only of straight segments): samples to interpolate;
+ *  - polygon and polyline elements (and, with lines_as_samples or
+ *    simplify, path subpaths made only of straight segments): samples to
+ *    interpolate, first simplified (conica/simplify.h) when asked;
  *  - the precision the numbers were written with judges tangency,
  *    straightness and rounding noise. */
 #include "svg_internal.h"
@@ -18,6 +19,7 @@
 #include <string.h>
 
 #include "conica/path.h"
+#include "conica/simplify.h"
 
 #ifndef M_PI
 #define M_PI 3.14159265358979323846
@@ -116,14 +118,42 @@ static size_t subpath_end(const conica_svg_path *p, size_t i, int *closed, int *
     return j;
 }
 
+/* Keep only the vertices conica_simplify() chooses (xy[0..2*n) rewritten). */
+static conica_code simplify_samples(double *xy, size_t *n, int closed, double tolerance,
+                                    const conica_path_settings *ps, conica_status *st)
+{
+    conica_simplify_settings ss = conica_simplify_defaults();
+    size_t *keep, m = 0, i;
+    conica_code rc;
+    if (*n < 3)
+        return CONICA_OK;
+    keep = malloc(*n * sizeof *keep);
+    if (!keep)
+        return conica__fail(st, CONICA_ERR_NOMEM, 0, 0, "out of memory");
+    ss.tolerance = tolerance;
+    ss.path = *ps;
+    rc = conica_simplify(xy, *n, closed, &ss, keep, &m, NULL, st);
+    if (rc == CONICA_OK) {
+        for (i = 0; i < m; i++) {
+            xy[2 * i] = xy[2 * keep[i]];
+            xy[2 * i + 1] = xy[2 * keep[i] + 1];
+        }
+        *n = m;
+    }
+    free(keep);
+    return rc;
+}
+
 /* The on-curve vertices of segments [a, b) as samples (a polygon, a
- * polyline, or a subpath of straight segments taken as samples). */
+ * polyline, or a subpath of straight segments taken as samples), simplified
+ * within `simplify` first when it is > 0. */
 static conica_code add_samples(conica_path *cp, const conica_svg_path *p, size_t a, size_t b,
-                               int closed, conica_status *st)
+                               int closed, double simplify, const conica_path_settings *ps,
+                               conica_status *st)
 {
     size_t i, n = 0;
     double *xy = malloc(2 * (b - a + 1) * sizeof *xy);
-    conica_code rc;
+    conica_code rc = CONICA_OK;
     if (!xy)
         return conica__fail(st, CONICA_ERR_NOMEM, 0, 0, "out of memory");
     for (i = a; i < b; i++) {
@@ -139,7 +169,10 @@ static conica_code add_samples(conica_path *cp, const conica_svg_path *p, size_t
         xy[2 * n + 1] = g->y1;
         n++;
     }
-    rc = conica_path_samples(cp, xy, NULL, n, closed, a, st);
+    if (simplify > 0)
+        rc = simplify_samples(xy, &n, closed, simplify, ps, st);
+    if (rc == CONICA_OK)
+        rc = conica_path_samples(cp, xy, NULL, n, closed, a, st);
     if (rc == CONICA_ERR_DEGENERATE) {
         /* one point (or one repeated): kept as the point it is */
         rc = conica_path_move_to(cp, xy[0], xy[1], a, st);
@@ -203,6 +236,14 @@ conica_code conica_svg__path_polylines(const conica_svg_path *p, const conica_sv
     (void)line;
     conica_path_init(&cp);
     conica_path_result_init(&r);
+    ps.corner_angle = s->corner_angle_deg >= 180.0 ? M_PI : s->corner_angle_deg * M_PI / 180.0;
+    ps.precision = precision;
+    ps.max_points = *budget;
+    if (s->mode == CONICA_SVG_SMOOTH) {
+        ps.tolerance = s->fidelity;
+        ps.levels = s->levels;
+        ps.level_tolerance = s->tolerance;
+    }
     /* the subpaths, as drawn or as samples */
     for (i = 0; i < p->n && rc == CONICA_OK;) {
         int closed, lines;
@@ -215,8 +256,10 @@ conica_code conica_svg__path_polylines(const conica_svg_path *p, const conica_sv
         if (closed && j > i + 1 && p->seg[j - 1].type == CONICA_SVG_SEG_CLOSE &&
             p->seg[j - 1].x0 == p->seg[j - 1].x1 && p->seg[j - 1].y0 == p->seg[j - 1].y1)
             (*in_vertices)--; /* it returned to its start: that vertex is the first */
-        if (kind == 1 || kind == 2 || (lines && s->lines_as_samples && s->mode == CONICA_SVG_SMOOTH))
-            rc = add_samples(&cp, p, i, j, closed, st);
+        if (kind == 1 || kind == 2 ||
+            (lines && (s->lines_as_samples || s->simplify > 0) && s->mode == CONICA_SVG_SMOOTH))
+            rc = add_samples(&cp, p, i, j, closed,
+                             s->mode == CONICA_SVG_SMOOTH ? s->simplify : 0.0, &ps, st);
         else
             rc = add_drawn(&cp, p, i, j, closed, st);
         i = j;
@@ -227,17 +270,11 @@ conica_code conica_svg__path_polylines(const conica_svg_path *p, const conica_sv
         conica_path_free(&cp);
         return conica__fail(st, rc, 0, 0, "%s: %s", what, why);
     }
-    ps.corner_angle = s->corner_angle_deg >= 180.0 ? M_PI : s->corner_angle_deg * M_PI / 180.0;
-    ps.precision = precision;
-    ps.max_points = *budget;
     if (s->mode == CONICA_SVG_FLATTEN) {
         ps.tolerance = s->tolerance;
         ps.fit = (conica_path_fit)s->fit;
         rc = conica_path_flatten(&cp, &ps, &r, st);
     } else if (s->mode == CONICA_SVG_SMOOTH) {
-        ps.tolerance = s->fidelity;
-        ps.levels = s->levels;
-        ps.level_tolerance = s->tolerance;
         rc = conica_path_smooth(&cp, &ps, &r, st);
     } else {
         /* KEEP: the on-curve vertices (flattening within an infinite

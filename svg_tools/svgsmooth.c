@@ -36,6 +36,10 @@ static const char usage_text[] =
     "  --lines-as-samples  smooth through the vertices of subpaths made only of\n"
     "                      straight segments (traced outlines); by default\n"
     "                      straight segments stay straight\n"
+    "  --simplify T        before smoothing traced outlines (polygons, polylines,\n"
+    "                      paths of straight segments), keep the fewest vertices\n"
+    "                      whose smoothed curve passes within T user units of\n"
+    "                      every vertex; corners kept\n"
     "  --flatten           flatten curves within --tolerance (required) with the\n"
     "                      guaranteed adaptive plotter; straight segments stay\n"
     "  --precision N       significant digits written (1..17, default 7)\n"
@@ -163,6 +167,11 @@ int main(int argc, char **argv)
             i++;
         } else if (!strcmp(a, "--lines-as-samples")) {
             set.lines_as_samples = 1;
+        } else if (!strcmp(a, "--simplify")) {
+            if (!v || cli_parse_double(v, &d) || !(d > 0.0) || !(d < 1e300))
+                return cli_usage_error(PROG, "--simplify needs a number > 0");
+            set.simplify = d;
+            i++;
         } else if (!strcmp(a, "--corner-angle")) {
             if (!v || cli_parse_double(v, &d) || !(d >= 0.0 && d <= 180.0))
                 return cli_usage_error(PROG, "--corner-angle needs degrees in 0..180");
@@ -222,6 +231,8 @@ int main(int argc, char **argv)
         return cli_usage_error(PROG, "--flatten needs --tolerance T");
     if (flatten && have_levels)
         return cli_usage_error(PROG, "--flatten takes --tolerance, not --levels");
+    if (flatten && set.simplify > 0)
+        return cli_usage_error(PROG, "--simplify cleans outlines for smoothing, not with --flatten");
     if (in_place && (out_path || !strcmp(in, "-")))
         return cli_usage_error(PROG, "--in-place needs a named input file and no -o");
     if (flatten)

@@ -1,8 +1,8 @@
 /* SPDX-License-Identifier: MIT */
 /* libFuzzer target: the whole svgsmooth pipeline in memory --
  * conica_svg_doc_load (small caps), conica_svg_extract, conica_svg_process,
- * conica_svg_doc_save -- with the mode and levels taken from the input
- * length so one corpus exercises all three modes. */
+ * conica_svg_doc_save (the byte-true splice) -- with the mode, levels and
+ * --simplify taken from the input length so one corpus exercises them all. */
 #include "fuzz_common.h"
 
 #include "conica_svg.h"
@@ -42,6 +42,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
         set.levels = (int)(size % 4);
         set.tolerance = set.mode == CONICA_SVG_FLATTEN ? 0.05 : (size % 8 == 7 ? 0.5 : 0.0);
         set.convert_shapes = (int)(size & 8);
+        set.simplify = size % 5 == 4 ? 0.5 : 0.0; /* conica/simplify.h on traced outlines */
         set.precision = (int)(size % 17) + 1;
         set.warn = fz_warn;
         rc = conica_svg_doc_viewport(doc, &vp, &st);
