@@ -109,6 +109,26 @@ check_true "DIR/icon-005.svg as a single run" sh -c "'$svgsmooth' --levels 3 '$t
 check_exit 1 "one input, -o an existing directory without '/': the error it always was" "$svgsmooth" --levels 3 "$tmp/in/icon-005.svg" -o "$tmp/one"
 check_grep "is a directory" "$err" "says so"
 
+begin_case "scadprofile IN... -o DIR/: one module per input, a failing one alone"
+scad=$build/bin/scadprofile
+mkdir -p "$tmp/sp"
+cp examples/ellipse.txt examples/bracket.svg "$tmp/sp/"
+cp examples/ellipse.txt "$tmp/sp/ring-2.txt"
+printf 'v 0 0\nv 1\n' >"$tmp/sp/broken.txt"
+check_exit 1 "four inputs, one broken" "$scad" --tolerance 0.05 -j 2 "$tmp/sp/ellipse.txt" "$tmp/sp/bracket.svg" "$tmp/sp/ring-2.txt" "$tmp/sp/broken.txt" -o "$tmp/scad/"
+check_grep "^scadprofile: error: $tmp/sp/broken.txt:2: " "$err" "the broken one named with its line"
+check_grep '^scadprofile: 3 files written, 1 failed$' "$err" "summary"
+check_true "three .scad files" test "$(ls "$tmp/scad" | tr '\n' ' ')" = "bracket.scad ellipse.scad ring-2.scad "
+check_grep '^module ring_2\(' "$tmp/scad/ring-2.scad" "module named from the file name"
+check_grep "^// command: scadprofile --tolerance 0.05 -j 2 -o $tmp/scad/ring-2.scad $tmp/sp/ring-2.txt\$" "$tmp/scad/ring-2.scad" "the header records the command for this file alone"
+"$scad" --tolerance 0.05 -o "$tmp/ring-single.scad" "$tmp/sp/ring-2.txt" 2>/dev/null
+grep -v '^// command:' "$tmp/ring-single.scad" >"$tmp/a"
+grep -v '^// command:' "$tmp/scad/ring-2.scad" >"$tmp/b"
+check_true "otherwise what a single run writes" cmp -s "$tmp/a" "$tmp/b"
+check_exit 2 "--module with several inputs" "$scad" --module m "$tmp/sp/ellipse.txt" "$tmp/sp/ring-2.txt" -o "$tmp/scad2/"
+check_exit 2 "several inputs without -o DIR/" "$scad" "$tmp/sp/ellipse.txt" "$tmp/sp/ring-2.txt"
+check_exit 2 "same base name twice" "$scad" "$tmp/sp/ellipse.txt" "$tmp/in/../sp/ellipse.txt" -o "$tmp/scad3/"
+
 begin_case "a missing input fails alone; SIGTERM stops the batch without temporaries"
 check_exit 1 "a missing input among others" "$svgsmooth" --levels 2 "$tmp/in/icon-000.svg" "$tmp/nope.svg" -o "$tmp/miss/"
 check_grep "nope.svg: cannot open" "$err" "named"
