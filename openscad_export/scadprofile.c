@@ -328,21 +328,6 @@ static int parse_args(int argc, char **argv, options *o, int *exit_now)
     return 0;
 }
 
-static int ends_with(const char *s, const char *suffix)
-{
-    size_t n = strlen(s), m = strlen(suffix);
-    if (n < m)
-        return 0;
-    for (size_t i = 0; i < m; i++) {
-        char c = s[n - m + i];
-        if (c >= 'A' && c <= 'Z')
-            c = (char)(c - 'A' + 'a');
-        if (c != suffix[i])
-            return 0;
-    }
-    return 1;
-}
-
 /* Does the word at buf[i..len) equal w (followed by a blank or the end)? */
 static int word_is(const char *buf, size_t len, size_t i, const char *w)
 {
@@ -359,11 +344,11 @@ static int word_is(const char *buf, size_t len, size_t i, const char *w)
  * (a point file, whose reader names what it does not understand). */
 static kind detect(const char *path, const char *buf, size_t len)
 {
-    if (ends_with(path, ".svg"))
+    if (cli_ends_with_ci(path, ".svg"))
         return IN_SVG;
-    if (ends_with(path, ".spl"))
+    if (cli_ends_with_ci(path, ".spl"))
         return IN_SPLINE;
-    if (ends_with(path, ".txt") || ends_with(path, ".obj"))
+    if (cli_ends_with_ci(path, ".txt") || cli_ends_with_ci(path, ".obj"))
         return IN_POINTS;
     size_t i = 0;
     if (len >= 3 && memcmp(buf, "\xEF\xBB\xBF", 3) == 0) /* UTF-8 byte order mark */

@@ -61,21 +61,6 @@ static char *join3(const char *a, const char *b, const char *c)
     return s;
 }
 
-static int ends_with_ci(const char *s, const char *suffix)
-{
-    size_t n = strlen(s), m = strlen(suffix), i;
-    if (n <= m)
-        return 0;
-    for (i = 0; i < m; i++) {
-        char c = s[n - m + i];
-        if (c >= 'A' && c <= 'Z')
-            c = (char)(c - 'A' + 'a');
-        if (c != suffix[i])
-            return 0;
-    }
-    return 1;
-}
-
 typedef struct planner {
     const char *prog;
     const cli_batch_spec *spec;
@@ -170,7 +155,7 @@ static int walk(planner *p, const char *dir, const char *rel, int depth)
             if (!(p->have_outdir_id && lsb.st_dev == p->out_dev && lsb.st_ino == p->out_ino))
                 rc = walk(p, path, sub, depth + 1);
             free(path);
-        } else if (ends_with_ci(name, p->spec->ext) &&
+        } else if (cli_ends_with_ci(name, p->spec->ext) &&
                    (S_ISREG(lsb.st_mode) ||
                     (S_ISLNK(lsb.st_mode) && stat(path, &sb) == 0 && S_ISREG(sb.st_mode)))) {
             rc = add_item(p, path, sub);
