@@ -19,6 +19,7 @@
 #include <time.h>
 
 #include "cli.h"
+#include "cli_batch.h"
 #include "conica/curve.h"
 #include "conica/subdiv.h"
 #include "conica_scad.h"
@@ -66,6 +67,13 @@ typedef struct options {
     conica_svg_limits limits; /* SVG: XML caps; max_bytes also caps other inputs when given */
     int max_input_given;
     const char *out, *in;
+    /* several inputs (-o DIR/): the input arguments, and which argv
+     * entries they and -o's value are (each file's header records the
+     * command that makes that file alone) */
+    char **inputs;
+    size_t ninputs;
+    int out_arg;
+    int jobs;           /* -j N, 0: not given */
 } options;
 
 typedef struct stats {
@@ -83,6 +91,7 @@ static void usage(FILE *f)
           "                   [--units U] [--extrude H | --rotate-extrude [ANGLE]]\n"
           "                   [--demo-call | --no-demo-call] [--select IDS] [--force]\n"
           "                   [--stats] [-o OUT.scad] IN\n"
+          "       " PROG " [OPTION]... [-j N] IN... -o DIR/\n"
           "Write a 2D profile as an OpenSCAD library file: module NAME(center=false)\n"
           "(a polygon with holes; center=true centres its bounding box on the origin),\n"
           "functions NAME_points(), NAME_paths(), NAME_bbox() = [[xmin,ymin],[xmax,ymax]],\n"
@@ -134,6 +143,10 @@ static void usage(FILE *f)
           "                    coordinates beyond +-1e12 are refused all the same)\n"
           "  --stats           figures on stderr\n"
           "  -o FILE           output (default stdout; written via a temporary file)\n"
+          "  -o DIR/           several inputs (or a name ending in '/'): one DIR/NAME.scad\n"
+          "                    per input, module names from the file names\n"
+          "  -j, --jobs N      inputs processed in parallel (1..256, default: the number\n"
+          "                    of processors); one summary line, exit 1 if any failed\n"
           "  -h, --help        this help;  --version  version\n"
           "\n"
           "Subpaths that enclose no area (fewer than 3 points, all on one line) are\n"
@@ -154,6 +167,11 @@ static int parse_args(int argc, char **argv, options *o, int *exit_now)
 {
     long l;
     memset(o, 0, sizeof *o);
+    o->out_arg = -1;
+    /* the inputs point into argv: at most argc of them */
+    o->inputs = malloc((size_t)argc * sizeof *o->inputs);
+    if (!o->inputs)
+        return cli_error(PROG, NULL, "out of memory");
     o->levels = -1;
     o->module = "profile";
     o->fit = FIT_INSIDE;
@@ -267,22 +285,33 @@ static int parse_args(int argc, char **argv, options *o, int *exit_now)
             if (!*next)
                 return cli_usage_error(PROG, "%s needs a file name", a);
             o->out = next;
+            o->out_arg = i;
+        } else if (strcmp(a, "-j") == 0 || strcmp(a, "--jobs") == 0) {
+            NEED_ARG();
+            if (cli_parse_int(next, 1, CLI_BATCH_MAX_JOBS, &l) != 0)
+                return cli_usage_error(PROG, "%s needs a whole number in 1..%d", a,
+                                       CLI_BATCH_MAX_JOBS);
+            o->jobs = (int)l;
         } else if (strcmp(a, "--") == 0) {
-            if (i + 1 < argc && !o->in)
-                o->in = argv[++i];
-            if (i + 1 < argc)
-                return cli_usage_error(PROG, "more than one input file");
+            while (i + 1 < argc)
+                o->inputs[o->ninputs++] = argv[++i];
         } else if (a[0] == '-' && a[1] != '\0') {
             return cli_usage_error(PROG, "unknown option '%s'", a);
         } else {
-            if (o->in)
-                return cli_usage_error(PROG, "more than one input file ('%s' and '%s')", o->in, a);
-            o->in = a;
+            o->inputs[o->ninputs++] = argv[i];
         }
 #undef NEED_ARG
     }
-    if (!o->in)
+    if (o->ninputs == 0)
         return cli_usage_error(PROG, "no input file");
+    o->in = o->inputs[0];
+    if (o->ninputs > 1 && (!o->out || !cli_is_dir_target(o->out)))
+        return cli_usage_error(PROG, "several input files need -o DIR/ (one .scad per input)");
+    if (o->ninputs > 1 && o->module_given)
+        return cli_usage_error(PROG, "--module names one module; with several inputs each "
+                                     "module is named from its file name");
+    if (o->jobs && !(o->ninputs > 1 || (o->out && o->out[strlen(o->out) - 1] == '/')))
+        return cli_usage_error(PROG, "-j applies to several inputs (-o DIR/)");
     if (o->levels >= 0 && o->tolerance > 0)
         return cli_usage_error(PROG, "--levels and --tolerance exclude each other");
     if (o->extrude && o->revolve)
@@ -297,21 +326,6 @@ static int parse_args(int argc, char **argv, options *o, int *exit_now)
     if (o->tolerance <= 0)
         o->tolerance = DEFAULT_TOLERANCE;
     return 0;
-}
-
-static int ends_with(const char *s, const char *suffix)
-{
-    size_t n = strlen(s), m = strlen(suffix);
-    if (n < m)
-        return 0;
-    for (size_t i = 0; i < m; i++) {
-        char c = s[n - m + i];
-        if (c >= 'A' && c <= 'Z')
-            c = (char)(c - 'A' + 'a');
-        if (c != suffix[i])
-            return 0;
-    }
-    return 1;
 }
 
 /* Does the word at buf[i..len) equal w (followed by a blank or the end)? */
@@ -330,11 +344,11 @@ static int word_is(const char *buf, size_t len, size_t i, const char *w)
  * (a point file, whose reader names what it does not understand). */
 static kind detect(const char *path, const char *buf, size_t len)
 {
-    if (ends_with(path, ".svg"))
+    if (cli_ends_with_ci(path, ".svg"))
         return IN_SVG;
-    if (ends_with(path, ".spl"))
+    if (cli_ends_with_ci(path, ".spl"))
         return IN_SPLINE;
-    if (ends_with(path, ".txt") || ends_with(path, ".obj"))
+    if (cli_ends_with_ci(path, ".txt") || cli_ends_with_ci(path, ".obj"))
         return IN_POINTS;
     size_t i = 0;
     if (len >= 3 && memcmp(buf, "\xEF\xBB\xBF", 3) == 0) /* UTF-8 byte order mark */
@@ -990,10 +1004,23 @@ static int invalid(const char *name, kind k, const options *o, const char *buf, 
     return 0;
 }
 
-int main(int argc, char **argv)
+/* What every file of a run shares: the options, and the command line for
+ * the header (a batch gives each file its own, see file_command()). */
+typedef struct run_ctx {
+    const options *o;
+    int argc;
+    char **argv;
+} run_ctx;
+
+/* One input to one output: the whole of a single-file run, and each file
+ * of a batch (in a process of its own). */
+static int profile_file(void *ctx, const char *in, const char *outp)
 {
-    options o;
-    int exit_now = 0, rc, exact = 0;
+    const run_ctx *rcx = ctx;
+    options o = *rcx->o;
+    int argc = rcx->argc;
+    char **argv = rcx->argv;
+    int rc, exact = 0;
     char *buf = NULL, modbuf[CONICA_SCAD_MAX_MODULE_NAME + 1];
     size_t len = 0;
     conica_scad_profile prof[2], rounded;
@@ -1005,8 +1032,8 @@ int main(int argc, char **argv)
     struct timespec t0, t1;
     const char *name;
 
-    if ((rc = parse_args(argc, argv, &o, &exit_now)) != 0 || exit_now)
-        return rc;
+    o.in = in;
+    o.out = outp;
     clock_gettime(CLOCK_MONOTONIC, &t0);
     if (cli_read_file(PROG, o.in, o.max_input_given ? o.limits.max_bytes : cli_max_input(PROG),
                       &buf, &len) != 0)
@@ -1212,4 +1239,80 @@ fail:
     conica_scad_profile_free(&prof[1]);
     conica_scad_profile_free(&rounded);
     return CLI_EXIT_ERROR;
+}
+
+/* The command line that makes one file of a batch alone: the options as
+ * given, -o's value replaced by out, and in at the end (fresh argv; the
+ * strings are the caller's). NULL when out of memory. */
+static char **file_command(int argc, char **argv, const options *o, const char *in,
+                           const char *out, int *n)
+{
+    char **v = malloc(((size_t)argc + 1) * sizeof *v);
+    size_t k = 0;
+    if (!v)
+        return NULL;
+    for (int i = 0; i < argc; i++) {
+        int is_input = 0;
+        for (size_t j = 0; j < o->ninputs && !is_input; j++)
+            is_input = o->inputs[j] == argv[i];
+        if (is_input || (strcmp(argv[i], "--") == 0 && i > 0))
+            continue;
+        v[k++] = i == o->out_arg ? (char *)out : argv[i];
+    }
+    v[k++] = (char *)in;
+    *n = (int)k;
+    return v;
+}
+
+static int profile_batch_file(void *ctx, const char *in, const char *out)
+{
+    const run_ctx *b = ctx; /* the whole command line */
+    run_ctx r;
+    int n, rc;
+    char **v = file_command(b->argc, b->argv, b->o, in, out, &n);
+    if (!v)
+        return cli_error(PROG, in, "out of memory");
+    r.o = b->o;
+    r.argc = n;
+    r.argv = v;
+    rc = profile_file(&r, in, out);
+    free(v);
+    return rc;
+}
+
+int main(int argc, char **argv)
+{
+    options o;
+    int exit_now = 0, rc;
+
+    if ((rc = parse_args(argc, argv, &o, &exit_now)) != 0 || exit_now) {
+        free(o.inputs);
+        return rc;
+    }
+    if (o.ninputs > 1 || (o.out && o.out[strlen(o.out) - 1] == '/')) {
+        cli_batch b;
+        cli_batch_spec spec;
+        run_ctx bc;
+        memset(&spec, 0, sizeof spec);
+        spec.outdir = o.out;
+        spec.ext = ".svg";
+        spec.out_ext = ".scad";
+        bc.o = &o;
+        bc.argc = argc;
+        bc.argv = argv;
+        cli_batch_init(&b);
+        rc = cli_batch_plan(PROG, o.inputs, o.ninputs, &spec, &b);
+        if (rc == 0)
+            rc = cli_batch_run(PROG, &b, o.jobs ? o.jobs : cli_batch_default_jobs(),
+                               profile_batch_file, &bc);
+        cli_batch_free(&b);
+    } else {
+        run_ctx r;
+        r.o = &o;
+        r.argc = argc;
+        r.argv = argv;
+        rc = profile_file(&r, o.in, o.out);
+    }
+    free(o.inputs);
+    return rc;
 }

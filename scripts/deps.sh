@@ -3,13 +3,15 @@
 # Install the Debian packages a make target needs, and nothing else.
 #   scripts/deps.sh build   compiler, LAPACKE, libxml2, Python headers
 #   scripts/deps.sh test    build + CGAL, GMP, OpenSCAD, Blender, rsvg, clang,
-#                           FreeType and the DejaVu fonts (glyph outlines)
+#                           FreeType and the DejaVu fonts (glyph outlines),
+#                           Inkscape with the Python modules its inkex needs
+#                           and Xvfb (the extension test)
 #   scripts/deps.sh demo    build + OpenSCAD, Blender, rsvg
 # Prints what it installs; does nothing when everything is present.
 set -eu
 
 build="gcc g++ make pkg-config liblapacke-dev libxml2-dev python3-dev"
-test="libcgal-dev libgmp-dev openscad blender librsvg2-bin libxml2-utils clang libclang-rt-14-dev valgrind libfreetype-dev fonts-dejavu-core groff-base mandoc"
+test="libcgal-dev libgmp-dev openscad blender librsvg2-bin libxml2-utils clang libclang-rt-14-dev valgrind libfreetype-dev fonts-dejavu-core groff-base mandoc inkscape python3-lxml python3-cssselect xvfb xauth"
 demo="openscad blender librsvg2-bin"
 
 case "${1:-build}" in

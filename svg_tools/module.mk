@@ -19,3 +19,28 @@ $(BUILD)/bin/svgsmooth: $(SVGSMOOTH_OBJS) $(SVG_A) $(CLI_A) $(CORE_A)
 	$(CC) $(LDFLAGS) -o $@ $(SVGSMOOTH_OBJS) $(SVG_A) $(CLI_A) $(CORE_A) $(ALL_LDLIBS)
 
 BINS += $(BUILD)/bin/svgsmooth
+
+# The Inkscape 1.x extension (svg_tools/inkscape/): `make install` puts it
+# where an Inkscape installed under the same PREFIX finds system extensions
+# (PREFIX/share/inkscape/extensions/conica/); `make inkscape-extension`
+# makes a zip to unpack into the user's extension directory
+# (~/.config/inkscape/extensions/, Edit > Preferences > System).
+INKSCAPE_EXT := svg_tools/inkscape/conica_smooth.inx svg_tools/inkscape/conica_flatten.inx \
+                svg_tools/inkscape/conica_smooth.py
+INKSCAPE_ZIP := $(BUILD)/conica-inkscape.zip
+
+$(INKSCAPE_ZIP): $(INKSCAPE_EXT)
+	@mkdir -p $(BUILD)/inkscape/conica
+	cp $(INKSCAPE_EXT) $(BUILD)/inkscape/conica/
+	rm -f $@ && cd $(BUILD)/inkscape && python3 -m zipfile -c $(abspath $@) conica
+
+inkscape-extension: $(INKSCAPE_ZIP)
+TEST_EXTRA += $(INKSCAPE_ZIP)
+
+install-inkscape: $(INKSCAPE_EXT)
+	install -d $(DESTDIR)$(PREFIX)/share/inkscape/extensions/conica
+	install -m 644 svg_tools/inkscape/*.inx $(DESTDIR)$(PREFIX)/share/inkscape/extensions/conica/
+	install -m 755 svg_tools/inkscape/conica_smooth.py $(DESTDIR)$(PREFIX)/share/inkscape/extensions/conica/
+
+install: install-inkscape
+.PHONY: inkscape-extension install-inkscape

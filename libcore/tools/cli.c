@@ -429,6 +429,21 @@ void cli_output_abort(cli_output *out)
     out->tmp = out->path = NULL;
 }
 
+int cli_ends_with_ci(const char *s, const char *suffix)
+{
+    size_t n = strlen(s), m = strlen(suffix), i;
+    if (n < m)
+        return 0;
+    for (i = 0; i < m; i++) {
+        char c = s[n - m + i];
+        if (c >= 'A' && c <= 'Z')
+            c = (char)(c - 'A' + 'a');
+        if (c != suffix[i])
+            return 0;
+    }
+    return 1;
+}
+
 int cli_parse_int(const char *s, long lo, long hi, long *out)
 {
     long v = 0;

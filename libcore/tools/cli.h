@@ -104,6 +104,10 @@ void cli_output_abort(cli_output *out);
  * stdout. Returns 0, or 1 after a write error. */
 int cli_version(const char *tool);
 
+/* Does s end with suffix (lower case), ignoring the case of s's ASCII
+ * letters: file extensions (".svg", ".SVG"). */
+int cli_ends_with_ci(const char *s, const char *suffix);
+
 /* Parse a whole decimal integer in [lo, hi]; returns 0 on success. */
 int cli_parse_int(const char *s, long lo, long hi, long *out);
 /* Parse a finite number without the C locale; returns 0 on success. */
