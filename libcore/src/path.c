@@ -1879,7 +1879,30 @@ static double bulge(const conica_path *p, size_t s, double ta, double tb, const 
  * line is shifted along its outer normal and the vertices become the
  * intersections of consecutive shifted lines (a bevel where they meet too
  * far away). Returns the largest deviation it leaves (chords and vertices). */
-static int apply_fit(ctx *c, conica_path_polyline *L, conica_path_fit fit, double *dev)
+/* Largest signed distance along n of the drawn curve between two points of
+ * a flattened subpath, (sk, tk) to (sj, tj): the chord may pass over the
+ * tangent joins of a run, so the span runs over every segment in between,
+ * in the subpath's order (round its start when it is closed). */
+static double span_bulge(const conica_path *p, const conica_path_subpath *sp, size_t sk,
+                         double tk, size_t sj, double tj, const double a[2], const double n[2],
+                         int sign)
+{
+    double best = 0, ta = tk;
+    size_t s = sk, guard;
+    for (guard = 0; guard <= sp->n; guard++) {
+        if (s == sj && (guard > 0 || tj >= ta)) {
+            best = fmax(best, bulge(p, s, ta, tj, a, n, sign));
+            break;
+        }
+        best = fmax(best, bulge(p, s, ta, 1.0, a, n, sign));
+        s = s + 1 < sp->first + sp->n ? s + 1 : sp->first;
+        ta = 0.0;
+    }
+    return best;
+}
+
+static int apply_fit(ctx *c, const conica_path_subpath *sp, conica_path_polyline *L,
+                     conica_path_fit fit, double *dev)
 {
     const conica_path *p = c->p;
     size_t n = L->n, k, i;
@@ -1900,22 +1923,16 @@ static int apply_fit(ctx *c, conica_path_polyline *L, conica_path_fit fit, doubl
         return 0;
     }
     for (k = 0; k < n; k++) {
-        size_t j = (k + 1) % n, s = L->seg[j];
+        size_t j = (k + 1) % n;
         const double *a = L->xy + 2 * k, *b = L->xy + 2 * j;
-        double ta, tb = L->t[j], out, in, dx = b[0] - a[0], dy = b[1] - a[1],
-                   len = hypot(dx, dy);
-        if (tb == 0.0) {
-            /* the chord ends where segment seg[j] starts: it runs along
-             * the segment the chord starts on, to its end */
-            s = L->seg[k];
-            tb = 1.0;
-        }
-        ta = L->seg[k] == s && L->t[k] < 1.0 ? L->t[k] : 0.0;
+        double out, in, dx = b[0] - a[0], dy = b[1] - a[1], len = hypot(dx, dy);
         nrm[2 * k] = len > 0 ? orient * dy / len : 0;
         nrm[2 * k + 1] = len > 0 ? -orient * dx / len : 0;
-        out = bulge(p, s, ta, tb, a, nrm + 2 * k, 1);
-        in = bulge(p, s, ta, tb, a, nrm + 2 * k, -1);
+        out = span_bulge(p, sp, L->seg[k], L->t[k], L->seg[j], L->t[j], a, nrm + 2 * k, 1);
+        in = span_bulge(p, sp, L->seg[k], L->t[k], L->seg[j], L->t[j], a, nrm + 2 * k, -1);
         sh[k] = fit == CONICA_PATH_FIT_OUTSIDE ? out : 0.5 * (out - in);
+        if (out == 0.0 && in == 0.0)
+            sh[k] = -0.0; /* a drawn straight edge: it stays on its line */
         worst = fmax(worst, fit == CONICA_PATH_FIT_OUTSIDE ? out + in : 0.5 * (out + in));
     }
     {
@@ -1938,6 +1955,26 @@ static int apply_fit(ctx *c, conica_path_polyline *L, conica_path_fit fit, doubl
                 m[0] = n1[0], m[1] = n1[1];
             c0 = m[0] * n0[0] + m[1] * n0[1];
             c1 = m[0] * n1[0] + m[1] * n1[1];
+            {
+                /* a straight edge next to a shifted chord: the vertex slides
+                 * along the straight edge's line to where the shifted chord
+                 * meets it, so the edge keeps its drawn line */
+                int s0 = signbit(sh[pv]) && sh[pv] == 0.0, s1 = signbit(sh[i]) && sh[i] == 0.0;
+                if (s0 != s1) {
+                    size_t ln = s0 ? pv : i, cv = s0 ? i : pv;
+                    const double *nl = nrm + 2 * ln, *nc = nrm + 2 * cv;
+                    double dl[2] = {-nl[1], nl[0]}, den = nc[0] * dl[0] + nc[1] * dl[1];
+                    double sl = fabs(den) > 1e-12 ? sh[cv] / den : INFINITY;
+                    size_t cj = (cv + 1) % n;
+                    double clen = hypot(L->xy[2 * cj] - L->xy[2 * cv], L->xy[2 * cj + 1] - L->xy[2 * cv + 1]);
+                    if (fabs(sl) <= clen && sh[cv] <= c->tol) {
+                        nv[2 * i] = L->xy[2 * i] + sl * dl[0];
+                        nv[2 * i + 1] = L->xy[2 * i + 1] + sl * dl[1];
+                        worst = fmax(worst, sh[cv]);
+                        continue;
+                    }
+                }
+            }
             d0 = c0 > 0.1 ? sh[pv] / c0 : sh[pv];
             d1 = c1 > 0.1 ? sh[i] / c1 : sh[i];
             dd = fmax(d0, d1);
@@ -2145,7 +2182,7 @@ static conica_code drawn_subpath(ctx *c, const conica_path_subpath *sp, int smoo
     }
     if (rc == CONICA_OK && !smooth && sp->closed && c->s.fit != CONICA_PATH_FIT_INSIDE) {
         double fdev = 0;
-        if (!apply_fit(c, c->L, c->s.fit, &fdev))
+        if (!apply_fit(c, sp, c->L, c->s.fit, &fdev))
             rc = fail_nomem(c);
         dev = fdev;
     }

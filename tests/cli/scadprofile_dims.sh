@@ -90,6 +90,23 @@ check_grep '^// tolerance: 0\.01 mm ' "$tmp/b.scad" "the header states the toler
 check_grep '^// coordinates: fewest digits within 1e-05 mm \(tolerance/1000\)' "$tmp/b.scad" \
     "the header states the digits' share of it"
 
+begin_case "bracket under --fit outside, middle, clearance: straight edges stay on their lines"
+for fit in outside middle clearance; do
+    check "scadprofile --fit $fit" "$bin" --tolerance 0.01 --fit "$fit" -o "$tmp/b-$fit.scad" "$tmp/bracket.svg"
+    points "$tmp/b-$fit.scad" >"$tmp/b-$fit.pts"
+    # The plate's sides x = 0, x = 80 and y = 0 are straight edges: no vertex
+    # may leave them outward. The top (y = 50) is the lug's arc: outside
+    # and middle may put its vertex up to the tolerance beyond it.
+    check "--fit $fit: x in 0..80, y in 0..50.01" py '
+import sys
+pts = [tuple(map(float, l.split())) for l in open("'"$tmp"'/b-'"$fit"'.pts")]
+xs = [p[0] for p in pts]; ys = [p[1] for p in pts]
+box = (min(xs), max(xs), min(ys), max(ys))
+print(len(pts), "points, box", box)
+sys.exit(0 if box[0] == 0 and box[1] == 80 and box[2] == 0 and 50 <= box[3] <= 50.01 else 1)
+'
+done
+
 begin_case "rounding that would make points meet: written exactly, with a warning"
 # (10, 0) and (10, 3.14e-6) are one point at 1e-5 (tolerance 0.01 / 1000);
 # 1e-6 would stay (a short number of the input), 3.1415926535e-6 is not
