@@ -87,11 +87,12 @@
  * the budget sets; a curve that needs more is refused as too large). */
 #define PATH_FLAT_TRIALS 64
 /* Flattening tolerance / tolerance per fit mode. The chords use their
- * tolerance to the last bit, so INSIDE keeps 0.2% of it for the writers'
- * rounding (scadprofile and svgsmooth write each point within 1/1000 of
- * the tolerance of its exact value); OUTSIDE shifts vertices by up to the
+ * tolerance to the last bit, so INSIDE keeps 1% of it for what comes after:
+ * the writers' rounding (scadprofile and svgsmooth write each point within
+ * 1/1000 of the tolerance of its exact value, Blender stores float32) and
+ * the sampled bulge of a chord; OUTSIDE shifts vertices by up to the
  * bulge and MIDDLE by half of it, inside the same budget. */
-#define PATH_FIT_INSIDE_FRACTION 0.998
+#define PATH_FIT_INSIDE_FRACTION 0.99
 #define PATH_FIT_OUTSIDE_FRACTION 0.99
 #define PATH_FIT_MIDDLE_FRACTION 1.98
 /* Most levels that settings.level_tolerance may choose for a piece. */
