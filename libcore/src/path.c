@@ -1024,6 +1024,25 @@ static double run_dev(const seg_run *R, double u0, double u1, const double a[2],
     return worst;
 }
 
+/* Room for need points in the parallel lists U (parameters) and X (x, y
+ * pairs) of flatten_run(); 0 when out of memory (the lists stay valid). */
+static int grow_ux(double **U, double **X, size_t *cap, size_t need)
+{
+    double *u2, *x2;
+    if (need <= *cap)
+        return 1;
+    u2 = realloc(*U, need * sizeof **U);
+    if (!u2)
+        return 0;
+    *U = u2;
+    x2 = realloc(*X, 2 * need * sizeof **X);
+    if (!x2)
+        return 0;
+    *X = x2;
+    *cap = need;
+    return 1;
+}
+
 /*
  * Append the run of segments segs[0..m) flattened within the tolerance (its
  * first point is there already) as one curve, so that chords may pass over
@@ -1052,21 +1071,11 @@ static conica_code flatten_run(ctx *c, const size_t *segs, size_t m, const doubl
         rc = dense_seg(c, segs[k], &pl, &est);
         if (rc == CONICA_OK) {
             size_t from = k == 0 ? 0 : 1; /* a join once */
-            if (n + pl.n > cap) {
-                size_t nc = 2 * (n + pl.n);
-                double *u2 = realloc(U, nc * sizeof *U), *x2;
-                if (u2)
-                    U = u2;
-                x2 = u2 ? realloc(X, 2 * nc * sizeof *X) : NULL;
-                if (x2)
-                    X = x2;
-                if (!u2 || !x2) {
-                    conica_polyline_free(&pl);
-                    free(U);
-                    free(X);
-                    return fail_nomem(c);
-                }
-                cap = nc;
+            if (n + pl.n > cap && !grow_ux(&U, &X, &cap, 2 * (n + pl.n))) {
+                conica_polyline_free(&pl);
+                free(U);
+                free(X);
+                return fail_nomem(c);
             }
             for (i = from; i < pl.n; i++) {
                 U[n] = (double)k + pl.t[i];
@@ -1115,20 +1124,10 @@ static conica_code flatten_run(ctx *c, const size_t *segs, size_t m, const doubl
                         fu[nf++] = u;
                 }
             }
-        if (nf && n + nf > cap) {
-            size_t nc = n + nf;
-            double *u2 = realloc(U, nc * sizeof *U), *x2;
-            if (u2)
-                U = u2;
-            x2 = u2 ? realloc(X, 2 * nc * sizeof *X) : NULL;
-            if (x2)
-                X = x2;
-            if (!u2 || !x2) {
-                free(U);
-                free(X);
-                return fail_nomem(c);
-            }
-            cap = nc;
+        if (!grow_ux(&U, &X, &cap, n + nf)) {
+            free(U);
+            free(X);
+            return fail_nomem(c);
         }
         for (f = 0; f < nf; f++) {
             size_t at = 0, j;
