@@ -133,6 +133,11 @@ static char g_notes[MAX_NOTES][160];
 static size_t g_nnotes;
 static cost g_runs[NTOLS + 1][MAX_RUNS]; /* per tolerance; last: bisection */
 static size_t g_nruns[NTOLS + 1];
+/* OpenSCAD's CPU seconds to render the files, summed: scadprofile's per
+ * tolerance, then import()'s. */
+static double g_render[NTOLS + 1];
+/* scadprofile --fit F for every run when CONICA_BENCH_FIT=F is set. */
+static const char *g_fit;
 
 static void note(const char *fmt, ...)
 {
@@ -487,7 +492,8 @@ static measure measure_polys(const glyph *g, const polyset *p)
  * the run's cost in *c. */
 static measure run_scadprofile(const glyph *g, double tol, const char *out, int check, cost *c)
 {
-    char t[40], *argv[9];
+    char t[40], *argv[11];
+    int k = 7;
     polyset p;
     measure m;
     memset(&m, 0, sizeof m);
@@ -499,8 +505,12 @@ static measure run_scadprofile(const glyph *g, double tol, const char *out, int 
     argv[4] = (char *)out;
     argv[5] = "--module"; /* the rendering .scad calls profile() */
     argv[6] = "profile";
-    argv[7] = (char *)g->svg;
-    argv[8] = NULL;
+    if (g_fit) {
+        argv[k++] = "--fit";
+        argv[k++] = (char *)g_fit;
+    }
+    argv[k++] = (char *)g->svg;
+    argv[k] = NULL;
     if (spawn(argv, 0, NULL, c) != 0) {
         note("%s: scadprofile --tolerance %g failed", g->label, tol);
         return m;
@@ -530,8 +540,10 @@ static measure search_run(const glyph *g, double tol, const char *out)
 
 /* `openscad -o x.svg` of a two-line .scad (`pre` then the translated
  * `body`), measured. */
-static measure run_openscad(const glyph *g, const char *pre, const char *body, const char *what)
+static measure run_openscad(const glyph *g, const char *pre, const char *body, const char *what,
+                            size_t render)
 {
+    cost rc;
     char scad[PATHLEN], svg[PATHLEN], log[PATHLEN], text[2 * PATHLEN], *argv[5], *l;
     polyset p;
     measure m;
@@ -549,10 +561,11 @@ static measure run_openscad(const glyph *g, const char *pre, const char *body, c
     argv[2] = svg;
     argv[3] = scad;
     argv[4] = NULL;
-    if (spawn(argv, 1, log, NULL) != 0) {
+    if (spawn(argv, 1, log, &rc) != 0) {
         note("%s: openscad failed (%s)", g->label, what);
         return m;
     }
+    g_render[render] += rc.cpu;
     if ((l = slurp(log)) != NULL) {
         if (strstr(l, "WARNING") || strstr(l, "ERROR"))
             note("%s: openscad warns (%s)", g->label, what);
@@ -821,6 +834,7 @@ int main(int argc, char **argv)
         return 0;
     }
     g_openscad = on_path("openscad");
+    g_fit = getenv("CONICA_BENCH_FIT");
     snprintf(tmpl, sizeof tmpl, "%s/bench-scad-import.XXXXXX", tmpdir && *tmpdir ? tmpdir : "/tmp");
     if (!mkdtemp(tmpl)) {
         perror("mkdtemp");
@@ -896,7 +910,7 @@ int main(int argc, char **argv)
             if (g_openscad) {
                 char pre[PATHLEN + 16];
                 snprintf(pre, sizeof pre, "use <%s>\n", out);
-                drawn = run_openscad(g, pre, "profile()", "scadprofile");
+                drawn = run_openscad(g, pre, "profile()", "scadprofile", j);
                 if (drawn.ok && drawn.contours != g->contours)
                     note("%s: OpenSCAD draws %zu of %zu contours of scadprofile's file (T = %g)",
                          g->label, drawn.contours, g->contours, TOLS[j]);
@@ -911,7 +925,7 @@ int main(int argc, char **argv)
         {
             char body[PATHLEN + 16];
             snprintf(body, sizeof body, "import(\"%s\")", g->svg);
-            imp = run_openscad(g, "", body, "import");
+            imp = run_openscad(g, "", body, "import", NTOLS);
         }
         if (!imp.ok)
             continue;
@@ -975,6 +989,7 @@ int main(int argc, char **argv)
            "Serif, %zu files, em = %g mm, every other file without Z; checker: tests/support\n"
            "(Hausdorff both directions, mm)\n\n",
            TEXT, ng, EM_MM);
+    printf("scadprofile --fit %s\n\n", g_fit ? g_fit : "inside (default)");
     if (!g_openscad)
         printf("openscad is not on PATH: the import() comparison is skipped.\n\n");
     printf("| tool | T (mm) | subpaths | files | points | worst deviation (glyph) | median "
@@ -985,6 +1000,13 @@ int main(int argc, char **argv)
         for (int c = 0; c < 2; c++)
             print_row(&rows[c][j]);
 
+    if (g_openscad) {
+        printf("\nOpenSCAD's CPU seconds to render all the files above (`openscad -o x.svg`, "
+               "summed): import() %.2f", g_render[NTOLS]);
+        for (size_t j = 0; j < NTOLS; j++)
+            printf("; scadprofile T = %g mm: %.2f", TOLS[j], g_render[j]);
+        printf("\n");
+    }
     if (g_openscad && nratio[2]) {
         double med_t;
         printf("\nPoints at equal measured deviation, glyphs with curves: per glyph, the largest "
