@@ -94,6 +94,10 @@
  * bulge and MIDDLE by half of it, inside the same budget. */
 #define PATH_FIT_INSIDE_FRACTION 0.99
 #define PATH_FIT_OUTSIDE_FRACTION 0.99
+/* A straight edge's end slides along its line (OUTSIDE, MIDDLE) only where
+ * the next chord turns from it by less than this (radians): a tangent join
+ * seen through its first chord. */
+#define PATH_FIT_SLIDE_MAX_ANGLE 0.35
 #define PATH_FIT_MIDDLE_FRACTION 1.98
 /* Most levels that settings.level_tolerance may choose for a piece. */
 #define PATH_LEVELS_MAX 16
@@ -1960,7 +1964,12 @@ static int apply_fit(ctx *c, const conica_path_subpath *sp, conica_path_polyline
                  * along the straight edge's line to where the shifted chord
                  * meets it, so the edge keeps its drawn line */
                 int s0 = signbit(sh[pv]) && sh[pv] == 0.0, s1 = signbit(sh[i]) && sh[i] == 0.0;
-                if (s0 != s1) {
+                /* only where the edge meets the curve tangentially: at a
+                 * corner the edge's line leaves the curve, and the vertex
+                 * moves by the bisector rule below */
+                if (s0 != s1 && !(L->flags[i] & CONICA_PATH_PT_CORNER) &&
+                    nrm[2 * pv] * nrm[2 * i] + nrm[2 * pv + 1] * nrm[2 * i + 1] >=
+                        cos(fmin(c->s.corner_angle, PATH_FIT_SLIDE_MAX_ANGLE))) {
                     size_t ln = s0 ? pv : i, cv = s0 ? i : pv;
                     const double *nl = nrm + 2 * ln, *nc = nrm + 2 * cv;
                     double dl[2] = {-nl[1], nl[0]}, den = nc[0] * dl[0] + nc[1] * dl[1];
