@@ -118,6 +118,7 @@ static void usage(FILE *f)
           "                      outside    chords on or outside: every contour, outline\n"
           "                                 or hole, at least as large as drawn\n"
           "                      middle     chords straddle the curve: fewest points\n"
+          "                                 (smooth closed contours; others as inside)\n"
           "                      clearance  outlines inside, holes outside: the part is\n"
           "                                 never larger than drawn, its holes never\n"
           "                                 smaller\n"

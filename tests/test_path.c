@@ -425,15 +425,20 @@ TEST_CASE("nothing drawn is dropped: open subpaths, lone points, loops", "[path]
 TEST_CASE("fit modes: outside contains the drawn region, middle straddles it, both within T",
           "[path][fit]")
 {
+    /* 'O' all curves; the others straight edges meeting curves at corners
+     * and tangentially, where outside and middle move vertices */
+    const char *glyphs = "Ohp8R&";
+    for (const char *gc = glyphs; *gc; gc++) {
     ts_outline o;
     ts_code rc;
     int f;
     size_t n_inside = 0;
     ts_outline_init(&o);
-    rc = ts_glyph_outline(TS_FONT_SANS, 'O', &o, NULL);
+    rc = ts_glyph_outline(TS_FONT_SANS, (unsigned long)*gc, &o, NULL);
     if (rc == TS_ERR_NO_FONT || rc == TS_ERR_NO_FREETYPE)
         SKIP("%s (install libfreetype-dev fonts-dejavu-core)", ts_strerror(rc));
     REQUIRE_EQ(rc, TS_OK);
+    INFO("glyph '%c'", *gc);
     for (f = 0; f < 3; f++) {
         conica_path p;
         conica_path_result r;
@@ -468,12 +473,13 @@ TEST_CASE("fit modes: outside contains the drawn region, middle straddles it, bo
         }
         if (f == CONICA_PATH_FIT_INSIDE)
             n_inside = pts;
-        else if (f == CONICA_PATH_FIT_MIDDLE)
+        else if (f == CONICA_PATH_FIT_MIDDLE && *gc == 'O')
             CHECK(pts * 10 < n_inside * 8); /* about 1/sqrt(2) */
         conica_path_result_free(&r);
         conica_path_free(&p);
     }
     ts_outline_free(&o);
+    }
 }
 
 TEST_CASE("fit modes on a circle: outside vertices in [r, r + T], chords outside; middle +-T",

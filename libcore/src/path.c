@@ -2097,6 +2097,8 @@ static conica_code drawn_subpath(ctx *c, const conica_path_subpath *sp, int smoo
                                  (j == 0 && !sp->closed));
         any_break |= brk[j];
     }
+    if (!smooth && c->s.fit == CONICA_PATH_FIT_MIDDLE && any_break)
+        c->flat_fraction = PATH_FIT_INSIDE_FRACTION; /* see below */
     if (sp->closed && any_break && !brk[0])
         for (start = 1; start < n && !brk[start]; start++)
             ;
@@ -2189,7 +2191,12 @@ static conica_code drawn_subpath(ctx *c, const conica_path_subpath *sp, int smoo
         c->L->n--; /* the last point is the first */
         c->budget++;
     }
-    if (rc == CONICA_OK && !smooth && sp->closed && c->s.fit != CONICA_PATH_FIT_INSIDE) {
+    /* MIDDLE straddles smooth closed contours (circles, ellipses, round
+     * holes) only: at a corner or a straight edge the two chords meeting
+     * there need shifts no one vertex move gives, and a drawn corner would
+     * leave its place; such contours are written as INSIDE. */
+    if (rc == CONICA_OK && !smooth && sp->closed && c->s.fit != CONICA_PATH_FIT_INSIDE &&
+        !(c->s.fit == CONICA_PATH_FIT_MIDDLE && any_break)) {
         double fdev = 0;
         if (!apply_fit(c, sp, c->L, c->s.fit, &fdev))
             rc = fail_nomem(c);
