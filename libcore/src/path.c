@@ -76,8 +76,9 @@
  * the longest chords that stay within it (near the fewest points). */
 #define PATH_FLAT_DENSE 8
 /* Bisection steps of a chord's end parameter between two plotted points
- * (2^-30 of their spacing: the tolerance is used to 1e-9 of itself). */
-#define PATH_FLAT_BISECT 30
+ * (2^-12 of their spacing, plotted at an eighth of the tolerance: the
+ * chord uses the tolerance to about 1e-4 of itself). */
+#define PATH_FLAT_BISECT 12
 /* A run reaches its subpath's bounding box where it comes within this
  * fraction of the box's coordinate (plus the tolerance's) of it; an extreme
  * this close to a segment's end (in its parameter) is that end. */
