@@ -902,31 +902,33 @@ static double chord_dev(const conica_path *p, size_t s, double ta, double tb, co
 /* The four directions of the bounding box: +x, -x, +y, -y. */
 static const double box_dir[4][2] = {{1, 0}, {-1, 0}, {0, 1}, {0, -1}};
 
-/* Largest value of C(t) . dir over segment s, and where (dense samples,
- * then golden section round the best one, as bulge()). */
-static double seg_extreme(const conica_path *p, size_t s, const double dir[2], double *targ)
+/* Largest (C(t) - a) . dir of segment s over [ta, tb], from best0 up, and
+ * where (*targ): dense samples, then golden section (iters steps) round
+ * the best one. The one search behind bulge() and seg_extreme(). */
+static double seg_max_along(const conica_path *p, size_t s, double ta, double tb, const double a[2],
+                            const double dir[2], double best0, int iters, double *targ)
 {
     const double *q = seg_pts(p, s);
     int d = p->seg[s].degree, k, it;
-    double best = -INFINITY, bt = 0, pt[2];
+    double best = best0, bt = ta, pt[2];
     for (k = 0; k <= PATH_FIT_SAMPLES; k++) {
-        double t = (double)k / PATH_FIT_SAMPLES, v;
+        double t = ta + (tb - ta) * k / PATH_FIT_SAMPLES, v;
         bez_eval(q, d, t, pt, NULL, NULL);
-        v = pt[0] * dir[0] + pt[1] * dir[1];
+        v = (pt[0] - a[0]) * dir[0] + (pt[1] - a[1]) * dir[1];
         if (v > best) {
             best = v;
             bt = t;
         }
     }
     if (d > 1) {
-        double h = 1.0 / PATH_FIT_SAMPLES, lo = fmax(0.0, bt - h), hi = fmin(1.0, bt + h);
+        double h = (tb - ta) / PATH_FIT_SAMPLES, lo = fmax(ta, bt - h), hi = fmin(tb, bt + h);
         const double g = 0.6180339887498949;
-        for (it = 0; it < 60; it++) {
+        for (it = 0; it < iters; it++) {
             double m1 = hi - g * (hi - lo), m2 = lo + g * (hi - lo), v1, v2;
             bez_eval(q, d, m1, pt, NULL, NULL);
-            v1 = pt[0] * dir[0] + pt[1] * dir[1];
+            v1 = (pt[0] - a[0]) * dir[0] + (pt[1] - a[1]) * dir[1];
             bez_eval(q, d, m2, pt, NULL, NULL);
-            v2 = pt[0] * dir[0] + pt[1] * dir[1];
+            v2 = (pt[0] - a[0]) * dir[0] + (pt[1] - a[1]) * dir[1];
             if (v1 > v2)
                 hi = m2;
             else
@@ -937,6 +939,16 @@ static double seg_extreme(const conica_path *p, size_t s, const double dir[2], d
             }
         }
     }
+    *targ = bt;
+    return best;
+}
+
+/* Largest value of C(t) . dir over segment s, and where. */
+static double seg_extreme(const conica_path *p, size_t s, const double dir[2], double *targ)
+{
+    const double *q = seg_pts(p, s), zero[2] = {0, 0};
+    int d = p->seg[s].degree;
+    double bt, best = seg_max_along(p, s, 0.0, 1.0, zero, dir, -INFINITY, 60, &bt);
     { /* an end that is as high to rounding is the extreme (a flat top
        * drawn as a join is reached at the join itself) */
         double v0 = q[0] * dir[0] + q[1] * dir[1], v1 = q[3 * d] * dir[0] + q[3 * d + 1] * dir[1];
@@ -1846,37 +1858,10 @@ static conica_code smooth_piece(ctx *c, const piece *P, double *deviation)
 static double bulge(const conica_path *p, size_t s, double ta, double tb, const double a[2],
                     const double n[2], int sign)
 {
-    const double *q = seg_pts(p, s);
-    int d = p->seg[s].degree, k, it;
-    double best = 0, bt = ta, pt[2];
-    if (d == 1 || !(tb > ta))
+    double dir[2] = {sign * n[0], sign * n[1]}, t;
+    if (p->seg[s].degree == 1 || !(tb > ta))
         return 0.0;
-    for (k = 0; k <= PATH_FIT_SAMPLES; k++) {
-        double t = ta + (tb - ta) * k / PATH_FIT_SAMPLES, v;
-        bez_eval(q, d, t, pt, NULL, NULL);
-        v = sign * ((pt[0] - a[0]) * n[0] + (pt[1] - a[1]) * n[1]);
-        if (v > best) {
-            best = v;
-            bt = t;
-        }
-    }
-    {
-        double h = (tb - ta) / PATH_FIT_SAMPLES, lo = fmax(ta, bt - h), hi = fmin(tb, bt + h);
-        const double g = 0.6180339887498949;
-        for (it = 0; it < 40; it++) {
-            double m1 = hi - g * (hi - lo), m2 = lo + g * (hi - lo), v1, v2;
-            bez_eval(q, d, m1, pt, NULL, NULL);
-            v1 = sign * ((pt[0] - a[0]) * n[0] + (pt[1] - a[1]) * n[1]);
-            bez_eval(q, d, m2, pt, NULL, NULL);
-            v2 = sign * ((pt[0] - a[0]) * n[0] + (pt[1] - a[1]) * n[1]);
-            if (v1 > v2)
-                hi = m2;
-            else
-                lo = m1;
-            best = fmax(best, fmax(v1, v2));
-        }
-    }
-    return best;
+    return seg_max_along(p, s, ta, tb, a, dir, 0.0, 40, &t);
 }
 
 /* Move the chords of the closed polyline L (flattened within tol_plot)

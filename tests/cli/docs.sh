@@ -190,8 +190,6 @@ elif cmd == 'cblocks':
 elif cmd == 'compare':
     cmd_compare(sys.argv[2], sys.argv[3])
 EOF
-PY=python3
-[ -x /usr/bin/python3 ] && PY=/usr/bin/python3
 
 # quiet CMD...: CMD exits 0 and prints nothing (its output is shown otherwise).
 quiet() {

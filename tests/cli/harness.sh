@@ -132,6 +132,22 @@ h_run_wrapped() {
     return "$h_wst"
 }
 
+# Python for checks written inline (Debian's, when a pyenv one shadows it).
+PY=python3
+[ -x /usr/bin/python3 ] && PY=/usr/bin/python3
+# py SCRIPT [ARGS]: run an inline Python check.
+py() { "$PY" -c "$@"; }
+# fails_with STATUS PATTERN CMD...: CMD exits with STATUS and its stderr has
+# a line with PATTERN (use as: check "..." fails_with 1 'error' cmd ...).
+fails_with() {
+    want=$1 pat=$2
+    shift 2
+    "$@" >"$tmp/fw.out" 2>"$tmp/fw.err"
+    got=$?
+    [ "$got" -eq "$want" ] || { echo "exit $got, wanted $want"; cat "$tmp/fw.err"; return 1; }
+    grep -q -- "$pat" "$tmp/fw.err" || { echo "stderr lacks '$pat':"; cat "$tmp/fw.err"; return 1; }
+}
+
 # check DESC CMD...: passes when CMD exits 0.
 check() {
     h_skipping && return 0

@@ -19,17 +19,6 @@ openscad_binstl() { # out in
     [ -s "$1" ]
 }
 # pyenv shims cost about a second per start: prefer the system interpreter.
-PY=python3
-[ -x /usr/bin/python3 ] && PY=/usr/bin/python3
-py() { "$PY" -c "$@"; }
-fails_with() { # status pattern command... : exit status and a stderr line
-    want=$1 pat=$2
-    shift 2
-    "$@" >"$tmp/fw.out" 2>"$tmp/fw.err"
-    got=$?
-    [ "$got" -eq "$want" ] || { echo "exit $got, wanted $want"; cat "$tmp/fw.err"; return 1; }
-    grep -q -- "$pat" "$tmp/fw.err" || { echo "stderr lacks '$pat':"; cat "$tmp/fw.err"; return 1; }
-}
 
 begin_case "scadprofile is built"
 check_true "$bin exists" test -x "$bin"

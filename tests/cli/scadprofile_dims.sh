@@ -10,17 +10,6 @@ set -u
 . "$(dirname "$0")/harness.sh"
 bin=$build/bin/scadprofile
 has_openscad() { command -v openscad >/dev/null 2>&1; }
-PY=python3
-[ -x /usr/bin/python3 ] && PY=/usr/bin/python3
-py() { "$PY" -c "$@"; }
-fails_with() { # status pattern command... : exit status and a stderr line
-    want=$1 pat=$2
-    shift 2
-    "$@" >"$tmp/fw.out" 2>"$tmp/fw.err"
-    got=$?
-    [ "$got" -eq "$want" ] || { echo "exit $got, wanted $want"; cat "$tmp/fw.err"; return 1; }
-    grep -q -- "$pat" "$tmp/fw.err" || { echo "stderr lacks '$pat':"; cat "$tmp/fw.err"; return 1; }
-}
 # OpenSCAD must exit 0 and print neither WARNING nor ERROR.
 openscad_clean() { # out in
     openscad -o "$1" "$2" >"$tmp/openscad.log" 2>&1 || { cat "$tmp/openscad.log"; return 1; }
