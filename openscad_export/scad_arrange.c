@@ -32,9 +32,9 @@ static int winding(const conica_scad_contour *k, const double *q)
     for (size_t i = 0; i < k->n; i++) {
         const double *a = &k->xy[2 * i], *b = &k->xy[2 * ((i + 1) % k->n)];
         if (a[1] <= q[1]) {
-            if (b[1] > q[1] && conica__scad_orient(a, b, q) > 0)
+            if (b[1] > q[1] && conica__orient2d(a, b, q) > 0)
                 w++;
-        } else if (b[1] <= q[1] && conica__scad_orient(a, b, q) < 0) {
+        } else if (b[1] <= q[1] && conica__orient2d(a, b, q) < 0) {
             w--;
         }
     }

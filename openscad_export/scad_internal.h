@@ -5,13 +5,10 @@
 
 #include "conica_scad.h"
 
-/* libcore's status helpers conica__fail()/conica__ok() (libconica.a is
- * always linked after this library). */
+/* libcore's status helpers conica__fail()/conica__ok() and its exact
+ * orientation conica__orient2d() (libconica.a is always linked after this
+ * library). */
 #include "internal.h"
-
-/* Sign (-1, 0, 1) of the orientation of (a, b, c), exact for finite input:
- * a floating-point filter, then an exact expansion sum of the six products. */
-int conica__scad_orient(const double *a, const double *b, const double *c);
 
 /* Twice the signed area of a closed contour (counter-clockwise > 0). */
 double conica__scad_area2(const double *xy, size_t n);

@@ -130,8 +130,8 @@ static int on_segment(const double *a, const double *b, const double *q)
 static int segments_meet(const double *a, const double *b, const double *c, const double *d,
                          double *x, double *y)
 {
-    int o1 = conica__scad_orient(a, b, c), o2 = conica__scad_orient(a, b, d);
-    int o3 = conica__scad_orient(c, d, a), o4 = conica__scad_orient(c, d, b);
+    int o1 = conica__orient2d(a, b, c), o2 = conica__orient2d(a, b, d);
+    int o3 = conica__orient2d(c, d, a), o4 = conica__orient2d(c, d, b);
     if (o1 * o2 < 0 && o3 * o4 < 0) {
         /* proper crossing: the point itself only for the message */
         double ex = b[0] - a[0], ey = b[1] - a[1], fx = d[0] - c[0], fy = d[1] - c[1];
@@ -164,7 +164,7 @@ static int segments_meet(const double *a, const double *b, const double *c, cons
  * back along a-b (collinear, same side of b as a). */
 static int adjacent_overlap(const double *a, const double *b, const double *c)
 {
-    if (conica__scad_orient(a, b, c) != 0)
+    if (conica__orient2d(a, b, c) != 0)
         return 0;
     int sx = (a[0] > b[0]) - (a[0] < b[0]), tx = (c[0] > b[0]) - (c[0] < b[0]);
     int sy = (a[1] > b[1]) - (a[1] < b[1]), ty = (c[1] > b[1]) - (c[1] < b[1]);
@@ -378,7 +378,7 @@ static int collinear(const conica_scad_contour *k)
     while (j < k->n && k->xy[2 * j] == k->xy[0] && k->xy[2 * j + 1] == k->xy[1])
         j++;
     for (size_t i = j + 1; i < k->n; i++)
-        if (conica__scad_orient(k->xy, k->xy + 2 * j, k->xy + 2 * i) != 0)
+        if (conica__orient2d(k->xy, k->xy + 2 * j, k->xy + 2 * i) != 0)
             return 0;
     return 1;
 }

@@ -81,7 +81,7 @@ TEST_CASE("numbers print shortest and round-trip", "[scad][format]")
 TEST_CASE("orientation is exact near collinear points", "[scad][orient]")
 {
     double a[2] = {0.5, 0.5}, b[2] = {12, 12}, c[2] = {24, 24};
-    CHECK_EQ(conica__scad_orient(a, b, c), 0);
+    CHECK_EQ(conica__orient2d(a, b, c), 0);
     /* Shewchuk's classic grid: points x = 0.5 + i ulp around the line y = x */
     int wrong = 0;
     for (int i = 0; i < 64; i++)
@@ -92,14 +92,14 @@ TEST_CASE("orientation is exact near collinear points", "[scad][orient]")
             for (int k = 0; k < j; k++)
                 p[1] = nextafter(p[1], 1);
             int expect = p[1] > p[0] ? 1 : p[1] < p[0] ? -1 : 0; /* b, c on y = x */
-            if (conica__scad_orient(b, c, p) != expect)
+            if (conica__orient2d(b, c, p) != expect)
                 wrong++;
         }
     CHECK_EQ(wrong, 0);
     double q[2] = {0.1, nextafter(0.1, 1)};
     double o[2] = {0, 0}, e[2] = {1, 1};
-    CHECK_EQ(conica__scad_orient(o, e, q), 1);
-    CHECK_EQ(conica__scad_orient(e, o, q), -1);
+    CHECK_EQ(conica__orient2d(o, e, q), 1);
+    CHECK_EQ(conica__orient2d(e, o, q), -1);
 }
 
 TEST_CASE("validation refuses what OpenSCAD would render wrongly", "[scad][validate]")
@@ -510,9 +510,9 @@ static int ref_winding(const conica_scad_contour *k, const double *q)
     for (size_t i = 0; i < k->n; i++) {
         const double *a = &k->xy[2 * i], *b = &k->xy[2 * ((i + 1) % k->n)];
         if (a[1] <= q[1]) {
-            if (b[1] > q[1] && conica__scad_orient(a, b, q) > 0)
+            if (b[1] > q[1] && conica__orient2d(a, b, q) > 0)
                 w++;
-        } else if (b[1] <= q[1] && conica__scad_orient(a, b, q) < 0) {
+        } else if (b[1] <= q[1] && conica__orient2d(a, b, q) < 0) {
             w--;
         }
     }

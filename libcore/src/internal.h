@@ -19,4 +19,9 @@ conica_code conica__fail(conica_status *st, conica_code code, size_t line,
 /* Mark *st (if not NULL) as success. */
 void conica__ok(conica_status *st);
 
+/* Sign (-1, 0, 1) of the orientation of (a, b, c) (1: c lies to the left
+ * of a -> b), exact for finite input: a floating-point filter, then an
+ * exact expansion sum of the six products (orient.c). */
+int conica__orient2d(const double *a, const double *b, const double *c);
+
 #endif

@@ -100,6 +100,9 @@
  * seen through its first chord. */
 #define PATH_FIT_SLIDE_MAX_ANGLE 0.35
 #define PATH_FIT_MIDDLE_FRACTION 1.98
+/* A fold of moved chords (OUTSIDE, in a notch) spans at most this many
+ * segments: the loop between two crossing segments this close is removed. */
+#define PATH_FIT_FOLD_SPAN 8
 /* Most levels that settings.level_tolerance may choose for a piece. */
 #define PATH_LEVELS_MAX 16
 
@@ -1891,6 +1894,95 @@ static double span_bulge(const conica_path *p, const conica_path_subpath *sp, si
     return best;
 }
 
+/* Does segment a-b cross segment c-d (or touch it away from their shared
+ * ends)? The crossing point goes to x. Exact orientation tests. */
+static int seg_cross(const double *a, const double *b, const double *c, const double *d,
+                     double x[2])
+{
+    int o1 = conica__orient2d(a, b, c), o2 = conica__orient2d(a, b, d);
+    int o3 = conica__orient2d(c, d, a), o4 = conica__orient2d(c, d, b);
+    double ex = b[0] - a[0], ey = b[1] - a[1], fx = d[0] - c[0], fy = d[1] - c[1], den, u;
+    if ((o1 == 0 && o2 == 0) || o1 * o2 > 0 || o3 * o4 > 0)
+        return 0; /* apart, or on one line (no fold makes that) */
+    den = ex * fy - ey * fx;
+    u = den != 0.0 ? ((c[0] - a[0]) * fy - (c[1] - a[1]) * fx) / den : 0.0;
+    u = fmin(fmax(u, 0.0), 1.0);
+    x[0] = fma(u, ex, a[0]);
+    x[1] = fma(u, ey, a[1]);
+    return 1;
+}
+
+/* Under OUTSIDE the chords on the two sides of a narrow notch all move
+ * into it, and where the notch is narrower than their moves the two moved
+ * sides cross near its tip (the waist of a glyph's '8' at a tolerance of
+ * 0.001 mm): a small loop of reversed orientation. Where segment i crosses
+ * segment i + d (2 <= d <= PATH_FIT_FOLD_SPAN), the crossing becomes the
+ * vertex and the loop's vertices go. The polygon then runs along the outer
+ * of the two moved sides, which still encloses the curve: the notch's tip
+ * fills in by less than the moves themselves. Removes vertices from L;
+ * returns how many. */
+static size_t untangle_folds(conica_path_polyline *L)
+{
+    size_t n = L->n, i, removed = 0, k, w;
+    unsigned char *gone;
+    if (n < 2 * PATH_FIT_FOLD_SPAN + 2 || !(gone = calloc(n, 1)))
+        return 0;
+    for (i = 0; i < n; i++) {
+        size_t a = i, b, d;
+        if (gone[a])
+            continue;
+        b = (a + 1) % n;
+        while (gone[b])
+            b = (b + 1) % n;
+        for (d = 2; d <= PATH_FIT_FOLD_SPAN; d++) {
+            /* the d-th live segment after a's: c-e */
+            size_t cidx = b, e, m, steps;
+            double x[2];
+            for (m = 1; m < d; m++) {
+                cidx = (cidx + 1) % n;
+                while (gone[cidx])
+                    cidx = (cidx + 1) % n;
+            }
+            e = (cidx + 1) % n;
+            while (gone[e])
+                e = (e + 1) % n;
+            if (e == a || cidx == a)
+                break;
+            if (!seg_cross(L->xy + 2 * a, L->xy + 2 * b, L->xy + 2 * cidx, L->xy + 2 * e, x))
+                continue;
+            /* b becomes the crossing; b's successors up to cidx go */
+            L->xy[2 * b] = x[0];
+            L->xy[2 * b + 1] = x[1];
+            L->flags[b] &= (unsigned char)~CONICA_PATH_PT_CORNER;
+            for (k = (b + 1) % n, steps = 0; steps < d - 1; k = (k + 1) % n) {
+                if (gone[k])
+                    continue;
+                gone[k] = 1;
+                removed++;
+                steps++;
+            }
+            i = a == 0 ? (size_t)-1 : a - 1; /* look at segment a again */
+            break;
+        }
+    }
+    for (k = 0, w = 0; k < n && removed; k++) {
+        if (gone[k])
+            continue;
+        L->xy[2 * w] = L->xy[2 * k];
+        L->xy[2 * w + 1] = L->xy[2 * k + 1];
+        L->nxy[2 * w] = L->nxy[2 * k];
+        L->nxy[2 * w + 1] = L->nxy[2 * k + 1];
+        L->seg[w] = L->seg[k];
+        L->t[w] = L->t[k];
+        L->flags[w] = L->flags[k];
+        w++;
+    }
+    if (removed)
+        L->n = w;
+    free(gone);
+    return removed;
+}
+
 static int apply_fit(ctx *c, const conica_path_subpath *sp, conica_path_polyline *L,
                      conica_path_fit fit, double *dev)
 {
@@ -1982,6 +2074,8 @@ static int apply_fit(ctx *c, const conica_path_subpath *sp, conica_path_polyline
         memcpy(L->xy, nv, 2 * n * sizeof *nv);
         free(nv);
     }
+    if (fit == CONICA_PATH_FIT_OUTSIDE)
+        untangle_folds(L);
     free(sh);
     free(nrm);
     *dev = worst;
