@@ -103,6 +103,9 @@
 /* A fold of moved chords (OUTSIDE, in a notch) spans at most this many
  * segments: the loop between two crossing segments this close is removed. */
 #define PATH_FIT_FOLD_SPAN 8
+/* Flattenings of one subpath that MIDDLE may try (each with shorter chords)
+ * to keep its moved vertices within the tolerance. */
+#define PATH_FIT_RETRIES 4
 /* Most levels that settings.level_tolerance may choose for a piece. */
 #define PATH_LEVELS_MAX 16
 
@@ -1988,7 +1991,7 @@ static int apply_fit(ctx *c, const conica_path_subpath *sp, conica_path_polyline
 {
     const conica_path *p = c->p;
     size_t n = L->n, k, i;
-    double area = 0, *sh = NULL, *nrm = NULL, worst = 0;
+    double area = 0, *sh = NULL, *nrm = NULL, *oi = NULL, worst = 0;
     int orient;
     if (n < 3)
         return 1;
@@ -1999,9 +2002,11 @@ static int apply_fit(ctx *c, const conica_path_subpath *sp, conica_path_polyline
     orient = area > 0 ? 1 : -1; /* +1: the enclosed side is to the left */
     sh = malloc(n * sizeof *sh);
     nrm = malloc(2 * n * sizeof *nrm);
-    if (!sh || !nrm) {
+    oi = malloc(2 * n * sizeof *oi);
+    if (!sh || !nrm || !oi) {
         free(sh);
         free(nrm);
+        free(oi);
         return 0;
     }
     for (k = 0; k < n; k++) {
@@ -2015,7 +2020,8 @@ static int apply_fit(ctx *c, const conica_path_subpath *sp, conica_path_polyline
         sh[k] = fit == CONICA_PATH_FIT_OUTSIDE ? out : 0.5 * (out - in);
         if (out == 0.0 && in == 0.0)
             sh[k] = -0.0; /* a drawn straight edge: it stays on its line */
-        worst = fmax(worst, fit == CONICA_PATH_FIT_OUTSIDE ? out + in : 0.5 * (out + in));
+        oi[2 * k] = out;
+        oi[2 * k + 1] = in;
     }
     {
         /* Each vertex moves along the bisector m of its two chords' outer
@@ -2027,6 +2033,7 @@ static int apply_fit(ctx *c, const conica_path_subpath *sp, conica_path_polyline
         if (!nv) {
             free(sh);
             free(nrm);
+            free(oi);
             return 0;
         }
         for (i = 0; i < n; i++) {
@@ -2057,7 +2064,6 @@ static int apply_fit(ctx *c, const conica_path_subpath *sp, conica_path_polyline
                     if (fabs(sl) <= clen && sh[cv] <= c->tol) {
                         nv[2 * i] = L->xy[2 * i] + sl * dl[0];
                         nv[2 * i + 1] = L->xy[2 * i + 1] + sl * dl[1];
-                        worst = fmax(worst, sh[cv]);
                         continue;
                     }
                 }
@@ -2067,9 +2073,21 @@ static int apply_fit(ctx *c, const conica_path_subpath *sp, conica_path_polyline
             dd = fmax(d0, d1);
             if (dd > c->tol)
                 dd = c->tol; /* an acute curved corner: stay within the tolerance */
-            worst = fmax(worst, fabs(dd));
             nv[2 * i] = L->xy[2 * i] + dd * m[0];
             nv[2 * i + 1] = L->xy[2 * i + 1] + dd * m[1];
+        }
+        /* What the moves leave: a vertex is off the curve by at most its
+         * move; chord k's ends moved by ea and eb along its normal, so the
+         * curve is at most out - min(ea, eb) beyond it and in + max(ea, eb)
+         * inside it (the chord's offset is linear between its ends). */
+        for (k = 0; k < n; k++) {
+            size_t j = (k + 1) % n;
+            const double *nk = nrm + 2 * k;
+            double ea = (nv[2 * k] - L->xy[2 * k]) * nk[0] + (nv[2 * k + 1] - L->xy[2 * k + 1]) * nk[1];
+            double eb = (nv[2 * j] - L->xy[2 * j]) * nk[0] + (nv[2 * j + 1] - L->xy[2 * j + 1]) * nk[1];
+            double beyond = oi[2 * k] - fmin(ea, eb), inside = oi[2 * k + 1] + fmax(ea, eb);
+            worst = fmax(worst, fmax(hypot(nv[2 * k] - L->xy[2 * k], nv[2 * k + 1] - L->xy[2 * k + 1]),
+                                     fmax(beyond, inside)));
         }
         memcpy(L->xy, nv, 2 * n * sizeof *nv);
         free(nv);
@@ -2078,6 +2096,7 @@ static int apply_fit(ctx *c, const conica_path_subpath *sp, conica_path_polyline
         untangle_folds(L);
     free(sh);
     free(nrm);
+    free(oi);
     *dev = worst;
     return 1;
 }
@@ -2538,7 +2557,29 @@ static conica_code run(const conica_path *p, const conica_path_settings *s, int 
                 c.flat_fraction = PATH_FIT_OUTSIDE_FRACTION;
             else if (!smooth && sp->closed && c.s.fit == CONICA_PATH_FIT_MIDDLE)
                 c.flat_fraction = PATH_FIT_MIDDLE_FRACTION;
-            rc = drawn_subpath(&c, sp, smooth);
+            {
+                /* MIDDLE: a vertex moves by its chords' shift over the cosine
+                 * of half its turn, so where the chords turn sharply (a small
+                 * bowl at a coarse tolerance: 1.08 T in '%' at 0.1 mm) the
+                 * moved vertices go beyond what the chords were given:
+                 * flatten that subpath again with chords cut down in
+                 * proportion. (OUTSIDE caps its moves at the tolerance.) */
+                size_t budget0 = c.budget, corners0 = r.corners;
+                int attempt;
+                for (attempt = 0;; attempt++) {
+                    double over;
+                    rc = drawn_subpath(&c, sp, smooth);
+                    over = c.L->deviation / c.tol;
+                    if (rc != CONICA_OK || smooth || !sp->closed ||
+                        c.s.fit != CONICA_PATH_FIT_MIDDLE || attempt == PATH_FIT_RETRIES ||
+                        !(over > 1))
+                        break;
+                    c.flat_fraction *= over > 1 ? PATH_FIT_INSIDE_FRACTION / over : 0.5;
+                    c.L->n = 0;
+                    c.budget = budget0;
+                    r.corners = corners0;
+                }
+            }
             if (c.L->deviation / c.tol > r.worst_ratio)
                 r.worst_ratio = c.L->deviation / c.tol;
         }
