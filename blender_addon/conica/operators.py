@@ -240,21 +240,23 @@ def nurbs_spline(sp, data):
     return order - 1, knots, ctrl, w, attrs
 
 
-def spline_curve(sp, data, **kw):
+def spline_curve(sp, data, want_attrs=True, **kw):
     """Run one spline through _conica.curve (libcore's curve front end):
     a BEZIER spline as its cubic segments, a NURBS spline with the knots
     and weights Blender evaluates it with, a POLY spline as points. kw: the
-    mode and its settings, handles, stride. Raises _conica.ConicaError."""
+    mode and its settings, handles, stride. want_attrs=False leaves radius
+    and tilt out (the result's attrs are then None). Raises _conica.ConicaError."""
     common = dict(dim=3, closed=data.cyclic, plane_tol=PLANE_TOL, abs_tol=data.abs_tol(),
-                  nattrs=2, typecode="f", max_points=MAX_POINTS)
+                  nattrs=2 if want_attrs else 0, typecode="f", max_points=MAX_POINTS)
     common.update(kw)
     if data.type == "BEZIER":
-        return _conica.curve("BEZIER", data.co, data.hl, data.hr, attrs=data.attrs(), **common)
+        return _conica.curve("BEZIER", data.co, data.hl, data.hr,
+                             attrs=data.attrs() if want_attrs else None, **common)
     if data.type == "NURBS":
         degree, knots, ctrl, w, attrs = nurbs_spline(sp, data)
         return _conica.curve("NURBS", ctrl, degree=degree, knots=knots, weights=w,
-                             attrs=attrs, **common)
-    return _conica.curve("POLY", data.co, attrs=data.attrs(), **common)
+                             attrs=attrs if want_attrs else None, **common)
+    return _conica.curve("POLY", data.co, attrs=data.attrs() if want_attrs else None, **common)
 
 
 # ---------------------------------------------------------------- helpers
@@ -623,7 +625,7 @@ class CURVE_OT_conic_subdivide(_CurveOperator, bpy.types.Operator):
         kind = "BEZIER" if self.output == "BEZIER" else "POLY"
         t0 = time.perf_counter()
         res = spline_curve(
-            sp, data, mode="smooth", levels=self.levels,
+            sp, data, want_attrs=not data.default_attrs, mode="smooth", levels=self.levels,
             corner_angle=self.corner_angle if self.keep_corners else math.pi,
             fidelity=self.fidelity, handles=kind == "BEZIER",
             stride=4 if kind == "POLY" else 3)
@@ -682,7 +684,7 @@ class CURVE_OT_adaptive_to_poly(_CurveOperator, bpy.types.Operator):
                       (tol, data.max_abs(), achievable))
             tol = achievable
         t0 = time.perf_counter()
-        res = spline_curve(sp, data, mode="flatten", stride=4,
+        res = spline_curve(sp, data, want_attrs=not data.default_attrs, mode="flatten", stride=4,
                            tolerance=tol - FLOAT32_ROUNDING * spacing)
         t_lib = time.perf_counter() - t0
         r = _Result()

@@ -1666,7 +1666,8 @@ def scan_and_minimal_writes():
            scan([2.0, 0.5, 0.0, 1.0], inf, True) == (2, 2.0) and
            scan([2.0, -0.5], inf, True) == (1, 2.0) and
            scan([2.0, -0.5], inf) == (-1, 2.0),
-           repr([scan(array.array("f", [1, -3, 2, nan, 9]), 10.0), scan([2.0, 0.5, 0.0], inf, True)]))
+           repr([scan(array.array("f", [1, -3, 2, nan, 9]), 10.0),
+                 scan([2.0, 0.5, 0.0], inf, True)]))
     ok_err = False
     try:
         scan([1.0], nan)
