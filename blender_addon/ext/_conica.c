@@ -2310,12 +2310,11 @@ static PyObject *cx_fit_plane_py(PyObject *self, PyObject *arg)
 PyDoc_STRVAR(scan_doc,
 "scan(values, limit, positive=False) -> (index, max_abs)\n"
 "--\n\n"
-"One pass over a flat float sequence or buffer: index is the first value that\n"
-"is not finite, whose magnitude exceeds limit or, with positive=True, that is\n"
-"not > 0 (-1 if none), max_abs the\n"
-"largest magnitude of the values before it (of all when index is -1; 0.0 for\n"
-"no values). The add-on's checks of a spline's coordinates, radii and tilts\n"
-"run through it, so no per-point loop runs in Python.");
+"One pass over flat values (a float buffer or a sequence of numbers). index:\n"
+"the first value that is not finite, is beyond limit in magnitude or, with\n"
+"positive=True, is not above 0; -1 if there is none. max_abs: the largest\n"
+"magnitude before index (of all values when index is -1; 0.0 for none).\n"
+"The add-on checks coordinates, weights, radii and tilts with it.");
 
 static PyObject *cx_scan(PyObject *self, PyObject *args)
 {
