@@ -68,6 +68,9 @@ last_timing = {}
 last_reports = []
 
 
+_ONE_F32 = array.array("f", [1.0]).tobytes()
+
+
 def _zeros(n, typecode="f"):
     return array.array(typecode, bytes((4 if typecode == "f" else 8) * n))
 
@@ -76,7 +79,7 @@ class SplineData:
     """A spline's points read with foreach_get (float32, as Blender stores)."""
 
     __slots__ = ("type", "n", "co", "weights", "hl", "hr", "radius", "tilt",
-                 "selected", "cyclic")
+                 "selected", "hidden", "default_attrs", "cyclic", "_max_abs")
 
     def __init__(self, sp):
         self.type = sp.type
@@ -111,49 +114,62 @@ class SplineData:
             self.hl = self.hr = None
             sel = array.array("b", bytes(n))
             pts.foreach_get("select", sel)
+        hide = array.array("b", bytes(n))
+        pts.foreach_get("hide", hide)
+        self.hidden = any(hide)
         self.n = n
         self.radius = _zeros(n)
         self.tilt = _zeros(n)
         pts.foreach_get("radius", self.radius)
         pts.foreach_get("tilt", self.tilt)
+        # radius 1 and tilt 0 everywhere, Blender's values for new points:
+        # the result of a POLY or BEZIER spline then has them everywhere too
+        # (_conica copies a constant column exactly; a NURBS's attributes are
+        # spline functions, evaluated with rounding), compared as bytes
+        self.default_attrs = (sp.type != "NURBS" and self.radius.tobytes() == _ONE_F32 * n and
+                              self.tilt.tobytes() == bytes(4 * n))
         self.selected = any(sel)
+        self._max_abs = None
 
     def max_abs(self):
-        """Largest |coordinate| of the points and handles, after check()."""
-        return max((max(max(a), -min(a)) for a in (self.co, self.hl, self.hr) if a),
-                   default=0.0)
+        """Largest |coordinate| of the points and handles (check() finds it
+        on its way; of the values before the first non-finite one)."""
+        if self._max_abs is None:
+            self._max_abs = max((_conica.scan(a, math.inf)[1]
+                                 for a in (self.co, self.hl, self.hr) if a), default=0.0)
+        return self._max_abs
 
     def check(self):
         """Refuse NaN, infinite and huge (> MAX_COORD) coordinates, non-positive
-        weights and non-finite radius or tilt, naming the point. Whole-array
-        passes (sum, min, max run in C); the point is looked for only when one
-        of them shows a problem. Raises _conica.NonFiniteError."""
+        weights and non-finite radius or tilt, naming the point. One C pass
+        per array (_conica.scan), which also gives the largest coordinate
+        magnitude for max_abs() and abs_tol(). Raises _conica.NonFiniteError."""
+        self._max_abs = 0.0
         for arr, what in ((self.co, ""), (self.hl, "left handle "), (self.hr, "right handle ")):
             if not arr:
                 continue
-            total = sum(arr)
-            if math.isfinite(total) and max(arr) <= MAX_COORD and -min(arr) <= MAX_COORD:
+            i, m = _conica.scan(arr, MAX_COORD)
+            self._max_abs = max(self._max_abs, m)
+            if i < 0:
                 continue
-            for i, v in enumerate(arr):
-                axis = "xyz"[i % 3]
-                if not math.isfinite(v):
-                    raise _conica.NonFiniteError(
-                        "point %d has a non-finite %scoordinate (%s = %r)"
-                        % (i // 3, what, axis, v))
-                if abs(v) > MAX_COORD:
-                    raise _conica.NonFiniteError(
-                        "point %d has a %scoordinate beyond \u00b1%g (%s = %.3g; Blender "
-                        "stores an infinite coordinate as 3.4e+38)"
-                        % (i // 3, what, MAX_COORD, axis, v))
+            v, axis = arr[i], "xyz"[i % 3]
+            if not math.isfinite(v):
+                raise _conica.NonFiniteError(
+                    "point %d has a non-finite %scoordinate (%s = %r)"
+                    % (i // 3, what, axis, v))
+            raise _conica.NonFiniteError(
+                "point %d has a %scoordinate beyond \u00b1%g (%s = %.3g; Blender "
+                "stores an infinite coordinate as 3.4e+38)"
+                % (i // 3, what, MAX_COORD, axis, v))
         if self.weights:
             w = self.weights
-            if not (math.isfinite(sum(w)) and min(w) > 0.0):
-                i = next(i for i, v in enumerate(w) if not (math.isfinite(v) and v > 0.0))
+            i = _conica.scan(w, math.inf, True)[0]
+            if i >= 0:
                 raise _conica.NonFiniteError("point %d has weight %r; weights must be "
                                              "positive numbers" % (i, w[i]))
         for arr, what in ((self.radius, "radius"), (self.tilt, "tilt")):
-            if not math.isfinite(sum(arr)):
-                i = next(i for i, v in enumerate(arr) if not math.isfinite(v))
+            i = _conica.scan(arr, math.inf)[0]
+            if i >= 0:
                 raise _conica.NonFiniteError("point %d has a non-finite %s (%r)"
                                              % (i, what, arr[i]))
 
@@ -164,10 +180,8 @@ class SplineData:
         return a
 
     def abs_tol(self):
-        vals = [v for a in (self.co, self.hl, self.hr) if a for v in (min(a), max(a))]
-        if not vals:
-            return 0.0
-        return FLOAT32_SLACK * max(abs(v) for v in vals)
+        """Float32 slack of the plane test at the largest coordinate."""
+        return FLOAT32_SLACK * self.max_abs()
 
 
 def float32_spacing(m):
@@ -226,21 +240,23 @@ def nurbs_spline(sp, data):
     return order - 1, knots, ctrl, w, attrs
 
 
-def spline_curve(sp, data, **kw):
+def spline_curve(sp, data, want_attrs=True, **kw):
     """Run one spline through _conica.curve (libcore's curve front end):
     a BEZIER spline as its cubic segments, a NURBS spline with the knots
     and weights Blender evaluates it with, a POLY spline as points. kw: the
-    mode and its settings, handles, stride. Raises _conica.ConicaError."""
+    mode and its settings, handles, stride. want_attrs=False leaves radius
+    and tilt out (the result's attrs are then None). Raises _conica.ConicaError."""
     common = dict(dim=3, closed=data.cyclic, plane_tol=PLANE_TOL, abs_tol=data.abs_tol(),
-                  nattrs=2, typecode="f", max_points=MAX_POINTS)
+                  nattrs=2 if want_attrs else 0, typecode="f", max_points=MAX_POINTS)
     common.update(kw)
     if data.type == "BEZIER":
-        return _conica.curve("BEZIER", data.co, data.hl, data.hr, attrs=data.attrs(), **common)
+        return _conica.curve("BEZIER", data.co, data.hl, data.hr,
+                             attrs=data.attrs() if want_attrs else None, **common)
     if data.type == "NURBS":
         degree, knots, ctrl, w, attrs = nurbs_spline(sp, data)
         return _conica.curve("NURBS", ctrl, degree=degree, knots=knots, weights=w,
-                             attrs=attrs, **common)
-    return _conica.curve("POLY", data.co, attrs=data.attrs(), **common)
+                             attrs=attrs if want_attrs else None, **common)
+    return _conica.curve("POLY", data.co, attrs=data.attrs() if want_attrs else None, **common)
 
 
 # ---------------------------------------------------------------- helpers
@@ -277,7 +293,7 @@ def poll_curves(context):
 
 class _Result:
     __slots__ = ("index", "kind", "co", "attrs", "hl", "hr", "cyclic", "material",
-                 "smooth", "resolution", "selected", "t_core")
+                 "smooth", "resolution", "selected", "hidden", "default_attrs", "t_core")
 
     def __init__(self):
         self.t_core = 0.0  # seconds inside libcore (measured in C)
@@ -335,9 +351,13 @@ def _fill_poly(sp, r, select):
     if n > have:
         sp.points.add(n - have)
     sp.points.foreach_set("co", r.co)
-    sp.points.foreach_set("radius", r.attrs[0::2])
-    sp.points.foreach_set("tilt", r.attrs[1::2])
-    sp.points.foreach_set("hide", array.array("b", bytes(n)))
+    # Points refilled in place keep their radius, tilt and hide; new points
+    # come with radius 1, tilt 0, shown: only what differs is written.
+    if not r.default_attrs:
+        sp.points.foreach_set("radius", r.attrs[0::2])
+        sp.points.foreach_set("tilt", r.attrs[1::2])
+    if r.hidden:
+        sp.points.foreach_set("hide", array.array("b", bytes(n)))
     if select:
         sp.points.foreach_set("select", array.array("b", [r.selected]) * n)
 
@@ -351,9 +371,11 @@ def _fill_bezier(sp, r, select):
     bp.foreach_set("co", r.co)
     bp.foreach_set("handle_left", r.hl)
     bp.foreach_set("handle_right", r.hr)
-    bp.foreach_set("radius", r.attrs[0::2])
-    bp.foreach_set("tilt", r.attrs[1::2])
-    bp.foreach_set("hide", array.array("b", bytes(n)))
+    if not r.default_attrs:  # new points have radius 1, tilt 0 (see _fill_poly)
+        bp.foreach_set("radius", r.attrs[0::2])
+        bp.foreach_set("tilt", r.attrs[1::2])
+    if r.hidden:
+        bp.foreach_set("hide", array.array("b", bytes(n)))
     if select:
         for key in ("select_control_point", "select_left_handle", "select_right_handle"):
             bp.foreach_set(key, array.array("b", [r.selected]) * n)
@@ -530,6 +552,8 @@ class _CurveOperator:
                 r.smooth = sp.use_smooth
                 r.resolution = sp.resolution_u
                 r.selected = edit
+                r.hidden = data.hidden
+                r.default_attrs = data.default_attrs
                 results.append(r)
             if results:
                 plans.append((ob, results))
@@ -558,10 +582,14 @@ class _CurveOperator:
                 self._report("WARNING", "Nothing to do: no %sspline to process"
                              % ("selected " if edit else ""))
             return {"CANCELLED"}
-        msg = "%s: %d spline%s" % (self.bl_label, done, "" if done == 1 else "s")
-        if problems:
-            msg += ", %d left unchanged (see the warnings)" % len(problems)
-        self._report("INFO", msg)
+        # A summary goes with the warnings, saying what was done besides; a
+        # plain success is silent, as Blender's own Subdivide (the result is
+        # in the viewport, and every report costs: bpy.ops prints it).
+        if problems or self._notes:
+            msg = "%s: %d spline%s" % (self.bl_label, done, "" if done == 1 else "s")
+            if problems:
+                msg += ", %d left unchanged (see the warnings)" % len(problems)
+            self._report("INFO", msg)
         return {"FINISHED"}
 
 
@@ -597,7 +625,7 @@ class CURVE_OT_conic_subdivide(_CurveOperator, bpy.types.Operator):
         kind = "BEZIER" if self.output == "BEZIER" else "POLY"
         t0 = time.perf_counter()
         res = spline_curve(
-            sp, data, mode="smooth", levels=self.levels,
+            sp, data, want_attrs=not data.default_attrs, mode="smooth", levels=self.levels,
             corner_angle=self.corner_angle if self.keep_corners else math.pi,
             fidelity=self.fidelity, handles=kind == "BEZIER",
             stride=4 if kind == "POLY" else 3)
@@ -656,7 +684,7 @@ class CURVE_OT_adaptive_to_poly(_CurveOperator, bpy.types.Operator):
                       (tol, data.max_abs(), achievable))
             tol = achievable
         t0 = time.perf_counter()
-        res = spline_curve(sp, data, mode="flatten", stride=4,
+        res = spline_curve(sp, data, want_attrs=not data.default_attrs, mode="flatten", stride=4,
                            tolerance=tol - FLOAT32_ROUNDING * spacing)
         t_lib = time.perf_counter() - t0
         r = _Result()

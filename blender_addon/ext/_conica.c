@@ -2305,6 +2305,45 @@ static PyObject *cx_fit_plane_py(PyObject *self, PyObject *arg)
                          pl.v[0], pl.v[1], pl.v[2], pl.deviation, pl.size);
 }
 
+/* ------------------------------------------------------------ value scan */
+
+PyDoc_STRVAR(scan_doc,
+"scan(values, limit, positive=False) -> (index, max_abs)\n"
+"--\n\n"
+"One pass over flat values (a float buffer or a sequence of numbers). index:\n"
+"the first value that is not finite, is beyond limit in magnitude or, with\n"
+"positive=True, is not above 0; -1 if there is none. max_abs: the largest\n"
+"magnitude before index (of all values when index is -1; 0.0 for none).\n"
+"The add-on checks coordinates, weights, radii and tilts with it.");
+
+static PyObject *cx_scan(PyObject *self, PyObject *args)
+{
+    cx_state *S = cx_get_state(self);
+    PyObject *obj;
+    double limit;
+    int positive = 0;
+    if (!PyArg_ParseTuple(args, "Od|p:scan", &obj, &limit, &positive))
+        return NULL;
+    if (isnan(limit) || limit < 0)
+        return cx_raisef(S->arg_error, "limit must be a number >= 0 (inf: no limit)");
+    double *v = NULL;
+    size_t n = 0;
+    if (!cx_read_doubles(obj, "values", &v, &n))
+        return NULL;
+    Py_ssize_t bad = -1;
+    double m = 0.0;
+    for (size_t i = 0; i < n; i++) {
+        double a = fabs(v[i]);
+        if (!isfinite(a) || a > limit || (positive && !(v[i] > 0))) {
+            bad = (Py_ssize_t)i;
+            break;
+        }
+        m = a > m ? a : m;
+    }
+    PyMem_Free(v);
+    return Py_BuildValue("(nd)", bad, m);
+}
+
 /* ------------------------------------------------------------ module */
 
 PyDoc_STRVAR(version_doc, "version() -> libcore's version string");
@@ -2431,6 +2470,7 @@ static PyMethodDef cx_methods[] = {
     {"surface", (PyCFunction)(void (*)(void))cx_surface, METH_VARARGS | METH_KEYWORDS,
      surface_doc},
     {"fit_plane", cx_fit_plane_py, METH_O, fit_plane_doc},
+    {"scan", cx_scan, METH_VARARGS, scan_doc},
     {"version", cx_version, METH_NOARGS, version_doc},
     {NULL, NULL, 0, NULL}};
 

@@ -1648,6 +1648,65 @@ def edit_mode_works_in_place():
 
 
 @case
+def scan_and_minimal_writes():
+    """_conica.scan (the one C pass behind the operators' input checks), and
+    the writes the operators leave out: radius, tilt and hide are written
+    only where the result differs from what Blender holds (a refilled point
+    keeps its flags and values, a new one has radius 1, tilt 0, shown), so
+    the result must carry them exactly as before; a plain success reports
+    nothing."""
+    scan = conica_pkg()._conica.scan
+    nan, inf = float("nan"), float("inf")
+    report("scan_first_bad_and_max",
+           scan(array.array("f", [1, -3, 2, nan, 9]), 10.0) == (3, 3.0) and
+           scan([1.0, -3.0, 2.0], inf) == (-1, 3.0) and
+           scan(array.array("d", [1, -11, 2]), 10.0) == (1, 1.0) and
+           scan(array.array("f"), 1.0) == (-1, 0.0) and
+           scan([1.0, inf], inf) == (1, 1.0) and
+           scan([2.0, 0.5, 0.0, 1.0], inf, True) == (2, 2.0) and
+           scan([2.0, -0.5], inf, True) == (1, 2.0) and
+           scan([2.0, -0.5], inf) == (-1, 2.0),
+           repr([scan(array.array("f", [1, -3, 2, nan, 9]), 10.0),
+                 scan([2.0, 0.5, 0.0], inf, True)]))
+    ok_err = False
+    try:
+        scan([1.0], nan)
+    except conica_pkg()._conica.ConicaError:
+        ok_err = True
+    report("scan_refuses_nan_limit", ok_err)
+    hexagon = [(math.cos(i * math.pi / 3), math.sin(i * math.pi / 3), 0) for i in range(6)]
+    # edit mode, a hidden point and non-default radius/tilt on one spline,
+    # defaults on the other: all points shown and selected afterwards, radius
+    # and tilt interpolated on the first, 1 and 0 on the second
+    fresh_scene()
+    ob = new_curve("minwrites")
+    sp0 = add_poly(ob.data, hexagon, True, radius=[1, 2, 3, 4, 5, 6], tilt=[0, .1, .2, .3, .4, .5])
+    add_poly(ob.data, [(p[0] + 5, p[1], 0) for p in hexagon], True)
+    select_only(ob)
+    bpy.ops.object.mode_set(mode="EDIT")
+    bpy.ops.curve.select_all(action="SELECT")
+    ob.data.splines[0].points[2].hide = True
+    ob.data.splines[1].points[4].hide = True
+    r = bpy.ops.curve.conic_subdivide(levels=1, keep_corners=False)
+    sps = list(ob.data.splines)
+    flags = [(p.hide, p.select) for s in sps for p in s.points]
+    rad0 = [p.radius for p in sps[0].points]
+    tilt0 = [p.tilt for p in sps[0].points]
+    defaults = all(p.radius == 1.0 and p.tilt == 0.0 for p in sps[1].points)
+    reps = last_reports()
+    bpy.ops.object.mode_set(mode="OBJECT")
+    report("edit_mode_result_shown_and_selected", r == {"FINISHED"} and len(flags) == 24 and
+           all(f == (False, True) for f in flags), repr(flags))
+    report("edit_mode_radius_tilt_written", len(rad0) == 12 and
+           all(abs(rad0[2 * i] - (i + 1)) < 1e-6 and abs(tilt0[2 * i] - 0.1 * i) < 1e-6
+               for i in range(6)) and 1.0 < rad0[1] < 2.0 and 1.0 < rad0[11] < 6.0,
+           "%r %r" % (rad0, tilt0))
+    report("edit_mode_default_radius_tilt_kept", defaults)
+    report("plain_success_reports_nothing", reps == [], repr(reps))
+    del sp0
+
+
+@case
 def edit_mode_bezier_handle_selection():
     """A Bezier spline whose only selected parts are handles counts as
     selected, as for Blender's own operators."""
