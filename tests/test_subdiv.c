@@ -882,6 +882,70 @@ TEST_CASE("inflection points on random stars", "[subdiv][inflection]")
     }
 }
 
+/* Winding number of the closed polygon c about the origin. */
+static double winding(const conica_curve *c)
+{
+    double sum = 0;
+    size_t i;
+    for (i = 0; i < c->n; i++) {
+        const double *p = c->xy + 2 * i, *q = c->xy + 2 * ((i + 1) % c->n);
+        sum += atan2(p[0] * q[1] - p[1] * q[0], p[0] * q[0] + p[1] * q[1]);
+    }
+    return sum / (2 * M_PI);
+}
+
+TEST_CASE("a closed polygon on part of a conic closes over the rest (long arcs)",
+          "[subdiv][conic][inflection]")
+{
+    /* 3 to 6 exact samples of the circle or the ellipse spread over less
+     * than a half turn, closed: the closing edge carries the rest of the
+     * conic, an arc that turns by more than a half turn. The point eq. (6)
+     * picks there, the intersection nearest the midpoint, lies on the
+     * short arc inside the samples' span: the output folded back over the
+     * samples (winding number 0) and changed its turning sign twice. It is
+     * now the conic's far intersection (libcore/src/subdiv_impl.h,
+     * SFX(long_arc)): the whole conic once round, in both modes. */
+    int trial;
+    ct_rng_init(&rng, 2026);
+    for (trial = 0; trial < 40; trial++) {
+        int c = trial % 2 ? C_ELLIPSE : C_CIRCLE, prec;
+        size_t m = 3 + (size_t)ct_rng_below(&rng, 4), i;
+        double span = ct_rng_range(&rng, 0.4, 0.95) * M_PI, t0 = ct_rng_range(&rng, 0, 2 * M_PI);
+        double xy[12], nn[12], ra = c == C_CIRCLE ? 5 : 3, rb = c == C_CIRCLE ? 5 : 2;
+        conica_curve in, out;
+        conica_subdiv_settings s = conica_subdiv_defaults();
+        for (i = 0; i < m; i++) {
+            long double t = t0 + span * (double)i / (double)(m - 1), gx, gy, len;
+            long double x = ra * cosl(t), y = rb * sinl(t);
+            conic_grad(&conics[c], x, y, &gx, &gy);
+            len = sqrtl(gx * gx + gy * gy);
+            xy[2 * i] = (double)x;
+            xy[2 * i + 1] = (double)y;
+            nn[2 * i] = (double)(gx / len);
+            nn[2 * i + 1] = (double)(gy / len);
+        }
+        in.n = in.cap = m;
+        in.xy = xy;
+        in.nxy = nn;
+        in.closed = 1;
+        s.levels = 6;
+        for (prec = 0; prec < 2; prec++) {
+            errs e;
+            double wn;
+            s.precise = prec;
+            conica_curve_init(&out);
+            INFO("trial %d: %s, %zu samples over %.3g pi, %s", trial, conic_names[c], m,
+                 span / M_PI, prec ? "precise" : "default");
+            REQUIRE(conica_subdivide(&in, &s, &out, NULL, NULL) == CONICA_OK);
+            e = errors_d(&conics[c], &out);
+            wn = winding(&out);
+            CHECK_LE((double)e.Emax, 1e-12);
+            CHECK_LE(fabs(fabs(wn) - 1), 1e-9);
+            conica_curve_free(&out);
+        }
+    }
+}
+
 /* ------------------------------------------------------ bad input */
 
 TEST_CASE("degenerate input gives a status, never NaN", "[subdiv][errors]")
