@@ -13,6 +13,7 @@
 #include <string.h>
 
 #include "conica/subdiv.h"
+#include "ts_fairness.h"
 
 #define PI_L 3.14159265358979323846264338327950288L
 #ifndef M_PI
@@ -944,6 +945,62 @@ TEST_CASE("a closed polygon on part of a conic closes over the rest (long arcs)"
             conica_curve_free(&out);
         }
     }
+}
+
+TEST_CASE("folded polygons: curvature changes sign only at the inflections",
+          "[subdiv][inflection][fairness]")
+{
+    /* Points on a circle taken in random order (as the reference's lG2),
+     * normals estimated: vertices turn by up to nearly a half turn, and
+     * edges whose convex arc turns by more than a half turn (long arcs,
+     * SFX(long_arc)) are common. Every piece between two inflection points
+     * of eq. (9) must turn one way: the discrete curvature (circle through
+     * three consecutive points, tests/support/ts_fairness.h) changes sign
+     * as often as there are inflections, in both modes. Polygons with
+     * nearly coincident points (an edge under 1/20 of the radius) are left
+     * out: their hairpins are below the scale this test is about. */
+    int trial, checked = 0;
+    ct_rng_init(&rng, 20);
+    for (trial = 0; trial < 60; trial++) {
+        size_t n = 5 + (size_t)ct_rng_below(&rng, 5), i;
+        double xy[2 * 9], shortest = 2;
+        int prec;
+        conica_curve in;
+        for (i = 0; i < n; i++) {
+            double a = ct_rng_range(&rng, 0, 2 * M_PI);
+            xy[2 * i] = cos(a);
+            xy[2 * i + 1] = sin(a);
+        }
+        for (i = 0; i < n; i++) {
+            size_t j = (i + 1) % n;
+            double d = hypot(xy[2 * j] - xy[2 * i], xy[2 * j + 1] - xy[2 * i + 1]);
+            shortest = d < shortest ? d : shortest;
+        }
+        if (shortest < 0.05)
+            continue;
+        in.n = in.cap = n;
+        in.xy = xy;
+        in.nxy = NULL;
+        in.closed = 1;
+        for (prec = 0; prec < 2; prec++) {
+            conica_curve out;
+            conica_subdiv_settings s = conica_subdiv_defaults();
+            conica_subdiv_info info;
+            ts_fairness m;
+            conica_curve_init(&out);
+            conica_subdiv_info_init(&info);
+            s.levels = 5;
+            s.precise = prec;
+            INFO("trial %d: %zu points, %s", trial, n, prec ? "precise" : "default");
+            REQUIRE(conica_subdivide(&in, &s, &out, &info, NULL) == CONICA_OK);
+            REQUIRE_EQ(ts_fairness_measure(out.xy, out.n, out.closed, &m), 0);
+            CHECK_EQ_U(m.sign_changes, info.inflections);
+            conica_subdiv_info_free(&info);
+            conica_curve_free(&out);
+        }
+        checked++;
+    }
+    CHECK(checked >= 40);
 }
 
 /* ------------------------------------------------------ bad input */
