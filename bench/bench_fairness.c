@@ -10,11 +10,17 @@
  * (absolute coordinates + weighted SVD, long double) and the default mode
  * (local frames), at k = 5 and k = 8; and the number of inflections the
  * input has, and how many of its vertices carry a normal outside the cone of
- * their edges' normals (where the tangles are). A benchmark: prints figures, asserts nothing (the fairness
- * test, tests/test_fairness.c, asserts the bounds).
+ * their edges' normals (where the tangles are). A second table needs no
+ * data: random folded polygons (points on a circle in random order, points
+ * in a square) and star-shaped blobs, normals estimated, at k = 5: how many
+ * have as many curvature sign changes as inflections. A benchmark: prints
+ * figures, asserts nothing (tests/test_reference_data.c asserts the bounds
+ * on the reference's examples).
  *
  * usage: bench_fairness [DATA_DIR] */
 #include <dirent.h>
+#include <math.h>
+#include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -87,6 +93,93 @@ static long run(const conica_curve *in, int compat, int k, ts_fairness *m)
     return ninfl;
 }
 
+/* Random folded polygons (seeded, so the table is the same every run). */
+#define FOLD_SEED 20u
+#define FOLD_POLYGONS 300
+#define FOLD_MIN_POINTS 5
+#define FOLD_MAX_POINTS 16
+#define FOLD_LEVELS 5
+
+/* xorshift64*: a uniform double in [0, 1). */
+static double fold_uniform(uint64_t *st)
+{
+    *st ^= *st >> 12;
+    *st ^= *st << 25;
+    *st ^= *st >> 27;
+    return (double)((*st * 2685821657736338717ull) >> 11) * 0x1.0p-53;
+}
+
+/* One polygon of family fam (0: points on the unit circle in random order,
+ * 1: points in the square [-1, 1]^2, 2: a star-shaped blob, radius 0.5 to
+ * 1.5 at evenly spaced angles) into xy; returns its size. */
+static size_t fold_polygon(int fam, uint64_t *st, double *xy)
+{
+    size_t n = FOLD_MIN_POINTS +
+               (size_t)(fold_uniform(st) * (FOLD_MAX_POINTS - FOLD_MIN_POINTS + 1)), i;
+    const double two_pi = 6.283185307179586;
+    for (i = 0; i < n; i++) {
+        double a = two_pi * fold_uniform(st), r = 1;
+        if (fam == 1) {
+            xy[2 * i] = 2 * fold_uniform(st) - 1;
+            xy[2 * i + 1] = 2 * fold_uniform(st) - 1;
+            continue;
+        }
+        if (fam == 2) {
+            a = two_pi * (double)i / (double)n;
+            r = 0.5 + fold_uniform(st);
+        }
+        xy[2 * i] = r * cos(a);
+        xy[2 * i + 1] = r * sin(a);
+    }
+    return n;
+}
+
+static void fold_table(void)
+{
+    static const char *const fam_name[3] = {"points on a circle, random order",
+                                            "points in a square", "star-shaped blobs"};
+    int fam;
+    printf("\nRandom polygons (%d per family, %d-%d points, seed %u), normals estimated\n"
+           "(area), k = %d: polygons whose curvature sign changes equal their inflections,\n"
+           "the excess sign changes in total, and the median TV:\n\n",
+           FOLD_POLYGONS, FOLD_MIN_POINTS, FOLD_MAX_POINTS, FOLD_SEED, FOLD_LEVELS);
+    printf("| family | sc = inflections | excess sc | median TV |\n|---|---|---|---|\n");
+    for (fam = 0; fam < 3; fam++) {
+        static double tv[FOLD_POLYGONS];
+        uint64_t st = 0x9E3779B97F4A7C15ull * (FOLD_SEED + (uint64_t)fam);
+        size_t equal = 0, excess = 0, ntv = 0, a, b;
+        int t;
+        for (t = 0; t < FOLD_POLYGONS; t++) {
+            double xy[2 * FOLD_MAX_POINTS];
+            size_t n = fold_polygon(fam, &st, xy);
+            conica_curve in;
+            ts_fairness m;
+            long ni;
+            conica_curve_init(&in);
+            if (conica_curve_set(xy, NULL, n, 1, &in, NULL) != CONICA_OK ||
+                conica_curve_estimate_normals(&in, CONICA_NORMALS_AREA, NULL) != CONICA_OK) {
+                conica_curve_free(&in);
+                continue;
+            }
+            ni = run(&in, 0, FOLD_LEVELS, &m);
+            conica_curve_free(&in);
+            if (ni < 0)
+                continue;
+            equal += m.sign_changes == (size_t)ni;
+            excess += m.sign_changes > (size_t)ni ? m.sign_changes - (size_t)ni : 0;
+            tv[ntv++] = m.tv;
+        }
+        for (a = 1; a < ntv; a++) /* insertion sort: 300 values */
+            for (b = a; b > 0 && tv[b - 1] > tv[b]; b--) {
+                double x = tv[b];
+                tv[b] = tv[b - 1];
+                tv[b - 1] = x;
+            }
+        printf("| %s | %zu of %zu | %zu | %.4g |\n", fam_name[fam], equal, ntv, excess,
+               ntv ? tv[ntv / 2] : 0.0);
+    }
+}
+
 int main(int argc, char **argv)
 {
     const char *env = getenv("CONICA_SHARED_DATA");
@@ -99,7 +192,10 @@ int main(int argc, char **argv)
     {
         FILE *probe = fopen(path, "rb");
         if (!probe) {
-            printf("notice: %s absent (set CONICA_SHARED_DATA or pass DATA_DIR): skipped\n", path);
+            printf("notice: %s absent (set CONICA_SHARED_DATA or pass DATA_DIR): reference "
+                   "examples skipped\n",
+                   path);
+            fold_table();
             return 0;
         }
         fclose(probe);
@@ -160,5 +256,6 @@ int main(int argc, char **argv)
     }
     if (!any)
         printf("(no non-convex example)\n");
+    fold_table();
     return 0;
 }

@@ -10,7 +10,9 @@
  * - default settings (local frames, double): same counts and inflection
  *   places, points within 5e-2 of the diagonal (the local frame changes the
  *   fitted conic for data that lie on no conic; REFERENCE.md measured up to
- *   3e-2 for such a variant).
+ *   3e-2 for such a variant), except on a level-0 edge where the
+ *   reference's edge point turns against its convex sub-polygon and ours
+ *   does not (against_subpolygon: lG2's long arc);
  * Every figure is printed, so a failure says which file and by how much.
  * The fairness test at the end checks the curvature of the same runs. */
 #include "conica_test.h"
@@ -115,7 +117,46 @@ typedef struct result {
     int ok_count, ok_inflections;
     double max_dev; /* x diagonal */
     size_t worst_index;
+    size_t turned; /* level-0 edges left out of max_dev (against_subpolygon) */
 } result;
+
+/* Side of point p of the line a -> b: +1 left, -1 right, 0 on it. */
+static int side_of(const double *a, const double *b, const double *p)
+{
+    double c = (b[0] - a[0]) * (p[1] - a[1]) - (b[1] - a[1]) * (p[0] - a[0]);
+    return c > 0 ? 1 : (c < 0 ? -1 : 0);
+}
+
+/* Turn of the polygon a -> b -> c at b, in degrees (0..180). */
+static double turn_deg(const double *a, const double *b, const double *c)
+{
+    double ux = b[0] - a[0], uy = b[1] - a[1], vx = c[0] - b[0], vy = c[1] - b[1];
+    return fabs(atan2(ux * vy - uy * vx, ux * vx + uy * vy)) * 180.0 / 3.14159265358979;
+}
+
+/* Level-0 edge e (slots e and e+1, every STRIDE-th point) of a closed
+ * output whose neighbours e-1 and e+2 lie strictly on one side of it (no
+ * inflection in the edge: the CONIS paper's convex sub-polygons), whose
+ * end vertices turn by more than a half turn together (the polygon folds
+ * back over the edge, so the convex arc through it may turn by more than
+ * a half turn, a long arc), and where the reference's level-1 edge point
+ * lies on the neighbours' side, so that its refined polygon turns against
+ * the sub-polygon there, while ours lies on the other side. There the
+ * default mode takes the long arc on purpose (lG2's p7 p8:
+ * libcore/src/subdiv_impl.h, SFX(long_arc)) and the reference's points are
+ * no measure of it; the fairness test below judges those edges. */
+static int against_subpolygon(const double *ours, const double *theirs, size_t n_out, size_t e)
+{
+    size_t slots = n_out / STRIDE;
+    const double *a = ours + 2 * (((e + slots - 1) % slots) * STRIDE);
+    const double *p0 = ours + 2 * (e * STRIDE), *p1 = ours + 2 * (((e + 1) % slots) * STRIDE);
+    const double *b = ours + 2 * (((e + 2) % slots) * STRIDE);
+    size_t mid = e * STRIDE + STRIDE / 2;
+    int sa = side_of(p0, p1, a), sb = side_of(p0, p1, b);
+    if (slots < 4 || sa == 0 || sa != sb || turn_deg(a, p0, p1) + turn_deg(p0, p1, b) <= 180)
+        return 0;
+    return side_of(p0, p1, theirs + 2 * mid) == sa && side_of(p0, p1, ours + 2 * mid) == -sa;
+}
 
 /* Subdivide one example in the given mode and compare it with reference-k5. */
 static int compare_one(const char *name, int compat, result *res)
@@ -167,9 +208,24 @@ static int compare_one(const char *name, int compat, result *res)
     res->max_dev = 0;
     res->worst_index = 0;
     res->ok_inflections = 0;
+    res->turned = 0;
     if (res->ok_count) {
+        size_t e, turned_edge = (size_t)-1;
         for (i = 0; i < n_out; i++) {
-            double d = hypot(xy[2 * i] - ref.xy[2 * i], xy[2 * i + 1] - ref.xy[2 * i + 1]) / diag;
+            double d;
+            if (!compat && in.closed && i % STRIDE == 1) {
+                e = i / STRIDE;
+                turned_edge = against_subpolygon(xy, ref.xy, n_out, e) ? e : (size_t)-1;
+                if (turned_edge != (size_t)-1) {
+                    printf("reference-data: %-16s default: level-0 edge %zu left out (the "
+                           "reference's edge point turns against its convex sub-polygon)\n",
+                           name, e);
+                    res->turned++;
+                }
+            }
+            if (turned_edge != (size_t)-1 && i % STRIDE != 0)
+                continue;
+            d = hypot(xy[2 * i] - ref.xy[2 * i], xy[2 * i + 1] - ref.xy[2 * i + 1]) / diag;
             if (!(d <= res->max_dev)) { /* NaN counts as worst */
                 res->max_dev = isnan(d) ? INFINITY : d;
                 res->worst_index = i;
@@ -234,20 +290,15 @@ TEST_CASE("reference examples: default settings match reference-k5 within 5e-2",
 
 /* ------------------------------------------------ fairness (issue 20) */
 
-/* A polygon vertex that turns by more than this (degrees) is a hairpin: the
- * polygon folds back on itself (the reference's lG2), and no curve through
- * its point-normal pairs is known to need only the polygon's inflections. */
-#define HAIRPIN_DEG 160.0
-
+/* The largest turn of a polygon vertex, in degrees (printed: the
+ * reference's lG2 folds back on itself, turning by up to 174 degrees). */
 static double max_turn_deg(const conica_curve *c)
 {
     double worst = 0;
     size_t i;
     for (i = c->closed ? 0 : 1; i < (c->closed ? c->n : c->n - 1); i++) {
         size_t a = i == 0 ? c->n - 1 : i - 1, b = i + 1 == c->n ? 0 : i + 1;
-        double ux = c->xy[2 * i] - c->xy[2 * a], uy = c->xy[2 * i + 1] - c->xy[2 * a + 1];
-        double vx = c->xy[2 * b] - c->xy[2 * i], vy = c->xy[2 * b + 1] - c->xy[2 * i + 1];
-        double t = fabs(atan2(ux * vy - uy * vx, ux * vx + uy * vy)) * 180.0 / 3.14159265358979;
+        double t = turn_deg(c->xy + 2 * a, c->xy + 2 * i, c->xy + 2 * b);
         worst = t > worst ? t : worst;
     }
     return worst;
@@ -262,8 +313,7 @@ static double max_turn_deg(const conica_curve *c)
  * - a non-convex one (inflection points inserted) has a total variation no
  *   greater than the reference's own output (reference-k5) at k = 5 and the
  *   reference-compatible mode at k = 8, and as many curvature sign changes
- *   as inflections; where the polygon folds (a hairpin vertex), no more
- *   sign changes than the reference's own output has. */
+ *   as inflections, also where the polygon folds back on itself (lG2). */
 /* Returns 1 when the example was checked as a convex one. */
 static int fairness_one(const char *name)
 {
@@ -318,15 +368,7 @@ static int fairness_one(const char *name)
                    name, s.levels, m[k].tv, k ? "-compatible" : "-k5", bound,
                    m[k].sign_changes, info.inflections, mref.sign_changes, outside, turn);
             CHECK_LE(m[k].tv, bound);
-            if (turn <= HAIRPIN_DEG) {
-                CHECK_EQ_U(m[k].sign_changes, info.inflections);
-            } else {
-                CHECK_LE(m[k].sign_changes, mref.sign_changes);
-                if (m[k].sign_changes != info.inflections)
-                    WARN("%s at k = %d: %zu curvature sign changes for %zu inflections (the "
-                         "polygon folds: a vertex turns by %.0f degrees)",
-                         name, s.levels, m[k].sign_changes, info.inflections, turn);
-            }
+            CHECK_EQ_U(m[k].sign_changes, info.inflections);
         }
         conica_subdiv_info_free(&info);
     }

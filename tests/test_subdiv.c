@@ -13,6 +13,7 @@
 #include <string.h>
 
 #include "conica/subdiv.h"
+#include "ts_fairness.h"
 
 #define PI_L 3.14159265358979323846264338327950288L
 #ifndef M_PI
@@ -880,6 +881,126 @@ TEST_CASE("inflection points on random stars", "[subdiv][inflection]")
         conica_subdiv_info_free(&info);
         conica_curve_free(&out);
     }
+}
+
+/* Winding number of the closed polygon c about the origin. */
+static double winding(const conica_curve *c)
+{
+    double sum = 0;
+    size_t i;
+    for (i = 0; i < c->n; i++) {
+        const double *p = c->xy + 2 * i, *q = c->xy + 2 * ((i + 1) % c->n);
+        sum += atan2(p[0] * q[1] - p[1] * q[0], p[0] * q[0] + p[1] * q[1]);
+    }
+    return sum / (2 * M_PI);
+}
+
+TEST_CASE("a closed polygon on part of a conic closes over the rest (long arcs)",
+          "[subdiv][conic][inflection]")
+{
+    /* 3 to 6 exact samples of the circle or the ellipse spread over less
+     * than a half turn, closed: the closing edge carries the rest of the
+     * conic, an arc that turns by more than a half turn. The point eq. (6)
+     * picks there, the intersection nearest the midpoint, lies on the
+     * short arc inside the samples' span: the output folded back over the
+     * samples (winding number 0) and changed its turning sign twice. It is
+     * now the conic's far intersection (libcore/src/subdiv_impl.h,
+     * SFX(long_arc)): the whole conic once round, in both modes. */
+    int trial;
+    ct_rng_init(&rng, 2026);
+    for (trial = 0; trial < 40; trial++) {
+        int c = trial % 2 ? C_ELLIPSE : C_CIRCLE, prec;
+        size_t m = 3 + (size_t)ct_rng_below(&rng, 4), i;
+        double span = ct_rng_range(&rng, 0.4, 0.95) * M_PI, t0 = ct_rng_range(&rng, 0, 2 * M_PI);
+        double xy[12], nn[12], ra = c == C_CIRCLE ? 5 : 3, rb = c == C_CIRCLE ? 5 : 2;
+        conica_curve in, out;
+        conica_subdiv_settings s = conica_subdiv_defaults();
+        for (i = 0; i < m; i++) {
+            long double t = t0 + span * (double)i / (double)(m - 1), gx, gy, len;
+            long double x = ra * cosl(t), y = rb * sinl(t);
+            conic_grad(&conics[c], x, y, &gx, &gy);
+            len = sqrtl(gx * gx + gy * gy);
+            xy[2 * i] = (double)x;
+            xy[2 * i + 1] = (double)y;
+            nn[2 * i] = (double)(gx / len);
+            nn[2 * i + 1] = (double)(gy / len);
+        }
+        in.n = in.cap = m;
+        in.xy = xy;
+        in.nxy = nn;
+        in.closed = 1;
+        s.levels = 6;
+        for (prec = 0; prec < 2; prec++) {
+            errs e;
+            double wn;
+            s.precise = prec;
+            conica_curve_init(&out);
+            INFO("trial %d: %s, %zu samples over %.3g pi, %s", trial, conic_names[c], m,
+                 span / M_PI, prec ? "precise" : "default");
+            REQUIRE(conica_subdivide(&in, &s, &out, NULL, NULL) == CONICA_OK);
+            e = errors_d(&conics[c], &out);
+            wn = winding(&out);
+            CHECK_LE((double)e.Emax, 1e-12);
+            CHECK_LE(fabs(fabs(wn) - 1), 1e-9);
+            conica_curve_free(&out);
+        }
+    }
+}
+
+TEST_CASE("folded polygons: curvature changes sign only at the inflections",
+          "[subdiv][inflection][fairness]")
+{
+    /* Points on a circle taken in random order (as the reference's lG2),
+     * normals estimated: vertices turn by up to nearly a half turn, and
+     * edges whose convex arc turns by more than a half turn (long arcs,
+     * SFX(long_arc)) are common. Every piece between two inflection points
+     * of eq. (9) must turn one way: the discrete curvature (circle through
+     * three consecutive points, tests/support/ts_fairness.h) changes sign
+     * as often as there are inflections, in both modes. Polygons with
+     * nearly coincident points (an edge under 1/20 of the radius) are left
+     * out: their hairpins are below the scale this test is about. */
+    int trial, checked = 0;
+    ct_rng_init(&rng, 20);
+    for (trial = 0; trial < 60; trial++) {
+        size_t n = 5 + (size_t)ct_rng_below(&rng, 5), i;
+        double xy[2 * 9], shortest = 2;
+        int prec;
+        conica_curve in;
+        for (i = 0; i < n; i++) {
+            double a = ct_rng_range(&rng, 0, 2 * M_PI);
+            xy[2 * i] = cos(a);
+            xy[2 * i + 1] = sin(a);
+        }
+        for (i = 0; i < n; i++) {
+            size_t j = (i + 1) % n;
+            double d = hypot(xy[2 * j] - xy[2 * i], xy[2 * j + 1] - xy[2 * i + 1]);
+            shortest = d < shortest ? d : shortest;
+        }
+        if (shortest < 0.05)
+            continue;
+        in.n = in.cap = n;
+        in.xy = xy;
+        in.nxy = NULL;
+        in.closed = 1;
+        for (prec = 0; prec < 2; prec++) {
+            conica_curve out;
+            conica_subdiv_settings s = conica_subdiv_defaults();
+            conica_subdiv_info info;
+            ts_fairness m;
+            conica_curve_init(&out);
+            conica_subdiv_info_init(&info);
+            s.levels = 5;
+            s.precise = prec;
+            INFO("trial %d: %zu points, %s", trial, n, prec ? "precise" : "default");
+            REQUIRE(conica_subdivide(&in, &s, &out, &info, NULL) == CONICA_OK);
+            REQUIRE_EQ(ts_fairness_measure(out.xy, out.n, out.closed, &m), 0);
+            CHECK_EQ_U(m.sign_changes, info.inflections);
+            conica_subdiv_info_free(&info);
+            conica_curve_free(&out);
+        }
+        checked++;
+    }
+    CHECK(checked >= 40);
 }
 
 /* ------------------------------------------------------ bad input */

@@ -165,6 +165,27 @@ static int SFX(nearest_root)(REAL a, REAL b, REAL c, int kind, REAL *t)
     return isfinite(*t);
 }
 
+/* The root of a t^2 + 2 b t + c = 0 on the side `want` (+1: t > 0, -1:
+ * t < 0) of t = 0, or the nearest root for want = 0 (SFX(nearest_root),
+ * kind 0). The far root follows from the near one t1 by Vieta (t1 t2 =
+ * c / a; t1 + t2 = -2b / a when t1 = 0), without the cancellation of
+ * (-b +- sqrt(...)) / a. Used for the long arcs of SFX(long_arc), whose
+ * point is not the nearest. Returns 1 and *t, or 0 when there is none. */
+static int SFX(side_root)(REAL a, REAL b, REAL c, int want, REAL *t)
+{
+    REAL t1;
+    if (!SFX(nearest_root)(a, b, c, 0, &t1))
+        return 0;
+    if (want == 0 || (want > 0 ? t1 > 0 : t1 < 0)) {
+        *t = t1;
+        return 1;
+    }
+    if (a == 0)
+        return 0; /* one root only */
+    *t = t1 != 0 ? (c / a) / t1 : -2 * b / a;
+    return isfinite(*t) && (want > 0 ? *t > 0 : *t < 0);
+}
+
 /* ------------------------------------------------------- patch selection */
 
 static size_t SFX(next)(const SFX(job) *j, size_t i)
@@ -580,12 +601,15 @@ static int SFX(svd_fit)(SFX(worker) *w, const SFX(pair) *P, int cnt, REAL *q)
  * Code 5. Writes the new point and its (unnormalised) normal in global
  * coordinates. With `bounded` (an irregular patch, see SFX(edge)) an
  * intersection farther than CONICA__IRREGULAR_MAX_T edge lengths from the
- * midpoint counts as none. *py receives the new point's height over the
+ * midpoint counts as none. want = +1 or -1 takes the intersection on that
+ * side of the edge (the frame's y > 0 or y < 0; SFX(long_arc)), 0 the one
+ * nearest the midpoint (eq. (6)). *py receives the new point's height over the
  * edge in the units of the rotated frame of SFX(frame) (half edge = 1),
  * i.e. 2t. Returns 1 on success, 0 when the fit or the intersection fails.
  */
 static int SFX(svd_tframe)(SFX(worker) *w, const SFX(frame) *f, const size_t *idx, int cnt,
-                           int bounded, REAL *py, REAL *ox, REAL *oy, REAL *nx, REAL *ny)
+                           int bounded, int want, REAL *py, REAL *ox, REAL *oy, REAL *nx,
+                           REAL *ny)
 {
     const SFX(job) *j = w->job;
     SFX(pair) P[CONICA__FIT_MAX_PAIRS];
@@ -625,10 +649,19 @@ static int SFX(svd_tframe)(SFX(worker) *w, const SFX(frame) *f, const size_t *id
         a = FMA(q[0] * ex, ex, FMA(2 * q[2] * ex, ey, q[1] * ey * ey));
         b = FMA(q[3], ex, q[4] * ey);
     }
-    if (!SFX(nearest_root)(a, b, q[5], j->plain ? 2 : 0, &t))
+    if (want != 0 ? !SFX(side_root)(a, b, q[5], want, &t)
+                  : !SFX(nearest_root)(a, b, q[5], j->plain ? 2 : 0, &t))
         return 0;
-    if (bounded && !(M(fabs)(t) <= RC(CONICA__IRREGULAR_MAX_T)))
+    if (want != 0) {
+        /* A long arc's point is the far intersection, and only an
+         * ellipse's is bounded: a hyperbola's lies on its other branch.
+         * No bound in edge lengths, which a long arc on a conic exceeds
+         * (three points on a circle: 1.87 edge lengths). */
+        if (!(DIFFPROD_WP(q[0], q[1], q[2], q[2]) > 0))
+            return 0;
+    } else if (bounded && !(M(fabs)(t) <= RC(CONICA__IRREGULAR_MAX_T))) {
         return 0;
+    }
     x = t * ex;
     y = t * ey;
     if (j->plain) {
@@ -810,6 +843,103 @@ static int SFX(bulge_side)(const SFX(frame) *f, const SFX(pair) *P, int cnt)
     return s;
 }
 
+/* The travel direction of the polygon at its vertex q in the frame of f,
+ * (ux, uy) = unit(q - a) + unit(c - q) for the vertex's neighbours a and
+ * c; a missing one (an open end) adds nothing. */
+static void SFX(travel)(const SFX(job) *j, const SFX(frame) *f, size_t q, REAL qx, REAL *ux,
+                        REAL *uy)
+{
+    size_t n = j->n, nb[2];
+    int k;
+    nb[0] = q > 0 ? q - 1 : (j->closed ? n - 1 : (size_t)-1);
+    nb[1] = q + 1 < n ? q + 1 : (j->closed ? 0 : (size_t)-1);
+    *ux = 0;
+    *uy = 0;
+    for (k = 0; k < 2; k++) {
+        REAL x, y, len;
+        if (nb[k] == (size_t)-1)
+            continue;
+        SFX(to_frame)(j, f, nb[k], &x, &y);
+        x -= qx;
+        len = M(sqrt)(FMA(x, x, y * y));
+        if (!(len > 0) || !isfinite(len))
+            continue;
+        *ux += (k == 0 ? -x : x) / len;
+        *uy += (k == 0 ? -y : y) / len;
+    }
+}
+
+/*
+ * Does edge (i, i+1) carry a long arc: a convex arc from p_i to p_{i+1}
+ * that bulges to `side` (+1, -1: the frame's y > 0, y < 0) and turns by
+ * more than a half turn? Then both end tangents, each oriented along the
+ * polygon's travel at its vertex (SFX(travel)), point into `side`, leaving
+ * p_i and reaching p_{i+1} from there, but the tangent rays into that side
+ * do not meet (SFX(no_region) == 2): the arc passes beyond them and comes
+ * back. A folded polygon such as the reference's lG2 (points on a circle
+ * taken out of order, vertices turning by up to 174 degrees) has such
+ * edges: its sub-polygons between the inflection points of seed 000,
+ * eqs. (9)-(10), are convex, and the convex arc through such an edge's end
+ * pairs is the long arc of an ellipse. The intersection eq. (6) picks, the
+ * one nearest the midpoint, lies on the short arc on the other side of the
+ * chord, where the refined polygon turns the other way: two curvature sign
+ * changes more at every such edge, and more at every level below it.
+ * On return o[k] is +1 when end k's normal lies to the right of the
+ * travel, -1 when to the left (the engine accepts either orientation at
+ * every vertex). The arc crosses the bisector x = 0 moving in +x (with the
+ * chord it closes a convex loop), so the new point's normal, oriented as
+ * p_i's, has a frame y component of sign -o[0].
+ */
+static int SFX(long_arc)(const SFX(job) *j, const SFX(frame) *f, size_t i, size_t i1,
+                         const SFX(pair) *P, int side, int o[2])
+{
+    REAL ux, uy;
+    if ((side != 1 && side != -1) || j->n < 3 || SFX(no_region)(P, side) != 2)
+        return 0;
+    /* The tangent (-b, a) of the frame normal (a, b) against the travel:
+     * o = +1 when it runs along it (the normal to the right), -1 against. */
+    SFX(travel)(j, f, i, RC(-1.0), &ux, &uy);
+    o[0] = FMA(-P[0].ny, ux, P[0].nx * uy) > 0 ? 1 : -1;
+    SFX(travel)(j, f, i1, RC(1.0), &ux, &uy);
+    o[1] = FMA(-P[1].ny, ux, P[1].nx * uy) > 0 ? 1 : -1;
+    /* the oriented tangents' y, o * a: into `side` at p_i, out of it at
+     * p_{i+1} */
+    return o[0] * side * P[0].nx > 0 && o[1] * side * P[1].nx < 0;
+}
+
+/*
+ * The point of a long arc (SFX(long_arc)) when the fit gives none on its
+ * side (on data that lie on no conic the patch's fit is often a
+ * hyperbola): the ellipse of the pencil mu L0 L1 + lam y^2 (SFX(fast_fit))
+ * whose weight is that of a circular arc of the same turn. As a rational
+ * quadratic with control points p_i, T (the tangents' intersection),
+ * p_{i+1} a conic of the pencil has lam = s^2 / (4 a0 a1 w^2), s = a0 b1 -
+ * a1 b0 (w = 1: the parabola, the short arcs' fallback); a circular arc
+ * turning by phi has w = cos(phi / 2), so w^2 = (1 + n0.n1) / 2 for the
+ * unit end normals n0, n1 oriented alike (o of SFX(long_arc)), and with
+ * s^2 = 1 - (n0.n1)^2 (Lagrange's identity) lam = (1 - n0.n1) / (2 a0 a1),
+ * finite also for antiparallel normals (a half turn). The result is the circle when a
+ * circle fits both end pairs, and an ellipse whenever the arc turns by
+ * less than a full turn; x = 0 meets it once on each side of the chord,
+ * and the long arc's point is the one on `want`. Returns 1 with (*py,
+ * *gx, *gy) as SFX(fast_fit), 0 when there is none.
+ */
+static int SFX(long_arc_point)(const SFX(pair) *P, const int o[2], int want, REAL *py, REAL *gx,
+                               REAL *gy)
+{
+    REAL a0 = P[0].nx, b0 = P[0].ny, a1 = o[0] * o[1] * P[1].nx, b1 = o[0] * o[1] * P[1].ny;
+    REAL d = FMA(a0, a1, b0 * b1), lam = (1 - d) / (2 * (a0 * a1)), y, L0, L1;
+    if (!isfinite(lam) || !SFX(side_root)(FMA(b0, b1, lam), SFX(diffprod)(a0, b1, a1, b0) / 2,
+                                          -(a0 * a1), want, &y))
+        return 0;
+    L0 = FMA(b0, y, a0);
+    L1 = FMA(b1, y, -a1);
+    *gx = FMA(L1, a0, L0 * a1);
+    *gy = FMA(L1, b0, FMA(L0, b1, 2 * lam * y));
+    *py = y;
+    return isfinite(*gx) && isfinite(*gy) && !(*gx == 0 && *gy == 0);
+}
+
 /* Edge point of edge (i, i+1) in default mode (local frame). Returns 1
  * when the point is an inflection point (an S-shaped edge's midpoint),
  * which the next levels treat as seed 000 treats those of eq. (9). */
@@ -821,6 +951,7 @@ static int SFX(edge)(SFX(worker) *w, size_t i, REAL *oxy, REAL *on)
     SFX(frame) f;
     REAL y = 0, gx = 0, gy = 0, ox = 0, oy = 0, nx = 0, ny = 0;
     int cnt, ok = 0, g, maxl = 1, maxr = 1, regular = 1, local = 0, side, conflict, infl = 0;
+    int want = 0, orient[2] = {0, 0};
 
     if (j->ref) {
         SFX(edge_ref)(w, i, oxy, on);
@@ -860,11 +991,12 @@ static int SFX(edge)(SFX(worker) *w, size_t i, REAL *oxy, REAL *on)
      * (SFX(in_region), README.md): else the patch grows, then the
      * parabola of the pencil (a conic through both end pairs that stays in
      * the region) is taken. An edge whose region is the chord alone gets
-     * the midpoint at once. Where the polygon and the end tangents
-     * disagree about the side (SFX(no_region) == 2) no convex arc fits, so
-     * there is no region to hold the fit to: it is taken as the reference
-     * takes it (a folded polygon such as the reference's lG2 has such
-     * edges, and there the fit follows the reference); without a fit the
+     * the midpoint at once. Where the tangent rays into the side the
+     * polygon says the arc bulges to do not meet (SFX(no_region) == 2),
+     * either the arc turns by more than a half turn (SFX(long_arc): the
+     * fit's intersection on that side, else an ellipse of the pencil) or
+     * no convex arc fits (an S-shaped edge), and there is no region to hold
+     * the fit to: it is taken as the reference takes it; without a fit the
      * edge gets an inflection at its midpoint (below). Where the outer
      * neighbours lie on both sides of the edge (conflict 3: the polygon
      * itself turns both ways, which no piece between inflection points
@@ -875,7 +1007,18 @@ static int SFX(edge)(SFX(worker) *w, size_t i, REAL *oxy, REAL *on)
         ok = 0;
         goto midpoint;
     }
-    if (j->fast) {
+    if (conflict == 2 && SFX(long_arc)(j, &f, i, i1, P, side, orient)) {
+        /* A long arc (SFX(long_arc)): its region is the wedge of the chord
+         * and the two tangent rays, unbounded on `side`, which
+         * SFX(in_region) tests as it tests a triangle; the point is the
+         * fit's intersection on that side, not the nearest (eq. (6) assumes
+         * a polygon that turns less than a half turn over an edge). The
+         * pencil's closed form only knows the nearest root: general fit. */
+        want = side;
+        conflict = 0;
+        regular = 0;
+    }
+    if (j->fast && want == 0) {
         /* Outer neighbours on both sides (side 2, with points on the edge
          * line to within rounding counting as neither) make it irregular. */
         regular = (P[0].nx * P[0].ny) * (P[1].nx * P[1].ny) <= 0 && side != 2;
@@ -886,8 +1029,8 @@ static int SFX(edge)(SFX(worker) *w, size_t i, REAL *oxy, REAL *on)
         if (ok > 0)
             local = 1;
     }
-    if (!j->fast || ok < 0)
-        ok = SFX(svd_tframe)(w, &f, idx, cnt, !regular, &y, &ox, &oy, &nx, &ny);
+    if (!j->fast || ok < 0 || want != 0)
+        ok = SFX(svd_tframe)(w, &f, idx, cnt, !regular, want, &y, &ox, &oy, &nx, &ny);
     if (ok > 0 && conflict == 0 && !SFX(in_region)(P, side, y))
         ok = 0;
     /* No real intersection, or none in the region: grow the patch one
@@ -899,10 +1042,20 @@ static int SFX(edge)(SFX(worker) *w, size_t i, REAL *oxy, REAL *on)
             continue;
         cnt = c2;
         local = 0;
-        ok = SFX(svd_tframe)(w, &f, idx, cnt, !regular, &y, &ox, &oy, &nx, &ny) &&
+        ok = SFX(svd_tframe)(w, &f, idx, cnt, !regular, want, &y, &ox, &oy, &nx, &ny) &&
              (conflict != 0 || SFX(in_region)(P, side, y));
         if (ok)
             w->grown++;
+    }
+    if (!ok && want != 0) {
+        /* A long arc without a fit on its side: the pencil's ellipse of
+         * SFX(long_arc_point), within CONICA__IRREGULAR_MAX_T edge lengths
+         * of the midpoint as every irregular patch's point. */
+        ok = SFX(long_arc_point)(P, orient, want, &y, &gx, &gy) && SFX(in_region)(P, side, y) &&
+             M(fabs)(y) <= 2 * RC(CONICA__IRREGULAR_MAX_T);
+        local = ok;
+        if (ok)
+            w->fallbacks++;
     }
     if (!ok && conflict >= 2 && j->infl && (j->infl[i] || j->infl[i1])) {
         /* An S-shaped edge next to an inflection point: the inflection is
@@ -940,7 +1093,7 @@ static int SFX(edge)(SFX(worker) *w, size_t i, REAL *oxy, REAL *on)
             goto oriented;
         }
     }
-    if (!ok && conflict == 0) {
+    if (!ok && conflict == 0 && want == 0) {
         /* The parabola of the pencil (the quadratic Bezier through the
          * tangent lines' intersection) lies in the region whenever the
          * region is a proper triangle. */
@@ -973,6 +1126,13 @@ oriented : {
          * if they cancel), so the output keeps the input's orientation. */
         REAL sx = FMA(P[0].nx, f.hsx, -P[0].ny * f.hsy) + FMA(P[1].nx, f.hsx, -P[1].ny * f.hsy);
         REAL sy = FMA(P[0].nx, f.hsy, P[0].ny * f.hsx) + FMA(P[1].nx, f.hsy, P[1].ny * f.hsx);
+        if (want != 0) {
+            /* A long arc turns by more than a half turn, so the end
+             * normals' sum points the wrong way: oriented as p_i's normal,
+             * the new one has a frame y of sign -o[0] (SFX(long_arc)). */
+            sx = orient[0] * f.hsy;
+            sy = -orient[0] * f.hsx;
+        }
         if (sx == 0 && sy == 0) {
             sx = -f.hsy;
             sy = f.hsx;
