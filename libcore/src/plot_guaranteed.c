@@ -1909,3 +1909,59 @@ conica_code conica__plot_guaranteed(const conica__pieces *pc, const conica_plot_
     }
     return CONICA_OK;
 }
+
+conica_code conica_plot_bezier(int degree, const double *ctrl, const double *w, double tol,
+                               size_t max_iterations, double *xy, double *t, size_t cap,
+                               size_t *n, conica_status *st)
+{
+    /* the spline conica_bspline_from_bezier makes, on the stack */
+    double knots[2 * (MAXP + 1)], c[2 * (MAXP + 1)], wc[MAXP + 1];
+    if (!ctrl || !xy || !n)
+        return conica__fail(st, CONICA_ERR_ARG, 0, 0, "NULL argument");
+    if (degree < 1 || degree > MAXP)
+        return conica__fail(st, CONICA_ERR_ARG, 0, 0, "degree %d outside 1..%d", degree, MAXP);
+    if (!(tol > 0) || !isfinite(tol))
+        return conica__fail(st, CONICA_ERR_ARG, 0, 0, "tolerance must be > 0 and finite");
+    if (cap < 2)
+        return conica__fail(st, CONICA_ERR_LIMIT, 0, 0, "room for %zu points, 2 at least needed",
+                            cap);
+    size_t np = (size_t)degree + 1;
+    for (size_t i = 0; i < np; i++) {
+        knots[i] = 0.0;
+        knots[np + i] = 1.0;
+        c[2 * i] = ctrl[2 * i];
+        c[2 * i + 1] = ctrl[2 * i + 1];
+        if (!isfinite(c[2 * i]) || !isfinite(c[2 * i + 1]))
+            return conica__fail(st, CONICA_ERR_ARG, 0, i, "control point %zu is not finite", i);
+        if (w) {
+            wc[i] = w[i];
+            if (!(wc[i] > 0) || !isfinite(wc[i]))
+                return conica__fail(st, CONICA_ERR_ARG, 0, i,
+                                    "weight %zu must be > 0 and finite", i);
+        }
+    }
+    conica_bspline g = {degree, 2, np, knots, c, w ? wc : NULL};
+    conica_plot_settings set = conica_plot_defaults();
+    if (max_iterations)
+        set.max_iterations = max_iterations;
+    conica_plot_stats stats;
+    memset(&stats, 0, sizeof stats);
+    conica__out o;
+    conica__out_init(&o, 2, cap);
+    o.fixed = 1;
+    o.pl.xy = xy;
+    o.pl.t = t;
+    o.pl.cap = cap;
+    conica_code rc = conica__guaranteed_piece(&g, tol, &set, 0, &o, NULL, NULL, &stats, st);
+    if (rc != CONICA_OK)
+        return rc;
+    for (size_t i = 0; i < 2 * o.pl.n; i++)
+        if (!isfinite(xy[i])) /* as conica_plot: never a NaN or Inf as a result */
+            return conica__fail(st, CONICA_ERR_NUMERIC, 0, i / 2,
+                                "point %zu of the plot is not finite: the piece cannot be "
+                                "evaluated in double there",
+                                i / 2);
+    *n = o.pl.n;
+    conica__ok(st);
+    return CONICA_OK;
+}
