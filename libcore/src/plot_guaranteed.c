@@ -662,9 +662,11 @@ static double scalar_halves(march *m, const double *a, const double *w, int p)
  * distances times |c| of the points i0..i1 of polygon P into s[i], their
  * projections on the chord's line times |c| into t[i] (and their weights
  * into w[i] when rational). Returns 0 when a point projects beyond the
- * chord's ends (step 2 then needs proj_inside or the hull bound). */
+ * chord's ends (step 2 then needs proj_inside, when `exact`: all points
+ * are computed for it, or the hull bound: the first such point ends). */
 static int signed_dists(const march *m, const double *P, int i0, int i1, const double *a, double cx,
-                        double cy, double c2, double *s, double *t, double *w, double *smax)
+                        double cy, double c2, int exact, double *s, double *t, double *w,
+                        double *smax)
 {
     size_t hh = (size_t)m->h;
     int rational = m->h > m->d, in = 1;
@@ -679,6 +681,8 @@ static int signed_dists(const march *m, const double *P, int i0, int i1, const d
         double ex = x - a[0], ey = y - a[1];
         t[i] = ex * cx + ey * cy;
         in = in && t[i] >= 0 && t[i] <= c2;
+        if (!in && !exact)
+            return 0; /* no proj_inside to follow: the hull bound */
         s[i] = ex * cy - ey * cx;
         double v = fabs(s[i]);
         *smax = v > *smax ? v : *smax;
@@ -715,14 +719,15 @@ static double bez_cert(march *m, const double *P1, const double *P2, int steer)
             s1[p] = 0.0;
             t1[p] = c2;
             w1[p] = rational ? P1[pp * hh + 2] : 1.0;
-            inside = signed_dists(m, P1, 1, p - 1, a, cx, cy, c2, s1, t1, w1, &smax) ||
+            inside = signed_dists(m, P1, 1, p - 1, a, cx, cy, c2, exact, s1, t1, w1, &smax) ||
                      (exact && proj_inside(t1, p, c2));
         } else if (inside) {
             s2[p] = 0.0;
             t2[p] = c2;
             w2[p] = rational ? P2[pp * hh + 2] : 1.0;
-            int in1 = signed_dists(m, P1, 1, p, a, cx, cy, c2, s1, t1, w1, &smax);
-            int in2 = signed_dists(m, P2, 0, p - 1, a, cx, cy, c2, s2, t2, w2, &smax);
+            int in1 = signed_dists(m, P1, 1, p, a, cx, cy, c2, exact, s1, t1, w1, &smax);
+            int in2 = (in1 || exact) &&
+                      signed_dists(m, P2, 0, p - 1, a, cx, cy, c2, exact, s2, t2, w2, &smax);
             inside = (in1 || (exact && proj_inside(t1, p, c2))) &&
                      (in2 || (exact && proj_inside(t2, p, c2)));
         }
@@ -933,8 +938,8 @@ static double chain_cert(march *m, const double *last, size_t j)
             s[0] = s[p] = 0.0;
             t[0] = 0.0;
             t[p] = c2;
-            inside = signed_dists(m, P, k == 0 ? 1 : 0, k == j ? p - 1 : p, a, cx, cy, c2, s, t,
-                                  w, &smax) ||
+            inside = signed_dists(m, P, k == 0 ? 1 : 0, k == j ? p - 1 : p, a, cx, cy, c2, exact,
+                                  s, t, w, &smax) ||
                      (exact && proj_inside(t, p, c2));
             double e = exact ? bern_max(s, p) : smax;
             D = e > D ? e : D;
