@@ -436,67 +436,6 @@ static inline double cubic_max(double s1, double s2)
     return v1 > v2 ? v1 : v2;
 }
 
-/* Least and largest value over [0,1] of sum B_i^p(u) s_i for p <= 3,
- * exactly: the ends and the roots of the derivative, whose Bernstein
- * coefficients are the differences D_i = s_{i+1} - s_i (degree 1: one
- * root; degree 2: the quadratic (D0 - 2 D1 + D2) u^2 + 2 (D1 - D0) u + D0). */
-static void bern_range(const double *s, int p, double *lo, double *hi)
-{
-    double l = s[0] < s[p] ? s[0] : s[p], g = s[0] > s[p] ? s[0] : s[p];
-    double u[2];
-    int nu = 0;
-    if (p == 2) {
-        double d0 = s[1] - s[0], d1 = s[2] - s[1];
-        if (d0 != d1)
-            u[nu++] = d0 / (d0 - d1);
-    } else if (p == 3) {
-        double d0 = s[1] - s[0], d1 = s[2] - s[1], d2 = s[3] - s[2];
-        double A = d0 - 2.0 * d1 + d2, B = 2.0 * (d1 - d0), C = d0;
-        if (A == 0.0) {
-            if (B != 0.0)
-                u[nu++] = -C / B;
-        } else {
-            double disc = B * B - 4.0 * A * C;
-            if (disc >= 0.0) {
-                double q = -0.5 * (B + copysign(sqrt(disc), B));
-                u[nu++] = q / A;
-                if (q != 0.0)
-                    u[nu++] = C / q;
-            }
-        }
-    }
-    for (int i = 0; i < nu; i++)
-        if (u[i] > 0.0 && u[i] < 1.0) {
-            double v = bern_eval(s, p, u[i]);
-            l = v < l ? v : l;
-            g = v > g ? v : g;
-        }
-    *lo = l;
-    *hi = g;
-}
-
-/* max over [0,1] of |sum B_i^p(u) s_i| for p <= 3, exactly. */
-static double bern_max(const double *s, int p)
-{
-    double lo, hi;
-    bern_range(s, p, &lo, &hi);
-    return -lo > hi ? -lo : hi;
-}
-
-/* Whether the polynomial sub-arc of degree p <= 3 whose control points
- * project to t_0..t_p (times |c|) on the chord's line projects onto the
- * chord [0, c2] at every u -- exactly, from the range of its projection
- * polynomial sum B_i t_i, not from the control points (which may project
- * beyond an end while the arc does not: a tight bend near a chord end).
- * Step 2 of the certificate needs exactly this: then the distance of
- * every arc point to the segment is |s(f(u))|. */
-static int proj_inside(const double *t, int p, double c2)
-{
-    double lo, hi;
-    bern_range(t, p, &lo, &hi);
-    return lo >= 0.0 && hi <= c2;
-}
-
 /* Parts of an arc piece beyond a chord end bounded by their own hulls in
  * seg_exact (the hull over-estimates a part's distance by O(part^2)). */
 #define SEG_PARTS 8
@@ -530,22 +469,61 @@ static void bern_roots(const double *b, int q, double *u, int *n)
             u[(*n)++] = r[i];
 }
 
-/* Largest |sum B_i^p s_i| over [u0, u1] within [0, 1], p <= 3: the ends
- * and the roots of the derivative inside. */
-static double bern_max_on(const double *s, int p, double u0, double u1)
+/* Least and largest value over [u0, u1] within [0, 1] of
+ * sum B_i^p(u) s_i for p <= 3, exactly: the ends and the roots of the
+ * derivative inside, whose Bernstein coefficients are the differences
+ * D_i = s_{i+1} - s_i. */
+static void bern_range_on(const double *s, int p, double u0, double u1, double *lo, double *hi)
 {
-    double a = fabs(bern_eval(s, p, u0)), b = fabs(bern_eval(s, p, u1));
-    double best = a > b ? a : b, d[3], u[2];
+    double a = bern_eval(s, p, u0), b = bern_eval(s, p, u1);
+    double l = a < b ? a : b, g = a > b ? a : b, d[3], u[2];
     int nu = 0;
     for (int i = 0; i < p; i++)
         d[i] = s[i + 1] - s[i];
     bern_roots(d, p - 1, u, &nu);
     for (int i = 0; i < nu; i++)
         if (u[i] > u0 && u[i] < u1) {
-            double v = fabs(bern_eval(s, p, u[i]));
-            best = v > best ? v : best;
+            double v = bern_eval(s, p, u[i]);
+            l = v < l ? v : l;
+            g = v > g ? v : g;
         }
-    return best;
+    *lo = l;
+    *hi = g;
+}
+
+static void bern_range(const double *s, int p, double *lo, double *hi)
+{
+    bern_range_on(s, p, 0.0, 1.0, lo, hi);
+}
+
+/* Largest |sum B_i^p s_i| over [u0, u1] within [0, 1], p <= 3. */
+static double bern_max_on(const double *s, int p, double u0, double u1)
+{
+    double lo, hi;
+    bern_range_on(s, p, u0, u1, &lo, &hi);
+    return -lo > hi ? -lo : hi;
+}
+
+/* max over [0,1] of |sum B_i^p(u) s_i| for p <= 3, exactly. */
+static double bern_max(const double *s, int p)
+{
+    double lo, hi;
+    bern_range(s, p, &lo, &hi);
+    return -lo > hi ? -lo : hi;
+}
+
+/* Whether the polynomial sub-arc of degree p <= 3 whose control points
+ * project to t_0..t_p (times |c|) on the chord's line projects onto the
+ * chord [0, c2] at every u -- exactly, from the range of its projection
+ * polynomial sum B_i t_i, not from the control points (which may project
+ * beyond an end while the arc does not: a tight bend near a chord end).
+ * Step 2 of the certificate needs exactly this: then the distance of
+ * every arc point to the segment is |s(f(u))|. */
+static int proj_inside(const double *t, int p, double c2)
+{
+    double lo, hi;
+    bern_range(t, p, &lo, &hi);
+    return lo >= 0.0 && hi <= c2;
 }
 
 /* Certified distance bound of a planar polynomial Bézier arc P of degree
