@@ -715,6 +715,61 @@ TEST_CASE("baselines: counts and end points", "[plot][baselines]")
     conica_bspline_free(&s);
 }
 
+TEST_CASE("conica_plot_bezier writes conica_plot's points into caller arrays",
+          "[plot][guaranteed][bezier]")
+{
+    ct_rng r;
+    ct_rng_init(&r, 20);
+    static const int degrees[] = {1, 2, 3, 5};
+    double xy[2 * 4096], t[4096];
+    for (int trial = 0; trial < 200; trial++) {
+        int p = degrees[trial % 4], rational = trial % 8 >= 4;
+        double c[2 * 6], w[6], tol = trial % 3 == 0 ? 0.1 : 1e-3;
+        for (int i = 0; i < 2 * (p + 1); i++)
+            c[i] = ct_rng_range(&r, 0, 100);
+        for (int i = 0; i <= p; i++)
+            w[i] = ct_rng_range(&r, 0.5, 2.0);
+        conica_bspline s;
+        conica_bspline_init(&s);
+        REQUIRE_EQ(conica_bspline_from_bezier(p, 2, c, rational ? w : NULL, &s, NULL), CONICA_OK);
+        conica_plot_settings set = conica_plot_defaults();
+        set.abs_tolerance = tol;
+        conica_polyline pl;
+        conica_polyline_init(&pl);
+        REQUIRE_EQ(conica_plot(&s, &set, &pl, NULL, NULL), CONICA_OK);
+        size_t n = 0;
+        INFO("trial %d, degree %d%s", trial, p, rational ? ", rational" : "");
+        REQUIRE_EQ(conica_plot_bezier(p, c, rational ? w : NULL, tol, 0, xy, t, 4096, &n, NULL),
+                   CONICA_OK);
+        REQUIRE_EQ(n, pl.n);
+        int same = 1;
+        for (size_t i = 0; i < n; i++)
+            same = same && xy[2 * i] == pl.xy[2 * i] && xy[2 * i + 1] == pl.xy[2 * i + 1] &&
+                   t[i] == pl.t[i];
+        CHECK(same);
+        /* one point short of the room needed: a limit, *n untouched */
+        size_t n2 = 12345;
+        conica_status st;
+        CHECK_EQ(conica_plot_bezier(p, c, rational ? w : NULL, tol, 0, xy, NULL, n - 1, &n2, &st),
+                 CONICA_ERR_LIMIT);
+        CHECK_EQ(n2, (size_t)12345);
+        conica_polyline_free(&pl);
+        conica_bspline_free(&s);
+    }
+    double c[8] = {0, 0, 1, 2, 3, 2, 4, 0}, w[4] = {1, -1, 1, 1};
+    size_t n = 7;
+    conica_status st;
+    CHECK_EQ(conica_plot_bezier(0, c, NULL, 0.1, 0, xy, t, 4096, &n, &st), CONICA_ERR_ARG);
+    CHECK_EQ(conica_plot_bezier(3, c, NULL, 0.0, 0, xy, t, 4096, &n, &st), CONICA_ERR_ARG);
+    CHECK_EQ(conica_plot_bezier(3, c, w, 0.1, 0, xy, t, 4096, &n, &st), CONICA_ERR_ARG);
+    CHECK(strstr(st.message, "weight 1") != NULL);
+    c[3] = NAN;
+    CHECK_EQ(conica_plot_bezier(3, c, NULL, 0.1, 0, xy, t, 4096, &n, &st), CONICA_ERR_ARG);
+    c[3] = 2.0;
+    CHECK_EQ(conica_plot_bezier(3, c, NULL, 1e-3, 2, xy, t, 4096, &n, &st), CONICA_ERR_LIMIT);
+    CHECK_EQ(n, (size_t)7);
+}
+
 TEST_CASE("limits and bad settings", "[plot][limits]")
 {
     const double k[] = {0, 0, 0, 0, 1, 2, 3, 3, 3, 3};

@@ -119,6 +119,7 @@ void conica__out_init(conica__out *o, int dim, size_t max_points)
     conica_polyline_init(&o->pl);
     o->pl.dim = dim;
     o->max_points = max_points;
+    o->fixed = 0;
 }
 
 conica_code conica__out_piece(conica__out *o, conica_status *st)
@@ -138,6 +139,13 @@ conica_code conica__out_push(conica__out *o, const double *pt, double t, conica_
                             "plot needs more than %zu points (max_points / --max-points)",
                             o->max_points);
     size_t d = (size_t)o->pl.dim;
+    if (o->fixed) {
+        memcpy(o->pl.xy + o->pl.n * d, pt, d * sizeof *pt);
+        if (o->pl.t)
+            o->pl.t[o->pl.n] = t;
+        o->pl.n++;
+        return CONICA_OK;
+    }
     if (o->pl.n == o->pl.cap) {
         size_t nc = o->pl.cap ? 2 * o->pl.cap : 256;
         if (nc > o->max_points)

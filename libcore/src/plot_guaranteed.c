@@ -130,6 +130,18 @@
  * its step model (G_EXTRAP) is good enough that aiming higher than
  * G_NEXT saves points without more failed trials (bench_flatten). */
 #define C3_NEXT 0.9
+/* Planar polynomial quadratics predict their next chord from the exact
+ * deviation of the remainder's own parabola (q2_step) aiming at Q_AIM
+ * tol_eff, so the rigorous trial that follows mostly passes close to tol:
+ * it is taken from Q_GOOD tol on. Inside a knot interval the chords are
+ * then within about 1% of the longest ones (D ~ h^2), the greedy
+ * reference's, in about one certificate per point. (The same prediction
+ * for cubics, by secant steps on the exact deviation of the remainder's
+ * cubic, cut their points by 2-4% at about twice the CPU time per piece:
+ * not taken, cubics are where cairo's speed is the yardstick.) */
+#define Q_AIM 0.99
+#define Q_GOOD 0.9
+#define Q_SHRINK 0.995
 /* Trials per emitted point and relative bracket width that end the search. */
 #define G_MAX_TRIES 8
 #define G_BRACKET 0.03
@@ -196,6 +208,10 @@ typedef struct march {
     double tol, tol_eff;
     /* G_GOOD and G_NEXT, or their G_CLOSE_ values */
     double good, next;
+    /* a failed first trial shrinks to D = shrink_aim tol by D ~ h^2, by a
+     * factor of at most shrink_max (G_TARGET and 0.8; Q_AIM and Q_SHRINK
+     * after q2_step's exact prediction, which fails only just) */
+    double shrink_aim, shrink_max;
     /* chain for chords across knots: Bézier forms of the intervals
      * cmu[1..] after the current one, at C + k (p+1) h (allocated when a
      * chord first crosses a knot) */
@@ -420,40 +436,171 @@ static inline double cubic_max(double s1, double s2)
     return v1 > v2 ? v1 : v2;
 }
 
-/* max over [0,1] of |sum B_i^p(u) s_i| for p <= 3, exactly: the ends and
- * the roots of the derivative, whose Bernstein coefficients are the
- * differences D_i = s_{i+1} - s_i (degree 1: one root; degree 2: the
- * quadratic (D0 - 2 D1 + D2) u^2 + 2 (D1 - D0) u + D0). */
-static double bern_max(const double *s, int p)
+/* Parts of an arc piece beyond a chord end bounded by their own hulls in
+ * seg_exact (the hull over-estimates a part's distance by O(part^2)). */
+#define SEG_PARTS 8
+
+/* Roots in (0, 1) of the Bernstein polynomial b_0..b_q, q <= 2, appended
+ * to u[*n]. */
+static void bern_roots(const double *b, int q, double *u, int *n)
 {
-    double best = fabs(s[0]) > fabs(s[p]) ? fabs(s[0]) : fabs(s[p]);
-    double u[2];
-    int nu = 0;
-    if (p == 2) {
-        double d0 = s[1] - s[0], d1 = s[2] - s[1];
-        if (d0 != d1)
-            u[nu++] = d0 / (d0 - d1);
-    } else if (p == 3) {
-        double d0 = s[1] - s[0], d1 = s[2] - s[1], d2 = s[3] - s[2];
-        double A = d0 - 2.0 * d1 + d2, B = 2.0 * (d1 - d0), C = d0;
+    double r[2];
+    int nr = 0;
+    if (q == 1) {
+        if (b[0] != b[1])
+            r[nr++] = b[0] / (b[0] - b[1]);
+    } else if (q == 2) {
+        double A = b[0] - 2.0 * b[1] + b[2], B = 2.0 * (b[1] - b[0]), C = b[0];
         if (A == 0.0) {
             if (B != 0.0)
-                u[nu++] = -C / B;
+                r[nr++] = -C / B;
         } else {
             double disc = B * B - 4.0 * A * C;
             if (disc >= 0.0) {
-                double q = -0.5 * (B + copysign(sqrt(disc), B));
-                u[nu++] = q / A;
-                if (q != 0.0)
-                    u[nu++] = C / q;
+                double qq = -0.5 * (B + copysign(sqrt(disc), B));
+                r[nr++] = qq / A;
+                if (qq != 0.0)
+                    r[nr++] = C / qq;
             }
         }
     }
+    for (int i = 0; i < nr; i++)
+        if (r[i] > 0.0 && r[i] < 1.0)
+            u[(*n)++] = r[i];
+}
+
+/* Least and largest value over [u0, u1] within [0, 1] of
+ * sum B_i^p(u) s_i for p <= 3, exactly: the ends and the roots of the
+ * derivative inside, whose Bernstein coefficients are the differences
+ * D_i = s_{i+1} - s_i. */
+static void bern_range_on(const double *s, int p, double u0, double u1, double *lo, double *hi)
+{
+    double a = bern_eval(s, p, u0), b = bern_eval(s, p, u1);
+    double l = a < b ? a : b, g = a > b ? a : b, d[3], u[2];
+    int nu = 0;
+    for (int i = 0; i < p; i++)
+        d[i] = s[i + 1] - s[i];
+    bern_roots(d, p - 1, u, &nu);
     for (int i = 0; i < nu; i++)
-        if (u[i] > 0.0 && u[i] < 1.0) {
-            double v = fabs(bern_eval(s, p, u[i]));
-            best = v > best ? v : best;
+        if (u[i] > u0 && u[i] < u1) {
+            double v = bern_eval(s, p, u[i]);
+            l = v < l ? v : l;
+            g = v > g ? v : g;
         }
+    *lo = l;
+    *hi = g;
+}
+
+static void bern_range(const double *s, int p, double *lo, double *hi)
+{
+    bern_range_on(s, p, 0.0, 1.0, lo, hi);
+}
+
+/* Largest |sum B_i^p s_i| over [u0, u1] within [0, 1], p <= 3. */
+static double bern_max_on(const double *s, int p, double u0, double u1)
+{
+    double lo, hi;
+    bern_range_on(s, p, u0, u1, &lo, &hi);
+    return -lo > hi ? -lo : hi;
+}
+
+/* max over [0,1] of |sum B_i^p(u) s_i| for p <= 3, exactly. */
+static double bern_max(const double *s, int p)
+{
+    double lo, hi;
+    bern_range(s, p, &lo, &hi);
+    return -lo > hi ? -lo : hi;
+}
+
+/* Whether the polynomial sub-arc of degree p <= 3 whose control points
+ * project to t_0..t_p (times |c|) on the chord's line projects onto the
+ * chord [0, c2] at every u -- exactly, from the range of its projection
+ * polynomial sum B_i t_i, not from the control points (which may project
+ * beyond an end while the arc does not: a tight bend near a chord end).
+ * Step 2 of the certificate needs exactly this: then the distance of
+ * every arc point to the segment is |s(f(u))|. */
+static int proj_inside(const double *t, int p, double c2)
+{
+    double lo, hi;
+    bern_range(t, p, &lo, &hi);
+    return lo >= 0.0 && hi <= c2;
+}
+
+/* Certified distance bound of a planar polynomial Bézier arc P of degree
+ * p <= 3 (p + 1 points x y) to its chord segment S = [P_0, P_p] when the
+ * arc's projection runs past an end of S (proj_inside fails: a hook near
+ * a chord end), for step 2 of the certificate. The projection polynomial
+ * t(u) (times |c|) vanishes at 0 and equals c2 at 1, so t = u q(u) and
+ * t - c2 = (u - 1) r(u) with q, r of degree p - 1 (Bernstein
+ * coefficients p t_{i+1} / (i + 1) and their mirror): their roots split
+ * [0, 1] into pieces on which the arc projects onto S (distance |s(u)| / |c|,
+ * its exact maximum there) or beyond one end (distance to that end, a
+ * convex function: bounded by the control points of SEG_PARTS parts of
+ * the piece, two de Casteljau splits each). Returns a negative value when the chord is
+ * degenerate. */
+static double seg_exact(const double *P, int p)
+{
+    double ax = P[0], ay = P[1], cx = P[2 * p] - ax, cy = P[2 * p + 1] - ay;
+    double c2 = cx * cx + cy * cy, t[4], sd[4], q[3], r[3], u[6];
+    if (!(c2 > 0) || p < 2 || p > 3)
+        return -1.0;
+    for (int i = 0; i <= p; i++) {
+        double ex = P[2 * i] - ax, ey = P[2 * i + 1] - ay;
+        t[i] = ex * cx + ey * cy;
+        sd[i] = ex * cy - ey * cx;
+    }
+    t[0] = sd[0] = sd[p] = 0.0;
+    t[p] = c2;
+    for (int i = 0; i < p; i++) {
+        q[i] = (double)p * t[i + 1] / (double)(i + 1);
+        r[i] = (double)p * (c2 - t[p - 1 - i]) / (double)(i + 1);
+    }
+    int nu = 1, nr0;
+    u[0] = 0.0;
+    bern_roots(q, p - 1, u, &nu);
+    nr0 = nu;
+    bern_roots(r, p - 1, u, &nu);
+    for (int i = nr0; i < nu; i++)
+        u[i] = 1.0 - u[i];
+    u[nu++] = 1.0;
+    for (int i = 1; i < nu; i++) /* insertion sort of at most 6 */
+        for (int j = i; j > 0 && u[j] < u[j - 1]; j--) {
+            double x = u[j];
+            u[j] = u[j - 1];
+            u[j - 1] = x;
+        }
+    double inv = 1.0 / sqrt(c2), best = 0.0;
+    for (int k = 0; k + 1 < nu; k++) {
+        double u0 = u[k], u1 = u[k + 1];
+        if (!(u1 > u0))
+            continue;
+        double tm = bern_eval(t, p, 0.5 * (u0 + u1)), e;
+        if (tm >= 0.0 && tm <= c2) {
+            e = bern_max_on(sd, p, u0, u1) * inv;
+        } else { /* beyond an end: the hulls of SEG_PARTS parts, distance to that end */
+            const double *end = tm < 0.0 ? P : P + 2 * p;
+            double d2 = 0.0;
+            for (int j = 0; j < SEG_PARTS; j++) {
+                double v0 = u0 + (u1 - u0) * (double)j / SEG_PARTS;
+                double v1 = j + 1 == SEG_PARTS ? u1 : u0 + (u1 - u0) * (double)(j + 1) / SEG_PARTS;
+                double L[8], Rr[8], L2[8], Rr2[8];
+                if (p == 2) {
+                    casteljau(P, 2, 2, v1, L, Rr);
+                    casteljau(L, 2, 2, v1 > 0 ? v0 / v1 : 0.0, L2, Rr2);
+                } else {
+                    casteljau(P, 3, 2, v1, L, Rr);
+                    casteljau(L, 3, 2, v1 > 0 ? v0 / v1 : 0.0, L2, Rr2);
+                }
+                for (int i = 0; i <= p; i++) {
+                    double ex = Rr2[2 * i] - end[0], ey = Rr2[2 * i + 1] - end[1];
+                    double v = ex * ex + ey * ey;
+                    d2 = v > d2 ? v : d2;
+                }
+            }
+            e = sqrt(d2);
+        }
+        best = e > best ? e : best;
+    }
     return best;
 }
 
@@ -490,14 +637,17 @@ static double scalar_halves(march *m, const double *a, const double *w, int p)
 }
 
 /* The planar chord from a with direction (cx, cy), |c|^2 = c2: signed
- * distances times |c| of the points i0..i1 of polygon P into s[i] (and
- * their weights into w[i] when rational). Returns 0 when a point projects
- * beyond the chord's ends (step 2 then needs the hull bound). */
+ * distances times |c| of the points i0..i1 of polygon P into s[i], their
+ * projections on the chord's line times |c| into t[i] (and their weights
+ * into w[i] when rational). Returns 0 when a point projects beyond the
+ * chord's ends (step 2 then needs proj_inside, when `exact`: all points
+ * are computed for it, or the hull bound: the first such point ends). */
 static int signed_dists(const march *m, const double *P, int i0, int i1, const double *a, double cx,
-                        double cy, double c2, double *s, double *w, double *smax)
+                        double cy, double c2, int exact, double *s, double *t, double *w,
+                        double *smax)
 {
     size_t hh = (size_t)m->h;
-    int rational = m->h > m->d;
+    int rational = m->h > m->d, in = 1;
     for (int i = i0; i <= i1; i++) {
         const double *q = P + (size_t)i * hh;
         double x = q[0], y = q[1];
@@ -507,14 +657,15 @@ static int signed_dists(const march *m, const double *P, int i0, int i1, const d
             y /= q[2];
         }
         double ex = x - a[0], ey = y - a[1];
-        double t = ex * cx + ey * cy;
-        if (t < 0 || t > c2)
-            return 0;
+        t[i] = ex * cx + ey * cy;
+        in = in && t[i] >= 0 && t[i] <= c2;
+        if (!in && !exact)
+            return 0; /* no proj_inside to follow: the hull bound */
         s[i] = ex * cy - ey * cx;
         double v = fabs(s[i]);
         *smax = v > *smax ? v : *smax;
     }
-    return 1;
+    return in;
 }
 
 /* Certified bound D for the chord from the first point of P1 to the last
@@ -537,19 +688,26 @@ static double bez_cert(march *m, const double *P1, const double *P2, int steer)
     int near_tol_check = 0;
     if (d == 2) {
         double cx = b[0] - a[0], cy = b[1] - a[1], c2 = cx * cx + cy * cy;
-        double s1[MAXP + 1], w1[MAXP + 1], s2[MAXP + 1], w2[MAXP + 1], smax = 0.0;
-        int inside = c2 > 0;
-        s1[0] = 0.0;
+        double s1[MAXP + 1], w1[MAXP + 1], s2[MAXP + 1], w2[MAXP + 1], t1[MAXP + 1],
+            t2[MAXP + 1], smax = 0.0;
+        int inside = c2 > 0, exact = !rational && p <= 3;
+        s1[0] = t1[0] = 0.0;
         w1[0] = rational ? P1[2] : 1.0;
-        if (!P2) {
+        if (inside && !P2) {
             s1[p] = 0.0;
+            t1[p] = c2;
             w1[p] = rational ? P1[pp * hh + 2] : 1.0;
-            inside = inside && signed_dists(m, P1, 1, p - 1, a, cx, cy, c2, s1, w1, &smax);
-        } else {
+            inside = signed_dists(m, P1, 1, p - 1, a, cx, cy, c2, exact, s1, t1, w1, &smax) ||
+                     (exact && proj_inside(t1, p, c2));
+        } else if (inside) {
             s2[p] = 0.0;
+            t2[p] = c2;
             w2[p] = rational ? P2[pp * hh + 2] : 1.0;
-            inside = inside && signed_dists(m, P1, 1, p, a, cx, cy, c2, s1, w1, &smax) &&
-                     signed_dists(m, P2, 0, p - 1, a, cx, cy, c2, s2, w2, &smax);
+            int in1 = signed_dists(m, P1, 1, p, a, cx, cy, c2, exact, s1, t1, w1, &smax);
+            int in2 = (in1 || exact) &&
+                      signed_dists(m, P2, 0, p - 1, a, cx, cy, c2, exact, s2, t2, w2, &smax);
+            inside = (in1 || (exact && proj_inside(t1, p, c2))) &&
+                     (in2 || (exact && proj_inside(t2, p, c2)));
         }
         m->flops += 10.0 + (double)(P2 ? 2 * p : p - 1) * (rational ? 12.0 : 10.0);
         if (inside) {
@@ -591,6 +749,12 @@ static double bez_cert(march *m, const double *P1, const double *P2, int steer)
         d2 = max_d2(m, &c, P2, pp, d2);
     double D = sqrt(d2);
     m->flops += (double)(P2 ? 2 * p + 2 : p + 1) * (12.0 + 3.0 * (double)d);
+    if (!P2 && d == 2 && !rational && p <= 3 && D > m->good * m->tol) {
+        double De = seg_exact(P1, p);
+        m->flops += 200.0;
+        if (De >= 0.0 && De < D)
+            return De;
+    }
     near_tol_check = D > m->tol_eff ? D <= G_REFINE_RATIO * m->tol_eff
                                     : (steer && D >= G_GROW_BELOW * m->tol && p <= G_REFINE_MAX_P);
     if (!P2 && p > 1 && near_tol_check) {
@@ -707,8 +871,8 @@ static conica_code bez_search(march *m, double *hs, double span_all, double min_
             f = f < 1.15 ? 1.15 : (f > 4.0 ? 4.0 : f);
             *hs = hp * f;
         } else {
-            double f = sqrt(G_TARGET * tol / dev); /* D ~ h^2 */
-            f = f < 0.1 ? 0.1 : (f > 0.8 ? 0.8 : f);
+            double f = sqrt(m->shrink_aim * tol / dev); /* D ~ h^2 */
+            f = f < 0.1 ? 0.1 : (f > m->shrink_max ? m->shrink_max : f);
             *hs = hf * f;
             if (*hs < min_step)
                 return conica__fail(st, CONICA_ERR_NUMERIC, 0, 0,
@@ -744,15 +908,18 @@ static double chain_cert(march *m, const double *last, size_t j)
     proj(m, last + pp * hh, b);
     if (d == 2) {
         double cx = b[0] - a[0], cy = b[1] - a[1], c2 = cx * cx + cy * cy;
-        double s[MAXP + 1], w[MAXP + 1], D = 0.0;
-        int inside = c2 > 0;
+        double s[MAXP + 1], t[MAXP + 1], w[MAXP + 1], D = 0.0;
+        int inside = c2 > 0, exact = !rational && p <= 3;
         for (size_t k = 0; k <= j && inside; k++) {
             const double *P = k == 0 ? m->R : (k == j ? last : m->C + k * bz);
             double smax = 0.0;
             s[0] = s[p] = 0.0;
-            inside = signed_dists(m, P, k == 0 ? 1 : 0, k == j ? p - 1 : p, a, cx, cy, c2, s, w,
-                                  &smax);
-            double e = !rational && p <= 3 ? bern_max(s, p) : smax;
+            t[0] = 0.0;
+            t[p] = c2;
+            inside = signed_dists(m, P, k == 0 ? 1 : 0, k == j ? p - 1 : p, a, cx, cy, c2, exact,
+                                  s, t, w, &smax) ||
+                     (exact && proj_inside(t, p, c2));
+            double e = exact ? bern_max(s, p) : smax;
             D = e > D ? e : D;
         }
         m->flops += 10.0 + (double)((j + 1) * pp) * (rational ? 12.0 : 10.0) +
@@ -992,6 +1159,10 @@ static void c3_form(const double *T, const double *d, size_t mu, double *P)
  * as bez_cert does. */
 static double c3_hull(c3m *m, const double *L)
 {
+    double De = seg_exact(L, 3);
+    m->flops += 200.0;
+    if (De >= 0.0)
+        return De;
     chord c;
     chord_init(&c, L, L + 6, 2);
     double d2 = chord_d2(&c, L + 2), e = chord_d2(&c, L + 4);
@@ -1017,6 +1188,15 @@ static double c3_hull(c3m *m, const double *L)
     return D;
 }
 
+/* proj_inside for a cubic sub-arc whose inner control points project to
+ * t1, t2 (the ends to 0 and c2). */
+static int c3_inside(c3m *m, double t1, double t2, double c2)
+{
+    double t[4] = {0.0, t1, t2, c2};
+    m->flops += 40.0;
+    return proj_inside(t, 3, c2);
+}
+
 /* Certified bound D for the chord of the single cubic sub-arc L (step 2)
  * when both inner control points project onto the chord: the signed-
  * distance form g(u) = 3u(1-u)((1-u) s1 + u s2) / |c| is bounded above by
@@ -1034,7 +1214,7 @@ static double c3_cert1(c3m *m, const double *L)
     double e1x = L[2] - ax, e1y = L[3] - ay, e2x = L[4] - ax, e2y = L[5] - ay;
     double t1 = e1x * cx + e1y * cy, t2 = e2x * cx + e2y * cy;
     m->flops += 17.0;
-    if (c2 > 0 && t1 >= 0 && t1 <= c2 && t2 >= 0 && t2 <= c2) {
+    if (c2 > 0 && ((t1 >= 0 && t1 <= c2 && t2 >= 0 && t2 <= c2) || c3_inside(m, t1, t2, c2))) {
         double s1 = e1x * cy - e1y * cx, s2 = e2x * cy - e2y * cx;
         double inv = 1.0 / sqrt(c2); /* in parallel with the bounds */
         double a1 = fabs(s1), a2 = fabs(s2);
@@ -1070,15 +1250,16 @@ static double c3_cert_chain(c3m *m, const double *const *arcs, size_t k)
     int inside = c2 > 0;
     for (size_t j = 0; j < k && inside; j++) {
         const double *P = arcs[j];
+        double t[4] = {0.0, 0.0, 0.0, c2};
+        int in = 1;
         s[0] = s[3] = 0.0;
         for (int i = j == 0 ? 1 : 0; i <= (j + 1 == k ? 2 : 3); i++) {
-            double ex = P[2 * i] - ax, ey = P[2 * i + 1] - ay, t = ex * cx + ey * cy;
-            if (t < 0 || t > c2) {
-                inside = 0;
-                break;
-            }
+            double ex = P[2 * i] - ax, ey = P[2 * i + 1] - ay;
+            t[i] = ex * cx + ey * cy;
+            in = in && t[i] >= 0 && t[i] <= c2;
             s[i] = ex * cy - ey * cx;
         }
+        inside = in || proj_inside(t, 3, c2);
         if (inside) {
             double e = bern_max(s, 3);
             D = e > D ? e : D;
@@ -1489,6 +1670,41 @@ static double start_k(march *m)
     return sqrt(cr2 / aa) / (8.0 * L * L);
 }
 
+/* Step (parameter length) from the start of the remainder R of a planar
+ * polynomial quadratic to the chord end where the deviation is T, within
+ * the remainder's parabola f(s) = R0 + f' s + C s^2 (f' = 2 (R1 - R0),
+ * C = R2 - 2 R1 + R0, s in [0, 1] over [ua, bb]): the chord [0, lam]
+ * deviates from the arc by exactly |C x f'| lam^2 / (4 |f' + C lam|) (the
+ * arc minus the chord is C u (u - lam), largest at lam / 2, seen across
+ * the chord's direction f' + C lam), solved for lam by two Newton steps
+ * from its small-step value sqrt(4 T |f'| / |C x f'|). Only
+ * steers the next trial (the certificate decides); a straight remainder
+ * gives twice its length (the whole rest is tried). */
+static double q2_step(march *m, double T)
+{
+    const double *R = m->R;
+    double fx = 2.0 * (R[2] - R[0]), fy = 2.0 * (R[3] - R[1]);
+    double cx = R[4] - 2.0 * R[2] + R[0], cy = R[5] - 2.0 * R[3] + R[1];
+    double k = fabs(cx * fy - cy * fx), L = m->bb - m->ua;
+    double A = fx * fx + fy * fy, B = fx * cx + fy * cy, E = cx * cx + cy * cy;
+    m->flops += 22.0;
+    if (!(k > 0))
+        return 2.0 * L;
+    /* the small-step value, then two Newton steps on the squared equation
+     * k^2 lam^4 = 16 T^2 (A + 2 B lam + E lam^2) */
+    double lam = sqrt(4.0 * T * sqrt(A) / k), t2 = 16.0 * T * T;
+    for (int it = 0; it < 2; it++) {
+        double l2 = lam * lam;
+        double phi = k * k * l2 * l2 - t2 * (A + lam * (2.0 * B + E * lam));
+        double dphi = 4.0 * k * k * l2 * lam - t2 * (2.0 * B + 2.0 * E * lam);
+        if (!(dphi > 0) || !(phi < 0.5 * dphi * lam))
+            break;
+        lam -= phi / dphi;
+    }
+    m->flops += 60.0;
+    return lam * L;
+}
+
 /* The march of conica__guaranteed_piece for any other spline (degree,
  * dimension, weights); the first point is already out. *maxdev gets the
  * largest certified bound. */
@@ -1529,7 +1745,10 @@ static conica_code general_march(const conica_bspline *g, double tol, double tol
     m->tol = tol;
     m->tol_eff = tol_eff;
     int close = m->p <= G_CLOSE_MAX_P && m->p >= G_CLOSE_MIN_P;
-    m->good = close ? G_CLOSE_GOOD : G_GOOD;
+    int q2 = m->p == 2 && m->d == 2 && m->h == 2; /* see q2_step */
+    m->good = q2 ? Q_GOOD : (close ? G_CLOSE_GOOD : G_GOOD);
+    m->shrink_aim = q2 ? Q_AIM : G_TARGET;
+    m->shrink_max = q2 ? Q_SHRINK : 0.8;
     m->next = close ? G_CLOSE_NEXT : G_NEXT;
     conica_code rc = CONICA_OK;
     double hs = b - a; /* first guess: the whole piece */
@@ -1539,6 +1758,8 @@ static conica_code general_march(const conica_bspline *g, double tol, double tol
     double K0 = start_k(m); /* the first trial follows the curvature at a */
     if (K0 > 0 && sqrt(m->next * tol / K0) < hs)
         hs = sqrt(m->next * tol / K0);
+    if (q2)
+        hs = q2_step(m, Q_AIM * tol_eff);
     for (;;) {
         double x = b, dev = 0.0;
         int halved = 0;
@@ -1604,7 +1825,8 @@ static conica_code general_march(const conica_bspline *g, double tol, double tol
         /* predict, see G_EXTRAP and start_k (a polynomial parabola has one
          * K per interval: the chord-only rule is exact there) */
         int use_k = m->ua == x && dev > 0 && (m->p > 2 || m->h > m->d);
-        hs = next_step(use_k, use_k ? start_k(m) : 0.0, dev, step, tol, m->next);
+        hs = q2 ? q2_step(m, Q_AIM * tol_eff)
+                : next_step(use_k, use_k ? start_k(m) : 0.0, dev, step, tol, m->next);
     }
 done:
     stats->flops += m->flops;
@@ -1668,5 +1890,61 @@ conica_code conica__plot_guaranteed(const conica__pieces *pc, const conica_plot_
         if (rc != CONICA_OK)
             return rc;
     }
+    return CONICA_OK;
+}
+
+conica_code conica_plot_bezier(int degree, const double *ctrl, const double *w, double tol,
+                               size_t max_iterations, double *xy, double *t, size_t cap,
+                               size_t *n, conica_status *st)
+{
+    /* the spline conica_bspline_from_bezier makes, on the stack */
+    double knots[2 * (MAXP + 1)], c[2 * (MAXP + 1)], wc[MAXP + 1];
+    if (!ctrl || !xy || !n)
+        return conica__fail(st, CONICA_ERR_ARG, 0, 0, "NULL argument");
+    if (degree < 1 || degree > MAXP)
+        return conica__fail(st, CONICA_ERR_ARG, 0, 0, "degree %d outside 1..%d", degree, MAXP);
+    if (!(tol > 0) || !isfinite(tol))
+        return conica__fail(st, CONICA_ERR_ARG, 0, 0, "tolerance must be > 0 and finite");
+    if (cap < 2)
+        return conica__fail(st, CONICA_ERR_LIMIT, 0, 0, "room for %zu points, 2 at least needed",
+                            cap);
+    size_t np = (size_t)degree + 1;
+    for (size_t i = 0; i < np; i++) {
+        knots[i] = 0.0;
+        knots[np + i] = 1.0;
+        c[2 * i] = ctrl[2 * i];
+        c[2 * i + 1] = ctrl[2 * i + 1];
+        if (!isfinite(c[2 * i]) || !isfinite(c[2 * i + 1]))
+            return conica__fail(st, CONICA_ERR_ARG, 0, i, "control point %zu is not finite", i);
+        if (w) {
+            wc[i] = w[i];
+            if (!(wc[i] > 0) || !isfinite(wc[i]))
+                return conica__fail(st, CONICA_ERR_ARG, 0, i,
+                                    "weight %zu must be > 0 and finite", i);
+        }
+    }
+    conica_bspline g = {degree, 2, np, knots, c, w ? wc : NULL};
+    conica_plot_settings set = conica_plot_defaults();
+    if (max_iterations)
+        set.max_iterations = max_iterations;
+    conica_plot_stats stats;
+    memset(&stats, 0, sizeof stats);
+    conica__out o;
+    conica__out_init(&o, 2, cap);
+    o.fixed = 1;
+    o.pl.xy = xy;
+    o.pl.t = t;
+    o.pl.cap = cap;
+    conica_code rc = conica__guaranteed_piece(&g, tol, &set, 0, &o, NULL, NULL, &stats, st);
+    if (rc != CONICA_OK)
+        return rc;
+    for (size_t i = 0; i < 2 * o.pl.n; i++)
+        if (!isfinite(xy[i])) /* as conica_plot: never a NaN or Inf as a result */
+            return conica__fail(st, CONICA_ERR_NUMERIC, 0, i / 2,
+                                "point %zu of the plot is not finite: the piece cannot be "
+                                "evaluated in double there",
+                                i / 2);
+    *n = o.pl.n;
+    conica__ok(st);
     return CONICA_OK;
 }

@@ -28,6 +28,9 @@ void conica__pieces_free(conica__pieces *pc);
 typedef struct conica__out {
     conica_polyline pl;
     size_t max_points;
+    /* 1: pl.xy and pl.t (may be NULL) are the caller's arrays of
+     * max_points entries, never reallocated (conica_plot_bezier) */
+    int fixed;
 } conica__out;
 
 void conica__out_init(conica__out *o, int dim, size_t max_points);

@@ -174,6 +174,34 @@ typedef struct conica_plot_stats {
 CONICA_API conica_code conica_plot(const conica_bspline *s, const conica_plot_settings *set,
         conica_polyline *out, conica_plot_stats *stats, conica_status *st);
 
+/**
+ * @brief Guaranteed plot of one planar Bézier piece into caller arrays, without
+ *        the copies, checks of settings, allocations and timing of conica_plot.
+ *
+ * The same plotter and certificate as conica_plot with CONICA_PLOT_GUARANTEED
+ * and abs_tolerance = tol on the spline conica_bspline_from_bezier(degree, 2,
+ * ctrl, w) makes: the same points, from ctrl[0..1] to the last control
+ * point, each chord within tol of the piece both ways.
+ * @param[in] degree 1..CONICA_BSPLINE_MAX_DEGREE
+ * @param[in] ctrl degree + 1 control points, x y interleaved
+ * @param[in] w degree + 1 positive weights (rational piece), or NULL
+ * @param[in] tol absolute tolerance, > 0
+ * @param[in] max_iterations trial steps allowed (0: CONICA_PLOT_MAX_ITERATIONS_DEFAULT)
+ * @param[out] xy 2 * cap doubles: the points
+ * @param[out] t cap doubles: each point's parameter in [0, 1], or NULL
+ * @param[in] cap room in xy and t, in points
+ * @param[out] n the number of points written
+ * @return CONICA_OK, CONICA_ERR_ARG (NULL array, degree, non-finite
+ *         values, weights <= 0, tol <= 0 or below the coordinates'
+ *         resolution), CONICA_ERR_LIMIT (more than cap points or
+ *         max_iterations trials needed), CONICA_ERR_NOMEM,
+ *         CONICA_ERR_NUMERIC; on failure *n is left untouched and xy, t
+ *         hold unspecified values
+ */
+CONICA_API conica_code conica_plot_bezier(int degree, const double *ctrl, const double *w,
+        double tol, size_t max_iterations, double *xy, double *t, size_t cap, size_t *n,
+        conica_status *st);
+
 /** @brief Delta c of eq. (3.26): the diagonal of the control points' bounding
  *         box ((t*_j, c_j) for a function; projected points if rational). */
 CONICA_API double conica_plot_extent(const conica_bspline *s);
