@@ -973,6 +973,10 @@ static double seg_extreme(const conica_path *p, size_t s, const double dir[2], d
 
 /* Segment s plotted with the guaranteed plotter at a fraction of the
  * flattening tolerance (its points on the segment, with parameters). */
+/* Points a segment's dense plot may write straight into arrays of this
+ * size before conica_plot (which grows its own) takes over. */
+#define PATH_DENSE_CAP 1024
+
 static conica_code dense_seg(ctx *c, size_t s, conica_polyline *pl, conica_status *est)
 {
     const conica_path *p = c->p;
@@ -987,6 +991,35 @@ static conica_code dense_seg(ctx *c, size_t s, conica_polyline *pl, conica_statu
         ctrl[2 * k] = q[3 * k];
         ctrl[2 * k + 1] = q[3 * k + 1];
         w[k] = q[3 * k + 2];
+    }
+    {
+        /* The piece straight into arrays of PATH_DENSE_CAP points (the same
+         * points as conica_plot gives), conica_plot below when it needs more */
+        size_t cap = c->budget + 1 < PATH_DENSE_CAP ? c->budget + 1 : PATH_DENSE_CAP, n = 0;
+        double tol = c->tol * c->flat_fraction / (double)PATH_FLAT_DENSE;
+        size_t iters = PATH_FLAT_TRIALS * cap;
+        pl->xy = malloc(2 * cap * sizeof *pl->xy);
+        pl->t = malloc(cap * sizeof *pl->t);
+        pl->piece_start = malloc(sizeof *pl->piece_start);
+        if (!pl->xy || !pl->t || !pl->piece_start) {
+            conica_polyline_free(pl);
+            conica_polyline_init(pl);
+            return conica__fail(est, CONICA_ERR_NOMEM, 0, s, "out of memory");
+        }
+        rc = conica_plot_bezier(d, ctrl, p->seg[s].rational ? w : NULL, tol, iters, pl->xy, pl->t,
+                                cap, &n, est);
+        if (rc == CONICA_OK) {
+            pl->n = n;
+            pl->cap = cap;
+            pl->dim = 2;
+            pl->npieces = 1;
+            pl->piece_start[0] = 0;
+            return CONICA_OK;
+        }
+        conica_polyline_free(pl);
+        conica_polyline_init(pl);
+        if (rc != CONICA_ERR_LIMIT)
+            return rc;
     }
     conica_bspline_init(&bs);
     rc = conica_bspline_from_bezier(d, 2, ctrl, p->seg[s].rational ? w : NULL, &bs, est);
