@@ -894,19 +894,50 @@ static void join_normal(const join *J, double n[2])
 static double bulge(const conica_path *p, size_t s, double ta, double tb, const double a[2],
                     const double n[2], int sign);
 
-/* Largest distance of segment s on [ta, tb] from the chord a b (both
- * sides of its line). */
-static double chord_dev(const conica_path *p, size_t s, double ta, double tb, const double a[2],
-                        const double b[2])
-{
-    double n[2];
-    if (!unit2(b[1] - a[1], a[0] - b[0], n))
-        return INFINITY;
-    return fmax(bulge(p, s, ta, tb, a, n, 1), bulge(p, s, ta, tb, a, n, -1));
-}
 
 /* The four directions of the bounding box: +x, -x, +y, -y. */
 static const double box_dir[4][2] = {{1, 0}, {-1, 0}, {0, 1}, {0, -1}};
+
+/* Golden-section search for the largest (C(t) - a) . dir of the Bézier
+ * q (degree d) on [lo, hi], from *best at *bt up (a sample inside the
+ * bracket): one evaluation per step, the other interior point kept. Stops
+ * early once *best exceeds stop. */
+static void golden_max(const double *q, int d, double lo, double hi, const double a[2],
+                       const double dir[2], int iters, double stop, double *best, double *bt)
+{
+    const double g = 0.6180339887498949;
+    double m1 = hi - g * (hi - lo), m2 = lo + g * (hi - lo), v1, v2, pt[2];
+    int it;
+    bez_eval(q, d, m1, pt, NULL, NULL);
+    v1 = (pt[0] - a[0]) * dir[0] + (pt[1] - a[1]) * dir[1];
+    bez_eval(q, d, m2, pt, NULL, NULL);
+    v2 = (pt[0] - a[0]) * dir[0] + (pt[1] - a[1]) * dir[1];
+    for (it = 0; it < iters && *best <= stop; it++) {
+        if (fmax(v1, v2) > *best) {
+            *best = fmax(v1, v2);
+            *bt = v1 > v2 ? m1 : m2;
+        }
+        if (v1 > v2) { /* the peak is in [lo, m2]: m1 becomes its upper point */
+            hi = m2;
+            m2 = m1;
+            v2 = v1;
+            m1 = hi - g * (hi - lo);
+            bez_eval(q, d, m1, pt, NULL, NULL);
+            v1 = (pt[0] - a[0]) * dir[0] + (pt[1] - a[1]) * dir[1];
+        } else {
+            lo = m1;
+            m1 = m2;
+            v1 = v2;
+            m2 = lo + g * (hi - lo);
+            bez_eval(q, d, m2, pt, NULL, NULL);
+            v2 = (pt[0] - a[0]) * dir[0] + (pt[1] - a[1]) * dir[1];
+        }
+    }
+    if (fmax(v1, v2) > *best) {
+        *best = fmax(v1, v2);
+        *bt = v1 > v2 ? m1 : m2;
+    }
+}
 
 /* Largest (C(t) - a) . dir of segment s over [ta, tb], from best0 up, and
  * where (*targ): dense samples, then golden section (iters steps) round
@@ -915,7 +946,7 @@ static double seg_max_along(const conica_path *p, size_t s, double ta, double tb
                             const double dir[2], double best0, int iters, double *targ)
 {
     const double *q = seg_pts(p, s);
-    int d = p->seg[s].degree, k, it;
+    int d = p->seg[s].degree, k;
     double best = best0, bt = ta, pt[2];
     for (k = 0; k <= PATH_FIT_SAMPLES; k++) {
         double t = ta + (tb - ta) * k / PATH_FIT_SAMPLES, v;
@@ -927,26 +958,50 @@ static double seg_max_along(const conica_path *p, size_t s, double ta, double tb
         }
     }
     if (d > 1) {
-        double h = (tb - ta) / PATH_FIT_SAMPLES, lo = fmax(ta, bt - h), hi = fmin(tb, bt + h);
-        const double g = 0.6180339887498949;
-        for (it = 0; it < iters; it++) {
-            double m1 = hi - g * (hi - lo), m2 = lo + g * (hi - lo), v1, v2;
-            bez_eval(q, d, m1, pt, NULL, NULL);
-            v1 = (pt[0] - a[0]) * dir[0] + (pt[1] - a[1]) * dir[1];
-            bez_eval(q, d, m2, pt, NULL, NULL);
-            v2 = (pt[0] - a[0]) * dir[0] + (pt[1] - a[1]) * dir[1];
-            if (v1 > v2)
-                hi = m2;
-            else
-                lo = m1;
-            if (fmax(v1, v2) > best) {
-                best = fmax(v1, v2);
-                bt = v1 > v2 ? m1 : m2;
-            }
-        }
+        double h = (tb - ta) / PATH_FIT_SAMPLES;
+        golden_max(q, d, fmax(ta, bt - h), fmin(tb, bt + h), a, dir, iters, INFINITY, &best, &bt);
     }
     *targ = bt;
     return best;
+}
+
+/* Largest distance of segment s on [ta, tb] from the chord a b (both
+ * sides of its line). */
+static double chord_dev(const conica_path *p, size_t s, double ta, double tb, const double a[2],
+                        const double b[2], double stop)
+{
+    /* both sides from one set of samples; the golden section only on a
+     * side the curve reaches, and not once the answer is known to exceed
+     * stop (the greedy chord search asks only whether a chord fits) */
+    const double *q = seg_pts(p, s);
+    int d = p->seg[s].degree, k;
+    double n[2], m[2], hi = 0, lo = 0, thi = ta, tlo = ta, pt[2], h;
+    if (!unit2(b[1] - a[1], a[0] - b[0], n))
+        return INFINITY;
+    if (d == 1 || !(tb > ta))
+        return 0.0;
+    for (k = 0; k <= PATH_FIT_SAMPLES; k++) {
+        double t = ta + (tb - ta) * k / PATH_FIT_SAMPLES, v;
+        bez_eval(q, d, t, pt, NULL, NULL);
+        v = (pt[0] - a[0]) * n[0] + (pt[1] - a[1]) * n[1];
+        if (v > hi) {
+            hi = v;
+            thi = t;
+        } else if (-v > lo) {
+            lo = -v;
+            tlo = t;
+        }
+    }
+    if (fmax(hi, lo) > stop)
+        return fmax(hi, lo);
+    h = (tb - ta) / PATH_FIT_SAMPLES;
+    if (hi > 0)
+        golden_max(q, d, fmax(ta, thi - h), fmin(tb, thi + h), a, n, 40, stop, &hi, &thi);
+    m[0] = -n[0];
+    m[1] = -n[1];
+    if (lo > 0 && hi <= stop)
+        golden_max(q, d, fmax(ta, tlo - h), fmin(tb, tlo + h), a, m, 40, stop, &lo, &tlo);
+    return fmax(hi, lo);
 }
 
 /* Largest value of C(t) . dir over segment s, and where. */
@@ -1063,7 +1118,8 @@ static void run_eval(const seg_run *R, double u, double pt[2])
 }
 
 /* Largest distance of the run on [u0, u1] from the chord a b. */
-static double run_dev(const seg_run *R, double u0, double u1, const double a[2], const double b[2])
+static double run_dev(const seg_run *R, double u0, double u1, const double a[2], const double b[2],
+                      double stop)
 {
     size_t k0 = (size_t)u0, k1;
     double worst = 0;
@@ -1074,8 +1130,10 @@ static double run_dev(const seg_run *R, double u0, double u1, const double a[2],
         k1--; /* u1 is the start of segment k1: nothing of it */
     for (size_t k = k0; k <= k1; k++) {
         double ta = k == k0 ? u0 - (double)k : 0.0, tb = k == k1 ? u1 - (double)k : 1.0;
-        double dv = chord_dev(R->p, R->segs[k], ta, tb, a, b);
+        double dv = chord_dev(R->p, R->segs[k], ta, tb, a, b, stop);
         worst = dv > worst ? dv : worst;
+        if (worst > stop)
+            break; /* the chord does not fit: how far it misses is not asked */
     }
     return worst;
 }
@@ -1233,7 +1291,7 @@ static conica_code flatten_run(ctx *c, const size_t *segs, size_t m, const doubl
                     stop = fz[f];
             while (U[last] > stop)
                 last--;
-            dv = run_dev(&R, u0, U[last], p0, X + 2 * last);
+            dv = run_dev(&R, u0, U[last], p0, X + 2 * last, thr);
             if (dv <= thr) { /* the rest, up to the next forced vertex, in one chord */
                 worst = dv > worst ? dv : worst;
                 U[nk] = U[last];
@@ -1249,7 +1307,7 @@ static conica_code flatten_run(ctx *c, const size_t *segs, size_t m, const doubl
                 continue;
             }
             while (best + step < last &&
-                   run_dev(&R, u0, U[best + step], p0, X + 2 * (best + step)) <= thr) {
+                   run_dev(&R, u0, U[best + step], p0, X + 2 * (best + step), thr) <= thr) {
                 best += step;
                 step *= 2;
             }
@@ -1257,7 +1315,7 @@ static conica_code flatten_run(ctx *c, const size_t *segs, size_t m, const doubl
             hi = best + step < last ? best + step : last;
             while (hi - lo > 1) {
                 size_t mid = lo + (hi - lo) / 2;
-                if (run_dev(&R, u0, U[mid], p0, X + 2 * mid) <= thr)
+                if (run_dev(&R, u0, U[mid], p0, X + 2 * mid, thr) <= thr)
                     lo = mid;
                 else
                     hi = mid;
@@ -1269,7 +1327,7 @@ static conica_code flatten_run(ctx *c, const size_t *segs, size_t m, const doubl
             for (it = 0; it < PATH_FLAT_BISECT; it++) {
                 double um = 0.5 * (ulo + uhi), pm[2];
                 run_eval(&R, um, pm);
-                if (run_dev(&R, u0, um, p0, pm) <= thr)
+                if (run_dev(&R, u0, um, p0, pm, thr) <= thr)
                     ulo = um;
                 else
                     uhi = um;
@@ -1288,7 +1346,7 @@ static conica_code flatten_run(ctx *c, const size_t *segs, size_t m, const doubl
                 p1[0] = X[2 * lo];
                 p1[1] = X[2 * lo + 1];
             }
-            dv = run_dev(&R, u0, u1, p0, p1);
+            dv = run_dev(&R, u0, u1, p0, p1, INFINITY);
             worst = dv > worst ? dv : worst;
             U[nk] = u1;
             X[2 * nk] = p1[0];
