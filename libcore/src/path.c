@@ -53,8 +53,11 @@
 #define PATH_STRAIGHT_REL 1e-12
 /* Initial samples: sample edges turn by at most this (radians). */
 #define PATH_MAX_EDGE_TURN (0.5 * M_PI * (1 + 1e-6))
-/* Inflections: sign changes of the curvature searched on this grid. */
+/* Inflections: sign changes of the curvature searched on this grid; a
+ * polynomial cubic whose turning keeps one sign by this margin (relative
+ * to its control polygon's size squared) has none without the search. */
 #define PATH_INFL_GRID 32
+#define PATH_INFL_MARGIN 1e-12
 /* Rounds of resampling where the subdivision strays, and samples per
  * segment at most, before the segment is written flattened instead. */
 #define PATH_MAX_ROUNDS 20
@@ -638,12 +641,37 @@ static double turning(const double *q, int d, double t)
 
 /* Parameters in (0, 1) where the segment changes its turning direction
  * (inflections, and cusps), ascending; at most cap of them. */
+/* Does a polynomial cubic turn one way throughout, by a margin its
+ * evaluation cannot blur? Its turning cross(C', C'') is 18 times the
+ * quadratic with Bernstein coefficients cross(A, B), cross(A, C) / 2,
+ * cross(B, C) for the control polygon's legs A, B, C, so it keeps one
+ * strict sign on [0, 1] when they do (convex hull property). The margin,
+ * PATH_INFL_MARGIN times S^2 with S the legs' summed size, is far above
+ * the rounding of these coefficients and of turning()'s own value (a few
+ * units of 1e-16 S^2), so the grid search below could not see a sign
+ * change either: no inflection, with the same answer, without its 33
+ * evaluations. */
+static int cubic_turns_one_way(const double *q)
+{
+    double ax = q[3] - q[0], ay = q[4] - q[1], bx = q[6] - q[3], by = q[7] - q[4];
+    double cx = q[9] - q[6], cy = q[10] - q[7];
+    double S = fabs(ax) + fabs(ay) + fabs(bx) + fabs(by) + fabs(cx) + fabs(cy);
+    double k0 = ax * by - ay * bx, k1 = 0.5 * (ax * cy - ay * cx), k2 = bx * cy - by * cx;
+    double m = PATH_INFL_MARGIN * S * S;
+    if (!isfinite(m))
+        return 0;
+    return (k0 > m && k1 > m && k2 > m) || (k0 < -m && k1 < -m && k2 < -m);
+}
+
 static size_t find_inflections(const double *q, int d, double *out, size_t cap)
 {
     size_t n = 0, i;
     double prev, tp = 0.0;
     if (d < 3 && q[2] == q[5] && q[5] == q[8])
         return 0; /* a polynomial quadratic (a parabola) turns one way */
+    if (d == 3 && q[2] == 1.0 && q[5] == 1.0 && q[8] == 1.0 && q[11] == 1.0 &&
+        cubic_turns_one_way(q))
+        return 0;
     prev = turning(q, d, 0.0);
     for (i = 1; i <= PATH_INFL_GRID && n < cap; i++) {
         double t = (double)i / PATH_INFL_GRID, f = turning(q, d, t);
