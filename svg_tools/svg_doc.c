@@ -769,21 +769,27 @@ static int same_qname(const char *s, size_t n, const xmlChar *prefix, const xmlC
 /* A rewritten value with the entity rules of its quote. */
 static void put_escaped(save_sink *k, const char *v, char quote)
 {
-    const char *run = v;
-    for (; *v; v++) {
-        const char *ent = *v == '&'                   ? "&amp;"
-                          : *v == '<'                 ? "&lt;"
-                          : *v == '>'                 ? "&gt;"
-                          : *v == quote && *v == '"'  ? "&quot;"
-                          : *v == quote && *v == '\'' ? "&apos;"
-                                                      : NULL;
-        if (!ent)
-            continue;
-        sink_put(k, run, (size_t)(v - run));
-        sink_put(k, ent, strlen(ent));
-        run = v + 1;
+    for (;;) {
+        /* runs free of the five characters that may need an entity at once
+         * (path data has none of them) */
+        size_t run = strcspn(v, "&<>\"'");
+        const char *ent;
+        sink_put(k, v, run);
+        v += run;
+        if (!*v)
+            return;
+        ent = *v == '&'                   ? "&amp;"
+              : *v == '<'                 ? "&lt;"
+              : *v == '>'                 ? "&gt;"
+              : *v == quote && *v == '"'  ? "&quot;"
+              : *v == quote && *v == '\'' ? "&apos;"
+                                          : NULL;
+        if (ent)
+            sink_put(k, ent, strlen(ent));
+        else
+            sink_put(k, v, 1);
+        v++;
     }
-    sink_put(k, run, (size_t)(v - run));
 }
 
 /* The rewritten value of attribute `name` of n (its single text child, as

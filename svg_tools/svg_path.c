@@ -9,6 +9,7 @@
 #include "svg_internal.h"
 
 #include <math.h>
+#include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -71,26 +72,41 @@ static const double pow10_tab[23] = {1e0,  1e1,  1e2,  1e3,  1e4,  1e5,  1e6,  1
                                      1e8,  1e9,  1e10, 1e11, 1e12, 1e13, 1e14, 1e15,
                                      1e16, 1e17, 1e18, 1e19, 1e20, 1e21, 1e22};
 
+/* "00" .. "99": the digits of m two at a time. */
+static const char digit_pairs[201] = "00010203040506070809101112131415161718192021222324"
+                                     "25262728293031323334353637383940414243444546474849"
+                                     "50515253545556575859606162636465666768697071727374"
+                                     "75767778798081828384858687888990919293949596979899";
+
+/* The digits of |v| for the fast path: dg[0..nd) without trailing zeros,
+ * the first of them at 10^e. */
+typedef struct fast_num {
+    char dg[24];
+    size_t nd;
+    int e;
+} fast_num;
+
 /* The fast path of conica_svg__format_number for precision <= 15: scale by
  * an exact power of ten (one rounding), round to an integer of `precision`
- * digits, lay the digits out as %g would (scientific below 1e-4 or at
- * 10^precision and above). The result is within half a unit in the last
- * written digit of v up to one rounding of the scaling; only values within
- * about 1e-16 (relative) of a rounding tie may differ from printf in the
- * last digit. Returns 0 when it does not apply (printf then does it). */
-static size_t format_fast(double v, int precision, char out[48])
+ * digits. The result is within half a unit in the last written digit of a
+ * up to one rounding of the scaling; only values within about 1e-16
+ * (relative) of a rounding tie may differ from printf in the last digit.
+ * Returns 0 when it does not apply (printf then does it). */
+static int fast_digits(double a, int precision, fast_num *f)
 {
-    double a = fabs(v), r = 0.0;
-    char dg[24];
-    size_t n = 0, nd, i;
+    double r = 0.0;
+    uint64_t bits;
+    size_t i;
     int e, k, tries;
     unsigned long long m;
 
-    if (precision > 15 || !(a >= 1e-280 && a <= 1e280))
+    if (precision < 1 || precision > 15 || !(a >= 1e-280 && a <= 1e280))
         return 0;
-    /* decimal exponent from the binary one (log10(2) = 0.30103); the loop
-     * below corrects an estimate that is one off */
-    (void)frexp(a, &e);
+    /* decimal exponent from the binary one (frexp's, read from the bits
+     * of a normal a; log10(2) = 0.30103); the loop below corrects an
+     * estimate that is one off */
+    memcpy(&bits, &a, sizeof bits);
+    e = (int)((bits >> 52) & 0x7ff) - 1022;
     e = (int)floor((double)(e - 1) * 0.30102999566398120);
     for (tries = 0; tries < 3; tries++) {
         k = precision - 1 - e;
@@ -107,24 +123,45 @@ static size_t format_fast(double v, int precision, char out[48])
     if (tries == 3)
         return 0;
     m = (unsigned long long)r;
-    for (i = (size_t)precision; i-- > 0;) {
-        dg[i] = (char)('0' + (int)(m % 10));
-        m /= 10;
+    for (i = (size_t)precision; i >= 2; i -= 2) {
+        unsigned d = (unsigned)(m % 100);
+        m /= 100;
+        f->dg[i - 2] = digit_pairs[2 * d];
+        f->dg[i - 1] = digit_pairs[2 * d + 1];
     }
-    nd = (size_t)precision;
-    while (nd > 1 && dg[nd - 1] == '0')
-        nd--;
-    if (v < 0)
+    if (i)
+        f->dg[0] = (char)('0' + (int)m);
+    f->nd = (size_t)precision;
+    while (f->nd > 1 && f->dg[f->nd - 1] == '0')
+        f->nd--;
+    f->e = e;
+    return 1;
+}
+
+/* Is the number written in scientific form (as %g: below 1e-4 or at
+ * 10^precision and above)? */
+static int fast_sci(const fast_num *f, int precision)
+{
+    return f->e < -4 || f->e >= precision;
+}
+
+/* Lay the digits out as %g would, without "0" before "." or "+" and
+ * leading zeros in the exponent; returns the bytes written (no NUL). */
+static size_t fast_layout(const fast_num *f, int neg, int precision, char *out)
+{
+    size_t n = 0, i, nd = f->nd;
+    int e = f->e, k;
+    if (neg)
         out[n++] = '-';
-    if (e < -4 || e >= precision) {
+    if (fast_sci(f, precision)) {
         unsigned ue = (unsigned)(e < 0 ? -e : e);
         char eb[8];
         size_t ne = 0;
-        out[n++] = dg[0];
+        out[n++] = f->dg[0];
         if (nd > 1) {
             out[n++] = '.';
             for (i = 1; i < nd; i++)
-                out[n++] = dg[i];
+                out[n++] = f->dg[i];
         }
         out[n++] = 'e';
         if (e < 0)
@@ -137,19 +174,29 @@ static size_t format_fast(double v, int precision, char out[48])
             out[n++] = eb[--ne];
     } else if (e >= 0) {
         for (i = 0; i <= (size_t)e; i++)
-            out[n++] = i < nd ? dg[i] : '0';
+            out[n++] = i < nd ? f->dg[i] : '0';
         if (nd > (size_t)e + 1) {
             out[n++] = '.';
             for (i = (size_t)e + 1; i < nd; i++)
-                out[n++] = dg[i];
+                out[n++] = f->dg[i];
         }
     } else {
         out[n++] = '.';
         for (k = e + 1; k < 0; k++)
             out[n++] = '0';
         for (i = 0; i < nd; i++)
-            out[n++] = dg[i];
+            out[n++] = f->dg[i];
     }
+    return n;
+}
+
+static size_t format_fast(double v, int precision, char out[48])
+{
+    fast_num f;
+    size_t n;
+    if (!fast_digits(fabs(v), precision, &f))
+        return 0;
+    n = fast_layout(&f, v < 0, precision, out);
     out[n] = '\0';
     return n;
 }
@@ -222,11 +269,23 @@ static int number_kind(const char *s, size_t n)
 
 /* Write v at dst with the separator the grammar needs before it (none
  * after a letter, none before '-', none before '.' after a number that
- * already has its '.'); returns the bytes written (at most 49). */
+ * already has its '.'); returns the bytes written (at most 49). The fast
+ * path writes in place: its first character and kind follow from the
+ * digits' exponent. */
 static size_t write_number(char *dst, double v, int precision, int *prev_kind)
 {
     char s[48];
-    size_t n = conica_svg__format_number(v, precision, s), k = 0;
+    size_t n, k = 0;
+    fast_num f;
+    if (v != 0.0 && fast_digits(fabs(v), precision, &f)) {
+        int sci = fast_sci(&f, precision);
+        char first = v < 0 ? '-' : !sci && f.e < 0 ? '.' : '0';
+        if (*prev_kind != 0 && !(first == '-' || (first == '.' && *prev_kind == 1)))
+            dst[k++] = ' ';
+        *prev_kind = sci ? 3 : f.e < 0 || f.nd > (size_t)f.e + 1 ? 1 : 2;
+        return k + fast_layout(&f, v < 0, precision, dst + k);
+    }
+    n = conica_svg__format_number(v, precision, s);
     if (*prev_kind != 0 && !(s[0] == '-' || (s[0] == '.' && *prev_kind == 1)))
         dst[k++] = ' ';
     memcpy(dst + k, s, n);

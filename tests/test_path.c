@@ -397,6 +397,81 @@ TEST_CASE("rounding noise makes no inflection points", "[path][noise]")
     free(xy);
 }
 
+/* Simple roots in (0, 1) of the turning of the cubic q (x, y pairs):
+ * cross(C', C'') is 18 times the quadratic with Bernstein coefficients
+ * cross(A, B), cross(A, C) / 2, cross(B, C) of the legs A, B, C. Returns
+ * -1 when a root is too close to an end, to another root or double for a
+ * grid of 32 cells to be sure to see it. */
+static int cubic_inflections(const double *q)
+{
+    double ax = q[2] - q[0], ay = q[3] - q[1], bx = q[4] - q[2], by = q[5] - q[3];
+    double cx = q[6] - q[4], cy = q[7] - q[5];
+    double k0 = ax * by - ay * bx, k1 = 0.5 * (ax * cy - ay * cx), k2 = bx * cy - by * cx;
+    double a = k0 - 2 * k1 + k2, b = 2 * (k1 - k0), c = k0, disc, r[2];
+    double scale = fabs(k0) + fabs(k1) + fabs(k2);
+    int n = 0, i;
+    if (fabs(a) < 1e-6 * scale) {
+        if (fabs(b) < 1e-6 * scale)
+            return 0;
+        r[n++] = -c / b;
+    } else {
+        disc = b * b - 4 * a * c;
+        if (disc < 0)
+            return fabs(disc) < 1e-6 * b * b ? -1 : 0;
+        if (disc < 1e-6 * b * b)
+            return -1; /* a double root: no sign change, or two in one cell */
+        r[n++] = (-b - sqrt(disc)) / (2 * a);
+        r[n++] = (-b + sqrt(disc)) / (2 * a);
+    }
+    {
+        int count = 0;
+        for (i = 0; i < n; i++) {
+            if (fabs(r[i]) < 1e-3 || fabs(r[i] - 1) < 1e-3)
+                return -1;
+            if (r[i] > 0 && r[i] < 1)
+                count++;
+        }
+        if (n == 2 && fabs(r[0] - r[1]) < 2.0 / 32)
+            return -1;
+        return count;
+    }
+}
+
+TEST_CASE("a cubic gets one sample per inflection, none where it turns one way",
+          "[path][inflections]")
+{
+    /* random cubics near and far from the origin, against the roots of
+     * their turning's quadratic (counted here, independently of libcore) */
+    int it, checked = 0, one_way = 0, with = 0;
+    srand(20);
+    for (it = 0; it < 600; it++) {
+        double off = it % 3 == 0 ? 0 : it % 3 == 1 ? 5000 : 1e6, sc = it % 2 ? 1 : 40, q[8];
+        conica_path p;
+        conica_path_result r;
+        conica_path_settings set = conica_path_defaults();
+        int k, want;
+        for (k = 0; k < 8; k++)
+            q[k] = off + sc * (2.0 * rand() / RAND_MAX - 1);
+        want = cubic_inflections(q);
+        if (want < 0)
+            continue;
+        conica_path_init(&p);
+        conica_path_result_init(&r);
+        REQUIRE(conica_path_move_to(&p, q[0], q[1], 0, NULL) == CONICA_OK);
+        REQUIRE(conica_path_bezier_to(&p, 3, q + 2, NULL, 0, NULL) == CONICA_OK);
+        REQUIRE(conica_path_smooth(&p, &set, &r, NULL) == CONICA_OK);
+        CHECK_EQ_U(r.inflections, (size_t)want);
+        checked++;
+        one_way += want == 0;
+        with += want > 0;
+        conica_path_result_free(&r);
+        conica_path_free(&p);
+    }
+    CHECK(one_way > 100);
+    CHECK(with > 100);
+    CHECK(checked > 400);
+}
+
 TEST_CASE("nothing drawn is dropped: open subpaths, lone points, loops", "[path]")
 {
     conica_path p;

@@ -53,8 +53,11 @@
 #define PATH_STRAIGHT_REL 1e-12
 /* Initial samples: sample edges turn by at most this (radians). */
 #define PATH_MAX_EDGE_TURN (0.5 * M_PI * (1 + 1e-6))
-/* Inflections: sign changes of the curvature searched on this grid. */
+/* Inflections: sign changes of the curvature searched on this grid; a
+ * polynomial cubic whose turning keeps one sign by this margin (relative
+ * to its control polygon's size squared) has none without the search. */
 #define PATH_INFL_GRID 32
+#define PATH_INFL_MARGIN 1e-12
 /* Rounds of resampling where the subdivision strays, and samples per
  * segment at most, before the segment is written flattened instead. */
 #define PATH_MAX_ROUNDS 20
@@ -65,8 +68,10 @@
 #define PATH_CHECK_MIN_LEVEL 4
 #define PATH_CHECK_MAX_LEVEL 9
 #define PATH_CHECK_SAG 0.05
-/* Newton steps when projecting a point onto a segment. */
+/* Newton steps when projecting a point onto a segment, and the step (a
+ * fraction of the search interval) after which it has settled. */
 #define PATH_NEWTON_STEPS 6
+#define PATH_NEWTON_SETTLED 1e-9
 /* Fit modes: dense samples per chord when measuring how far the curve
  * bulges from it, and the flattening tolerance as a fraction of the
  * fidelity tolerance (OUTSIDE: the shifted vertices sit about a chord's
@@ -456,8 +461,8 @@ conica_code conica_path_samples(conica_path *p, const double *xy, const double *
  * homogeneous points and their hodographs, then the quotient rule. */
 /* Polynomial Bézier of degree 1..3 in Bernstein form (the common case of
  * lines, quadratic and cubic segments): no homogeneous detour. */
-static void bez_eval_poly3(const double *q, int d, double t, double c[2], double d1[2],
-                           double d2[2])
+static inline void bez_eval_poly3(const double *q, int d, double t, double c[2], double d1[2],
+                                  double d2[2])
 {
     double u = 1.0 - t;
     int k;
@@ -642,12 +647,37 @@ static double turning(const double *q, int d, double t)
 
 /* Parameters in (0, 1) where the segment changes its turning direction
  * (inflections, and cusps), ascending; at most cap of them. */
+/* Does a polynomial cubic turn one way throughout, by a margin its
+ * evaluation cannot blur? Its turning cross(C', C'') is 18 times the
+ * quadratic with Bernstein coefficients cross(A, B), cross(A, C) / 2,
+ * cross(B, C) for the control polygon's legs A, B, C, so it keeps one
+ * strict sign on [0, 1] when they do (convex hull property). The margin,
+ * PATH_INFL_MARGIN times S^2 with S the legs' summed size, is far above
+ * the rounding of these coefficients and of turning()'s own value (a few
+ * units of 1e-16 S^2), so the grid search below could not see a sign
+ * change either: no inflection, with the same answer, without its 33
+ * evaluations. */
+static int cubic_turns_one_way(const double *q)
+{
+    double ax = q[3] - q[0], ay = q[4] - q[1], bx = q[6] - q[3], by = q[7] - q[4];
+    double cx = q[9] - q[6], cy = q[10] - q[7];
+    double S = fabs(ax) + fabs(ay) + fabs(bx) + fabs(by) + fabs(cx) + fabs(cy);
+    double k0 = ax * by - ay * bx, k1 = 0.5 * (ax * cy - ay * cx), k2 = bx * cy - by * cx;
+    double m = PATH_INFL_MARGIN * S * S;
+    if (!isfinite(m))
+        return 0;
+    return (k0 > m && k1 > m && k2 > m) || (k0 < -m && k1 < -m && k2 < -m);
+}
+
 static size_t find_inflections(const double *q, int d, double *out, size_t cap)
 {
     size_t n = 0, i;
     double prev, tp = 0.0;
     if (d < 3 && q[2] == q[5] && q[5] == q[8])
         return 0; /* a polynomial quadratic (a parabola) turns one way */
+    if (d == 3 && q[2] == 1.0 && q[5] == 1.0 && q[8] == 1.0 && q[11] == 1.0 &&
+        cubic_turns_one_way(q))
+        return 0;
     prev = turning(q, d, 0.0);
     for (i = 1; i <= PATH_INFL_GRID && n < cap; i++) {
         double t = (double)i / PATH_INFL_GRID, f = turning(q, d, t);
@@ -1409,14 +1439,46 @@ static conica_code flatten_seg(ctx *c, size_t s, const double nend[2], unsigned 
 
 /* ------------------------------------------------------------ smoothing */
 
-/* Closest point of segment (q, d) to x for t in [lo, hi], from the guess
- * t0: Newton on |C(t) - x|^2, clamped, keeping the best. */
-static double project(const double *q, int d, const double x[2], double t0, double lo, double hi,
+/* A segment prepared for the many evaluations of one check: polynomial
+ * pieces of degree <= 3 (weights 1, the SVG and glyph case) go straight to
+ * bez_eval_poly3's Bernstein formulas (bez_eval takes the same branch, so
+ * the values are bit for bit those of bez_eval); others through bez_eval. */
+typedef struct seg_fn {
+    const double *q;
+    int d, poly;
+} seg_fn;
+
+static seg_fn seg_fn_of(const double *q, int d)
+{
+    seg_fn f;
+    f.q = q;
+    f.d = d;
+    f.poly = d <= 3 && q[2] == 1.0 && q[5] == 1.0 && (d < 2 || q[8] == 1.0) &&
+             (d < 3 || q[11] == 1.0);
+    return f;
+}
+
+static inline void seg_fn_eval(const seg_fn *f, double t, double c[2], double d1[2], double d2[2])
+{
+    if (f->poly)
+        bez_eval_poly3(f->q, f->d, t, c, d1, d2);
+    else
+        bez_eval(f->q, f->d, t, c, d1, d2);
+}
+
+/* Closest point of segment f to x for t in [lo, hi], from the guess t0:
+ * Newton on |C(t) - x|^2, clamped, keeping the best. Newton converges
+ * quadratically from the dense grid's guess, so once a step is below
+ * PATH_NEWTON_SETTLED of [lo, hi] the point it lands on is the foot to
+ * rounding and the search ends there (further steps only move t by the
+ * rounding of C(t) - x, which at coordinates far from the origin never
+ * falls below the 1e-14 stop). */
+static double project(const seg_fn *f, const double x[2], double t0, double lo, double hi,
                       double *dist)
 {
     double best = t0, bd, t = t0, c[2], d1[2], d2[2];
     int k;
-    bez_eval(q, d, t, c, d1, d2);
+    seg_fn_eval(f, t, c, d1, d2);
     bd = (c[0] - x[0]) * (c[0] - x[0]) + (c[1] - x[1]) * (c[1] - x[1]);
     for (k = 0; k < PATH_NEWTON_STEPS; k++) {
         double ex = c[0] - x[0], ey = c[1] - x[1];
@@ -1430,8 +1492,11 @@ static double project(const double *q, int d, const double x[2], double t0, doub
         tn = tn < lo ? lo : tn > hi ? hi : tn;
         if (fabs(tn - t) <= 1e-14 * (hi - lo))
             break; /* converged */
+        dd = fabs(tn - t);
         t = tn;
-        bez_eval(q, d, t, c, d1, d2);
+        seg_fn_eval(f, t, c, d1, d2);
+        if (dd <= PATH_NEWTON_SETTLED * (hi - lo))
+            k = PATH_NEWTON_STEPS; /* settled: this evaluation is the last */
         dd = (c[0] - x[0]) * (c[0] - x[0]) + (c[1] - x[1]) * (c[1] - x[1]);
         if (dd < bd) {
             bd = dd;
@@ -1442,16 +1507,6 @@ static double project(const double *q, int d, const double x[2], double t0, doub
     return best;
 }
 
-static double seg_dist2(const double p[2], const double a[2], const double b[2])
-{
-    double ex = b[0] - a[0], ey = b[1] - a[1], px = p[0] - a[0], py = p[1] - a[1];
-    double l2 = ex * ex + ey * ey, t = l2 > 0 ? (px * ex + py * ey) / l2 : 0, dx, dy;
-    t = t < 0 ? 0 : t > 1 ? 1 : t;
-    dx = px - t * ex;
-    dy = py - t * ey;
-    return dx * dx + dy * dy;
-}
-
 static double dist2(const double *a, const double *b)
 {
     double dx = a[0] - b[0], dy = a[1] - b[1];
@@ -1459,9 +1514,15 @@ static double dist2(const double *a, const double *b)
 }
 
 /* Searches of the nearest dense point / chord start this far round the
- * previous best and double while the best is on the window's edge (the
- * correspondence is monotone; a miss can only over-state a distance). */
-#define PATH_WINDOW 3
+ * previous best (back w, ahead 2w) and double while the best is on the
+ * window's edge (the correspondence is monotone; a miss can only
+ * over-state a distance). With two dense points per limit chord the next
+ * limit point's dense point lies about 2 ahead (3 keeps room for uneven
+ * limit points), the next dense point's chord 0 or 1 ahead. */
+#define PATH_WINDOW_DENSE 3
+#define PATH_WINDOW_CHORD 1
+/* Dense points and chords of one check on the stack up to this many. */
+#define PATH_CHECK_STACK 1024
 
 /*
  * Compare the limit polyline v[0..m] (v[0], v[m] the samples at ta, tb) of
@@ -1473,15 +1534,19 @@ static double check_edge(const double *q, int d, double ta, double tb, const dou
                          double *tau)
 {
     size_t M = 2 * m, i, j, prev;
-    double worst2 = 0, wb2 = 0, sag = 0, dense[2 * (2 * 1024 + 1)], *D = dense, *heap = NULL;
-    if (M + 1 > 2 * 1024 + 1) {
-        heap = malloc(2 * (M + 1) * sizeof *heap);
+    double worst2 = 0, wb2 = 0, sag = 0, *heap = NULL;
+    double dense[2 * (2 * PATH_CHECK_STACK + 1)], chord[3 * PATH_CHECK_STACK], *D = dense,
+           *E = chord;
+    seg_fn f = seg_fn_of(q, d);
+    if (M + 1 > 2 * PATH_CHECK_STACK + 1) {
+        heap = malloc((2 * (M + 1) + 3 * m) * sizeof *heap);
         if (!heap)
             return INFINITY;
         D = heap;
+        E = heap + 2 * (M + 1);
     }
     for (j = 0; j <= M; j++)
-        bez_eval(q, d, ta + (tb - ta) * (double)j / (double)M, D + 2 * j, NULL, NULL);
+        seg_fn_eval(&f, ta + (tb - ta) * (double)j / (double)M, D + 2 * j, NULL, NULL);
     if (tau) {
         tau[0] = ta;
         tau[m] = tb;
@@ -1490,7 +1555,7 @@ static double check_edge(const double *q, int d, double ta, double tb, const dou
      * previous point's (the correspondence is monotone), the window doubled
      * while the best lies on its edge */
     for (i = 1, prev = 0; i < m; i++) {
-        size_t w = PATH_WINDOW, lo, hi, bj;
+        size_t w = PATH_WINDOW_DENSE, lo, hi, bj;
         double bd, dist, t0, tlo, thi, sx, sy;
         for (;;) {
             lo = prev > w ? prev - w : 0;
@@ -1513,7 +1578,7 @@ static double check_edge(const double *q, int d, double ta, double tb, const dou
         t0 = ta + (tb - ta) * (double)bj / (double)M;
         tlo = ta + (tb - ta) * (double)(bj ? bj - 1 : 0) / (double)M;
         thi = ta + (tb - ta) * (double)(bj < M ? bj + 1 : M) / (double)M;
-        t0 = project(q, d, v + 2 * i, t0, tlo, thi, &dist);
+        t0 = project(&f, v + 2 * i, t0, tlo, thi, &dist);
         if (tau)
             tau[i] = t0;
         worst2 = dist * dist > worst2 ? dist * dist : worst2;
@@ -1522,16 +1587,32 @@ static double check_edge(const double *q, int d, double ta, double tb, const dou
         sx = sx * sx + sy * sy;
         sag = sx > sag ? sx : sag;
     }
-    /* segment -> limit polyline, likewise */
+    /* segment -> limit polyline, likewise; each chord's direction and
+     * squared length once */
+    for (i = 0; i < m; i++) {
+        E[3 * i] = v[2 * i + 2] - v[2 * i];
+        E[3 * i + 1] = v[2 * i + 3] - v[2 * i + 1];
+        E[3 * i + 2] = E[3 * i] * E[3 * i] + E[3 * i + 1] * E[3 * i + 1];
+    }
     for (j = 0, prev = 0; j <= M; j++) {
-        size_t w = PATH_WINDOW, lo, hi, bi;
+        size_t w = PATH_WINDOW_CHORD, lo, hi, bi;
         double bd;
         for (;;) {
             lo = prev > w ? prev - w : 0;
             hi = prev + 2 * w < m - 1 ? prev + 2 * w : m - 1;
             bd = INFINITY;
             for (i = lo, bi = lo; i <= hi; i++) {
-                double dd = seg_dist2(D + 2 * j, v + 2 * i, v + 2 * i + 2);
+                /* squared distance of D_j from chord i (v_i + s e, s in [0, 1]) */
+                const double *e = E + 3 * i;
+                double px = D[2 * j] - v[2 * i], py = D[2 * j + 1] - v[2 * i + 1];
+                double s = e[2] > 0 ? (px * e[0] + py * e[1]) / e[2] : 0, dx, dy, dd;
+                /* clamped to [0, 1] in the max/min form, which compiles
+                 * without branches (which way it goes is a coin toss) */
+                s = s > 0 ? s : 0;
+                s = s < 1 ? s : 1;
+                dx = px - s * e[0];
+                dy = py - s * e[1];
+                dd = dx * dx + dy * dy;
                 if (dd < bd) {
                     bd = dd;
                     bi = i;

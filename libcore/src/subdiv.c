@@ -7,6 +7,7 @@
 #include <float.h>
 #include <math.h>
 #include <pthread.h>
+#include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -75,6 +76,24 @@ static long double conica__diffprodl(long double a, long double b, long double c
     conica__two_prodl(d, c, &w, &ew);
     conica__two_prodl(a, b, &p, &ep);
     return ((p - w) + ep) - ew;
+}
+
+/* 2^-ilogb(mag) for a finite mag > 0 (the frame's scale, SFX(make_frame)):
+ * built from mag's exponent bits where both are normal doubles, which is
+ * exactly what ldexp(1, -ilogb(mag)) gives, without its two library calls
+ * per edge point; elsewhere (subnormal mag, or a scale below the normal
+ * range) through them. */
+static double conica__inv_pow2(double mag)
+{
+    uint64_t bits;
+    int biased;
+    memcpy(&bits, &mag, sizeof bits);
+    biased = (int)((bits >> 52) & 0x7ff);
+    if (biased < 1 || biased > 2045)
+        return ldexp(1.0, -ilogb(mag));
+    bits = (uint64_t)(2046 - biased) << 52;
+    memcpy(&mag, &bits, sizeof bits);
+    return mag;
 }
 
 /* ---------------------------------------------------- double instance */

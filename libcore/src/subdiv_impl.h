@@ -329,7 +329,11 @@ static int SFX(make_frame)(const SFX(job) *j, size_t i, size_t i1, SFX(frame) *f
     mag = SFX(maxabs)(f->hx, f->hy);
     if (!(mag > 0) || !isfinite(mag))
         return 0;
+#if REAL_IS_DOUBLE
+    f->sc = conica__inv_pow2(mag);
+#else
     f->sc = M(ldexp)(RC(1.0), -M(ilogb)(mag));
+#endif
     f->hsx = f->hx * f->sc;
     f->hsy = f->hy * f->sc;
     f->hh = FMA(f->hsx, f->hsx, f->hsy * f->hsy);
