@@ -84,6 +84,10 @@
  * (2^-12 of their spacing, plotted at an eighth of the tolerance: the
  * chord uses the tolerance to about 1e-4 of itself). */
 #define PATH_FLAT_BISECT 12
+/* Golden-section steps refining a chord's largest distance from the best
+ * of its samples: the bracket shrinks to 0.618^24 = 1e-5 of two sample
+ * spacings, where the distance is flat to 1e-10 of itself. */
+#define PATH_CHORD_GOLDEN 24
 /* A run reaches its subpath's bounding box where it comes within this
  * fraction of the box's coordinate (plus the tolerance's) of it; an extreme
  * this close to a segment's end (in its parameter) is that end. */
@@ -928,6 +932,74 @@ static double bulge(const conica_path *p, size_t s, double ta, double tb, const 
 /* The four directions of the bounding box: +x, -x, +y, -y. */
 static const double box_dir[4][2] = {{1, 0}, {-1, 0}, {0, 1}, {0, -1}};
 
+/* Largest and smallest (B(t) - a) . n of a polynomial Bézier q of degree
+ * 2 or 3 on [ta, tb], exactly, and where: the distance is the Bézier
+ * g_k = (Q_k - a) . n (taken from a, so where the curve sits does not
+ * matter), its extremes at the ends and at the roots of its derivative, a
+ * quadratic (a line for quadratics) in Bernstein form D_k = g_{k+1} - g_k. */
+static void poly_range(const double *q, int d, double ta, double tb, const double a[2],
+                       const double n[2], double *vmax, double *tmax, double *vmin, double *tmin)
+{
+    double g[4], D[3], t[4];
+    int k, nt = 0;
+    for (k = 0; k <= d; k++)
+        g[k] = (q[3 * k] - a[0]) * n[0] + (q[3 * k + 1] - a[1]) * n[1];
+    for (k = 0; k < d; k++)
+        D[k] = g[k + 1] - g[k];
+    t[nt++] = ta;
+    t[nt++] = tb;
+    if (d == 2) {
+        double den = D[0] - D[1];
+        if (den != 0.0)
+            t[nt++] = D[0] / den;
+    } else {
+        /* D0 (1-t)^2 + 2 D1 t (1-t) + D2 t^2 = A t^2 + 2 B t + C */
+        double A = D[0] - 2 * D[1] + D[2], B = D[1] - D[0], C = D[0];
+        double disc = B * B - A * C;
+        if (A == 0.0) {
+            if (B != 0.0)
+                t[nt++] = -C / (2 * B);
+        } else if (disc >= 0) {
+            double r = -B - copysign(sqrt(disc), B); /* no cancellation */
+            if (r != 0.0) {
+                t[nt++] = r / A;
+                t[nt++] = C / r;
+            } else {
+                t[nt++] = 0.0;
+            }
+        }
+    }
+    *vmax = -INFINITY;
+    *vmin = INFINITY;
+    *tmax = *tmin = ta;
+    for (k = 0; k < nt; k++) {
+        double u = t[k], e[4];
+        int i, j;
+        if (!(u >= ta && u <= tb))
+            continue;
+        for (i = 0; i <= d; i++) /* de Casteljau on the distance */
+            e[i] = g[i];
+        for (j = d; j > 0; j--)
+            for (i = 0; i < j; i++)
+                e[i] = fma(u, e[i + 1] - e[i], e[i]);
+        if (e[0] > *vmax) {
+            *vmax = e[0];
+            *tmax = u;
+        }
+        if (e[0] < *vmin) {
+            *vmin = e[0];
+            *tmin = u;
+        }
+    }
+}
+
+/* A polynomial Bézier of degree 2 or 3 (poly_range's exact extremes). */
+static int poly23(const double *q, int d)
+{
+    return d >= 2 && d <= 3 && q[2] == 1.0 && q[5] == 1.0 && q[8] == 1.0 &&
+           (d < 3 || q[11] == 1.0);
+}
+
 /* Golden-section search for the largest (C(t) - a) . dir of the Bézier
  * q (degree d) on [lo, hi], from *best at *bt up (a sample inside the
  * bracket): one evaluation per step, the other interior point kept. Stops
@@ -978,6 +1050,12 @@ static double seg_max_along(const conica_path *p, size_t s, double ta, double tb
     const double *q = seg_pts(p, s);
     int d = p->seg[s].degree, k;
     double best = best0, bt = ta, pt[2];
+    if (poly23(q, d)) {
+        double vmax, tmax, vmin, tmin;
+        poly_range(q, d, ta, tb, a, dir, &vmax, &tmax, &vmin, &tmin);
+        *targ = vmax > best0 ? tmax : ta;
+        return vmax > best0 ? vmax : best0;
+    }
     for (k = 0; k <= PATH_FIT_SAMPLES; k++) {
         double t = ta + (tb - ta) * k / PATH_FIT_SAMPLES, v;
         bez_eval(q, d, t, pt, NULL, NULL);
@@ -995,6 +1073,8 @@ static double seg_max_along(const conica_path *p, size_t s, double ta, double tb
     return best;
 }
 
+
+
 /* Largest distance of segment s on [ta, tb] from the chord a b (both
  * sides of its line). */
 static double chord_dev(const conica_path *p, size_t s, double ta, double tb, const double a[2],
@@ -1010,6 +1090,11 @@ static double chord_dev(const conica_path *p, size_t s, double ta, double tb, co
         return INFINITY;
     if (d == 1 || !(tb > ta))
         return 0.0;
+    if (poly23(q, d)) {
+        double vmax, tmax, vmin, tmin;
+        poly_range(q, d, ta, tb, a, n, &vmax, &tmax, &vmin, &tmin);
+        return fmax(0.0, fmax(vmax, -vmin));
+    }
     for (k = 0; k <= PATH_FIT_SAMPLES; k++) {
         double t = ta + (tb - ta) * k / PATH_FIT_SAMPLES, v;
         bez_eval(q, d, t, pt, NULL, NULL);
@@ -1026,11 +1111,11 @@ static double chord_dev(const conica_path *p, size_t s, double ta, double tb, co
         return fmax(hi, lo);
     h = (tb - ta) / PATH_FIT_SAMPLES;
     if (hi > 0)
-        golden_max(q, d, fmax(ta, thi - h), fmin(tb, thi + h), a, n, 40, stop, &hi, &thi);
+        golden_max(q, d, fmax(ta, thi - h), fmin(tb, thi + h), a, n, PATH_CHORD_GOLDEN, stop, &hi, &thi);
     m[0] = -n[0];
     m[1] = -n[1];
     if (lo > 0 && hi <= stop)
-        golden_max(q, d, fmax(ta, tlo - h), fmin(tb, tlo + h), a, m, 40, stop, &lo, &tlo);
+        golden_max(q, d, fmax(ta, tlo - h), fmin(tb, tlo + h), a, m, PATH_CHORD_GOLDEN, stop, &lo, &tlo);
     return fmax(hi, lo);
 }
 
