@@ -697,10 +697,6 @@ class CURVE_OT_adaptive_to_poly(_CurveOperator, bpy.types.Operator):
 
 # ---------------------------------------------------------------- surfaces
 
-# Share of Surface to Mesh's tolerance given to each grid line (see execute).
-SURFACE_LINE_SHARE = 0.5
-
-
 def surface_patch(sp):
     """(ctrl, nu, nv, degree_u, degree_v, knots_u, knots_v, weights, cyclic_u,
     cyclic_v) of a NURBS surface spline as Blender evaluates it: the knot
@@ -776,8 +772,8 @@ class OBJECT_OT_conic_surface_to_mesh(bpy.types.Operator):
     tolerance: FloatProperty(
         name="Tolerance", subtype="DISTANCE", default=1e-3, min=1e-6, soft_max=1.0,
         precision=6, step=0.01,
-        description="Largest distance of the mesh's faces from the surface (its grid "
-                    "lines are plotted within half of it)")
+        description="Largest distance of the mesh's faces from the surface and of "
+                    "the surface from the mesh (a certified bound per quad)")
 
     @classmethod
     def poll(cls, context):
@@ -807,12 +803,11 @@ class OBJECT_OT_conic_surface_to_mesh(bpy.types.Operator):
                     continue
                 try:
                     ctrl, nu, nv, du, dv, ku, kv, w, cu, cv = surface_patch(sp)
-                    # the plotter certifies grid lines; a quad's interior
-                    # strays from the surface by about the sum of its two
-                    # edges' distances, so the lines get half the tolerance
+                    # the plotter bounds every quad's distance from the
+                    # surface (both ways, either triangulation) by tolerance
                     grid, gu, gv, _info = _conica.surface(
                         ctrl, nu=nu, nv=nv, degree_u=du, degree_v=dv, knots_u=ku,
-                        knots_v=kv, weights=w, tolerance=SURFACE_LINE_SHARE * self.tolerance,
+                        knots_v=kv, weights=w, tolerance=self.tolerance,
                         max_points=MAX_POINTS)
                 except _conica.ConicaError as exc:
                     problems.append("%s, spline %d: %s" % (ob.name, i, exc))
