@@ -561,6 +561,9 @@ static conica_code plot_surface(const conica_bspline_surface *s, const conica_pl
  * quad's projected corners counts as zero (a pole's collapsed edge). */
 #define QUAD_FLAT_EPS 1e-12
 
+/* Share of the estimated missing cells one refinement step adds. */
+#define CERT_JUMP 0.5
+
 /* Cap on the refinement steps (one grid line each; max_points caps the
  * grid long before on any surface that is not degenerate). */
 #define CERT_MAX_ROUNDS 100000
@@ -595,35 +598,44 @@ typedef struct cert_block {
     double flops;
 } cert_block;
 
-/* Homogeneous Bézier net h of the sub-patch [a0,a1] x [b0,b1] of the block. */
-static void subpatch_net(cert_block *B, double a0, double a1, double b0, double b1)
+/* The u half of a sub-patch's net: row k, column j is the blossom in u
+ * at a0 (p - k times) and a1 (k times) of the block's net column j. */
+static void subpatch_rows(cert_block *B, double a0, double a1, int kmax)
 {
     int p = B->p, q = B->q;
-    const conica_bspline_surface *s = B->s;
-    for (int k = 0; k <= p; k++) {
+    for (int k = 0; k <= kmax; k++) {
         for (int r = 0; r < p; r++)
             B->args[r] = r < p - k ? a0 : a1;
         for (int j = 0; j <= q; j++) {
             for (int i = 0; i <= p; i++)
                 memcpy(B->tmp + i * 4, B->net + ((size_t)i * (size_t)(q + 1) + (size_t)j) * 4,
                        4 * sizeof(double));
-            blossom(s->knots_u, B->mu, p, B->args, 4, B->tmp);
+            blossom(B->s->knots_u, B->mu, p, B->args, 4, B->tmp);
             memcpy(B->row + ((size_t)k * (size_t)(q + 1) + (size_t)j) * 4, B->tmp + p * 4,
                    4 * sizeof(double));
         }
     }
-    for (int l = 0; l <= q; l++) {
+    B->flops += (double)((kmax + 1) * (q + 1)) * (double)(p * (p + 1)) * 6.0;
+}
+
+/* The v half: the homogeneous Bézier net h of the sub-patch [a0,a1] x
+ * [b0,b1] from the rows of subpatch_rows(a0, a1), rows 0..kmax and
+ * columns 0..lmax. */
+static void subpatch_cols(cert_block *B, double b0, double b1, int kmax, int lmax)
+{
+    int q = B->q;
+    for (int l = 0; l <= lmax; l++) {
         for (int r = 0; r < q; r++)
             B->args[r] = r < q - l ? b0 : b1;
-        for (int k = 0; k <= p; k++) {
+        for (int k = 0; k <= kmax; k++) {
             memcpy(B->tmp, B->row + (size_t)k * (size_t)(q + 1) * 4,
                    (size_t)(q + 1) * 4 * sizeof(double));
-            blossom(s->knots_v, B->mv, q, B->args, 4, B->tmp);
+            blossom(B->s->knots_v, B->mv, q, B->args, 4, B->tmp);
             memcpy(B->h + ((size_t)k * (size_t)(q + 1) + (size_t)l) * 4, B->tmp + q * 4,
                    4 * sizeof(double));
         }
     }
-    B->flops += (double)((p + 1) * (q + 1)) * (double)(p * (p + 1) + q * (q + 1)) * 6.0;
+    B->flops += (double)((kmax + 1) * (lmax + 1)) * (double)(q * (q + 1)) * 6.0;
 }
 
 /* Bound of |S - Q| on a sub-patch, S the (rational) surface with
@@ -729,8 +741,9 @@ static double quad_term(double c[2][2][3])
  * every argument equal), 3 values. */
 static void block_point(cert_block *B, double u, double v, double *out)
 {
-    subpatch_net(B, u, u, v, v);
-    const double *h = B->h; /* every coefficient is the point */
+    subpatch_rows(B, u, u, 0);
+    subpatch_cols(B, v, v, 0, 0);
+    const double *h = B->h;
     for (int x = 0; x < 3; x++)
         out[x] = h[x] / h[3];
 }
@@ -746,9 +759,10 @@ static double cell_bound(cert_block *B, double u0, double u1, double v0, double 
     block_point(B, u0, v1, C[0][1]);
     block_point(B, u1, v1, C[1][1]);
     double worst = 0;
-    for (int a = 0; a < CELL_SPLITS; a++)
+    for (int a = 0; a < CELL_SPLITS; a++) {
+        double s0 = (double)a / CELL_SPLITS, s1 = (double)(a + 1) / CELL_SPLITS;
+        subpatch_rows(B, u0 + s0 * (u1 - u0), u0 + s1 * (u1 - u0), B->p);
         for (int b = 0; b < CELL_SPLITS; b++) {
-            double s0 = (double)a / CELL_SPLITS, s1 = (double)(a + 1) / CELL_SPLITS;
             double t0 = (double)b / CELL_SPLITS, t1 = (double)(b + 1) / CELL_SPLITS;
             double c[2][2][3];
             for (int x = 0; x < 3; x++)
@@ -759,11 +773,11 @@ static double cell_bound(cert_block *B, double u0, double u1, double v0, double 
                                        sl * (1 - tl) * C[1][0][x] + (1 - sl) * tl * C[0][1][x] +
                                        sl * tl * C[1][1][x];
                     }
-            subpatch_net(B, u0 + s0 * (u1 - u0), u0 + s1 * (u1 - u0), v0 + t0 * (v1 - v0),
-                         v0 + t1 * (v1 - v0));
+            subpatch_cols(B, v0 + t0 * (v1 - v0), v0 + t1 * (v1 - v0), B->p, B->q);
             double d = subpatch_bound(B->h, B->p, B->q, c);
             worst = d > worst ? d : worst;
         }
+    }
     return worst + quad_term(C);
 }
 
@@ -793,8 +807,9 @@ typedef struct cert_grid {
     double *bb;            /* bound per block, i * nsv + j */
 } cert_grid;
 
-/* Largest cell bound of block (i, j) with cu x cv equal cells. */
-static double block_bound(cert_grid *G, size_t i, size_t j, size_t cu, size_t cv)
+/* Largest cell bound of block (i, j) with cu x cv equal cells; the first
+ * one above limit once there is one. */
+static double block_bound(cert_grid *G, size_t i, size_t j, size_t cu, size_t cv, double limit)
 {
     cert_block *B = &G->B;
     const conica_bspline_surface *s = B->s;
@@ -813,6 +828,8 @@ static double block_bound(cert_grid *G, size_t i, size_t j, size_t cu, size_t cv
             double va = v0 + (double)b * dv, vb = b + 1 == cv ? G->bv[j + 1] : va + dv;
             double d = cell_bound(B, ua, ub, va, vb);
             worst = d > worst ? d : worst;
+            if (worst > limit)
+                return worst;
         }
     return worst;
 }
@@ -820,13 +837,13 @@ static double block_bound(cert_grid *G, size_t i, size_t j, size_t cu, size_t cv
 static void column_bounds(cert_grid *G, size_t i)
 {
     for (size_t j = 0; j < G->nsv; j++)
-        G->bb[i * G->nsv + j] = block_bound(G, i, j, G->cu[i], G->cv[j]);
+        G->bb[i * G->nsv + j] = block_bound(G, i, j, G->cu[i], G->cv[j], INFINITY);
 }
 
 static void row_bounds(cert_grid *G, size_t j)
 {
     for (size_t i = 0; i < G->nsu; i++)
-        G->bb[i * G->nsv + j] = block_bound(G, i, j, G->cu[i], G->cv[j]);
+        G->bb[i * G->nsv + j] = block_bound(G, i, j, G->cu[i], G->cv[j], INFINITY);
 }
 
 static size_t sum_sz(const size_t *c, size_t n)
@@ -851,7 +868,8 @@ static int cert_try_drop(cert_grid *G, int dir, size_t k, double tol)
     int ok = 1;
     for (size_t m = 0; m < other && ok; m++) {
         size_t i = dir ? m : k, j = dir ? k : m;
-        nb[m] = block_bound(G, i, j, dir ? G->cu[i] : G->cu[i] - 1, dir ? G->cv[j] - 1 : G->cv[j]);
+        nb[m] = block_bound(G, i, j, dir ? G->cu[i] : G->cu[i] - 1, dir ? G->cv[j] - 1 : G->cv[j],
+                            tol);
         ok = nb[m] <= tol;
     }
     if (ok) {
@@ -959,14 +977,26 @@ conica_code conica_plot_surface_certified(const conica_bspline_surface *s,
                               nlu, nlv, tol, set->max_points);
             break;
         }
-        double bu = block_bound(&G, wi, wj, G.cu[wi] + 1, G.cv[wj]);
-        double bv = block_bound(&G, wi, wj, G.cu[wi], G.cv[wj] + 1);
+        double bu = block_bound(&G, wi, wj, G.cu[wi] + 1, G.cv[wj], INFINITY);
+        double bv = block_bound(&G, wi, wj, G.cu[wi], G.cv[wj] + 1, INFINITY);
         double gu = (wb - bu) / (double)nlv, gv = (wb - bv) / (double)nlu;
+        /* far from the tolerance, several cells at once: half of what a
+         * bound falling as 1/cells^2 would need (the removal pass below
+         * takes back what overshoots) */
+        double jump = CERT_JUMP * (sqrt(wb / tol) - 1);
         if (gu > gv || (gu == gv && bu <= bv)) {
-            G.cu[wi]++;
+            size_t k = (size_t)(jump * (double)G.cu[wi]);
+            k = k < 1 ? 1 : k;
+            while (k > 1 && (nlu + k) * nlv > set->max_points)
+                k /= 2;
+            G.cu[wi] += k;
             column_bounds(&G, wi);
         } else {
-            G.cv[wj]++;
+            size_t k = (size_t)(jump * (double)G.cv[wj]);
+            k = k < 1 ? 1 : k;
+            while (k > 1 && nlu * (nlv + k) > set->max_points)
+                k /= 2;
+            G.cv[wj] += k;
             row_bounds(&G, wj);
         }
     }
