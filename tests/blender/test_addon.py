@@ -1935,12 +1935,13 @@ def surface_to_mesh_within_tolerance():
     measured by an evaluator of the test's own (tests/blender/surface_eval.py,
     from the control net, weights, orders and knots Blender exposes; first
     checked against Blender's own conversion), every vertex lies on the
-    surface and every face (centre and edge midpoints) within the
-    tolerance."""
+    surface, every face (centre and edge midpoints) within the tolerance,
+    and fewer vertices than Blender's uniform conversion at the same
+    measured deviation."""
     se = surface_eval()
     ops = conica_pkg().operators
     tol = 1e-2
-    for prim in ("surface", "sphere", "torus"):
+    for prim in ("surface", "cylinder", "sphere", "torus"):
         fresh_scene()
         getattr(bpy.ops.surface, "primitive_nurbs_surface_%s_add" % prim)()
         ob = bpy.context.active_object
@@ -1968,6 +1969,24 @@ def surface_to_mesh_within_tolerance():
         report("surface_faces_within_tolerance_" + prim, df <= tol,
                "faces up to %.4g off for %g (%d vertices; Blender's default %d)"
                % (df, tol, len(new.data.vertices), nb))
+        # Blender's uniform conversion at the same measured deviation (the
+        # smallest resolution r that measures no more) has more vertices
+        ours, theirs = len(new.data.vertices), None
+        for r in range(1, 33):
+            for spl in ob.data.splines:
+                spl.resolution_u = spl.resolution_v = r
+            ev = ob.evaluated_get(bpy.context.evaluated_depsgraph_get())
+            me = ev.to_mesh()
+            d = max(se.mesh_deviation(me, dist))
+            n = len(me.vertices)
+            ev.to_mesh_clear()
+            if d <= df:
+                theirs = (r, n, d)
+                break
+        report("surface_fewer_vertices_than_blender_" + prim,
+               theirs is not None and ours < theirs[1],
+               "%d vertices at %.4g against Blender's %r (r, vertices, deviation)"
+               % (ours, df, theirs))
         report("surface_original_kept_" + prim, ob.name in bpy.data.objects and
                not ob.select_get() and new.select_get())
     # a surface with a huge coordinate is refused, nothing made
