@@ -561,8 +561,11 @@ static conica_code plot_surface(const conica_bspline_surface *s, const conica_pl
  * quad's projected corners counts as zero (a pole's collapsed edge). */
 #define QUAD_FLAT_EPS 1e-12
 
-/* Share of the estimated missing cells one refinement step adds. */
-#define CERT_JUMP 0.5
+/* Share of the estimated missing cells one refinement step adds (1: all
+ * that a bound falling as 1/cells^2 in that direction would need; the
+ * removal pass takes back any overshoot, and on Blender's primitives the
+ * grids come out the same as with single steps, 2-4x faster). */
+#define CERT_JUMP 1.0
 
 /* Cap on the refinement steps (one grid line each; max_points caps the
  * grid long before on any surface that is not degenerate). */
@@ -980,9 +983,7 @@ conica_code conica_plot_surface_certified(const conica_bspline_surface *s,
         double bu = block_bound(&G, wi, wj, G.cu[wi] + 1, G.cv[wj], INFINITY);
         double bv = block_bound(&G, wi, wj, G.cu[wi], G.cv[wj] + 1, INFINITY);
         double gu = (wb - bu) / (double)nlv, gv = (wb - bv) / (double)nlu;
-        /* far from the tolerance, several cells at once: half of what a
-         * bound falling as 1/cells^2 would need (the removal pass below
-         * takes back what overshoots) */
+        /* far from the tolerance, several cells at once (CERT_JUMP) */
         double jump = CERT_JUMP * (sqrt(wb / tol) - 1);
         if (gu > gv || (gu == gv && bu <= bv)) {
             size_t k = (size_t)(jump * (double)G.cu[wi]);
