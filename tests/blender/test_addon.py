@@ -1989,6 +1989,26 @@ def surface_to_mesh_within_tolerance():
                % (ours, df, theirs))
         report("surface_original_kept_" + prim, ob.name in bpy.data.objects and
                not ob.select_get() and new.select_get())
+    # far from the origin a tolerance below float32's reach is raised to
+    # the achievable one with a warning, and the faces stay within that
+    fresh_scene()
+    bpy.ops.surface.primitive_nurbs_surface_sphere_add()
+    ob = bpy.context.active_object
+    sp = ob.data.splines[0]
+    for pt in sp.points:
+        x, y, z, wt = pt.co
+        pt.co = (x + 1e4, y, z, wt)
+    dist = se.Distance(se.Surface(sp, ops.nurbs_knots))
+    select_only(ob)
+    r = bpy.ops.object.conic_surface_to_mesh(tolerance=1e-6)
+    new = bpy.context.active_object
+    warns = [m for lv, m in last_reports() if lv == "WARNING"]
+    achievable = ops.FLOAT32_TOL_SPACINGS * ops.float32_spacing(1e4 + 1.0)
+    ok = r == {"FINISHED"} and new is not ob and len(warns) == 1 and \
+        "used the achievable tolerance" in warns[0]
+    df = se.mesh_deviation(new.data, dist)[1] if ok else None
+    report("surface_float32_tolerance_raised", ok and df <= achievable,
+           "%r %r faces %r off for %g" % (r, last_reports(), df, achievable))
     # a surface with a huge coordinate is refused, nothing made
     fresh_scene()
     bpy.ops.surface.primitive_nurbs_surface_surface_add()
