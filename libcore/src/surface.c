@@ -1,6 +1,7 @@
 /* SPDX-License-Identifier: MIT */
 /* Tensor-product B-spline surfaces (seed 004, Section 4.1): validation,
  * evaluation, and the two-phase quad-grid plot of Section 4.1.2. */
+#include <float.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -561,6 +562,11 @@ static conica_code plot_surface(const conica_bspline_surface *s, const conica_pl
  * quad's projected corners counts as zero (a pole's collapsed edge). */
 #define QUAD_FLAT_EPS 1e-12
 
+/* Floating-point slack added to every cell bound, in units of the net's
+ * largest coordinate: the blossoms, the corner points the mesh gets from
+ * conica_bspline_surface_eval and the bound itself round by a few ulps. */
+#define CERT_ROUND_SLACK (64 * DBL_EPSILON)
+
 /* Share of the estimated missing cells one refinement step adds (1: all
  * that a bound falling as 1/cells^2 in that direction would need; the
  * removal pass takes back any overshoot, and on Blender's primitives the
@@ -598,6 +604,7 @@ typedef struct cert_block {
     double *h;        /* (p+1)(q+1) x 4: the sub-patch's Bézier net */
     double *tmp;      /* max(p,q)+1 x 4 */
     double *args;     /* max(p,q) */
+    double slack;     /* CERT_ROUND_SLACK times the largest coordinate */
     double flops;
 } cert_block;
 
@@ -781,7 +788,7 @@ static double cell_bound(cert_block *B, double u0, double u1, double v0, double 
             worst = d > worst ? d : worst;
         }
     }
-    return worst + quad_term(C);
+    return worst + quad_term(C) + B->slack;
 }
 
 /* Distinct knots of the domain knots[p..n]: their count, written to out
@@ -924,6 +931,13 @@ conica_code conica_plot_surface_certified(const conica_bspline_surface *s,
     G.B.s = s;
     G.B.p = p;
     G.B.q = q;
+    for (size_t k = 0; k < s->nu * s->nv; k++) {
+        double hp[4];
+        net_point(s, k / s->nv, k % s->nv, hp);
+        for (int x = 0; x < 3; x++)
+            G.B.slack = fmax(G.B.slack, fabs(hp[x] / hp[3]));
+    }
+    G.B.slack *= CERT_ROUND_SLACK;
     G.B.net = malloc(np * 4 * sizeof(double));
     G.B.row = malloc(np * 4 * sizeof(double));
     G.B.h = malloc(np * 4 * sizeof(double));
