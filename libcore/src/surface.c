@@ -421,6 +421,27 @@ static double surf_diag(const conica_bspline_surface *s)
     return sqrt(d2);
 }
 
+/* The arguments every surface plotter checks, and the absolute tolerance
+ * of the settings for s: abs_tolerance, else the pixel tolerance scaled
+ * from the viewport diagonal to the net's extent. */
+static conica_code surf_args(const conica_bspline_surface *s, const conica_plot_settings *set,
+                             const conica_quadgrid *out, double *tol, conica_status *st)
+{
+    if (!s || !s->ctrl || !set || !out)
+        return conica__fail(st, CONICA_ERR_ARG, 0, 0, "NULL argument");
+    if (s->dim == 1 && s->w)
+        return conica__fail(st, CONICA_ERR_UNSUPPORTED, 0, 0,
+                            "rational height surfaces are not supported");
+    *tol = set->abs_tolerance;
+    if (!(*tol > 0)) {
+        double rho = sqrt(set->viewport_w * set->viewport_w + set->viewport_h * set->viewport_h);
+        *tol = set->pixel_tolerance / rho * surf_diag(s);
+    }
+    if (!(*tol > 0) || !isfinite(*tol))
+        return conica__fail(st, CONICA_ERR_ARG, 0, 0, "tolerance must be positive");
+    return CONICA_OK;
+}
+
 /* One direction's isocurves, each plotted into a set of its own (merge:
  * for the envelope) or all into `all` (the union of Section 4.1.2). */
 static conica_code iso_plot_into(const conica_bspline_surface *s, int fix_v, double x, double tol,
@@ -461,22 +482,13 @@ static conica_code plot_surface(const conica_bspline_surface *s, const conica_pl
                                 int merge, conica_quadgrid *out, conica_plot_stats *stats,
                                 conica_status *st)
 {
-    if (!s || !s->ctrl || !set || !out)
-        return conica__fail(st, CONICA_ERR_ARG, 0, 0, "NULL argument");
-    if (set->method != CONICA_PLOT_GUARANTEED)
+    if (set && set->method != CONICA_PLOT_GUARANTEED)
         return conica__fail(st, CONICA_ERR_UNSUPPORTED, 0, 0,
                             "surfaces are plotted with the guaranteed method only");
-    if (s->dim == 1 && s->w)
-        return conica__fail(st, CONICA_ERR_UNSUPPORTED, 0, 0,
-                            "rational height surfaces are not supported");
-    double t0 = conica__now();
-    double tol = set->abs_tolerance;
-    if (!(tol > 0)) {
-        double rho = sqrt(set->viewport_w * set->viewport_w + set->viewport_h * set->viewport_h);
-        tol = set->pixel_tolerance / rho * surf_diag(s);
-    }
-    if (!(tol > 0) || !isfinite(tol))
-        return conica__fail(st, CONICA_ERR_ARG, 0, 0, "tolerance must be positive");
+    double t0 = conica__now(), tol;
+    conica_code rc0 = surf_args(s, set, out, &tol, st);
+    if (rc0 != CONICA_OK)
+        return rc0;
     conica_plot_stats sx;
     memset(&sx, 0, sizeof sx);
     sx.tolerance = tol;
@@ -911,19 +923,10 @@ conica_code conica_plot_surface_certified(const conica_bspline_surface *s,
                                           const conica_plot_settings *set, conica_quadgrid *out,
                                           conica_plot_stats *stats, conica_status *st)
 {
-    if (!s || !s->ctrl || !set || !out)
-        return conica__fail(st, CONICA_ERR_ARG, 0, 0, "NULL argument");
-    if (s->dim == 1 && s->w)
-        return conica__fail(st, CONICA_ERR_UNSUPPORTED, 0, 0,
-                            "rational height surfaces are not supported");
-    double t0 = conica__now();
-    double tol = set->abs_tolerance;
-    if (!(tol > 0)) {
-        double rho = sqrt(set->viewport_w * set->viewport_w + set->viewport_h * set->viewport_h);
-        tol = set->pixel_tolerance / rho * surf_diag(s);
-    }
-    if (!(tol > 0) || !isfinite(tol))
-        return conica__fail(st, CONICA_ERR_ARG, 0, 0, "tolerance must be positive");
+    double t0 = conica__now(), tol;
+    conica_code rc0 = surf_args(s, set, out, &tol, st);
+    if (rc0 != CONICA_OK)
+        return rc0;
     int p = s->degree_u, q = s->degree_v, pq = p > q ? p : q;
     size_t np = (size_t)(p + 1) * (size_t)(q + 1);
     cert_grid G;
