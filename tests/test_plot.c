@@ -971,3 +971,319 @@ TEST_CASE("surface: envelope grid, no union of unaligned isocurve parameters", "
     conica_quadgrid_free(&e);
     conica_bspline_surface_free(&s);
 }
+
+/* ------------------------------------------- certified surface quad grid */
+
+static double sdist3(const double *a, const double *b)
+{
+    double d0 = a[0] - b[0], d1 = a[1] - b[1], d2 = a[2] - b[2];
+    return sqrt(d0 * d0 + d1 * d1 + d2 * d2);
+}
+
+/* Distance from p to the segment [a, b]. */
+static double seg_dist(const double *p, const double *a, const double *b)
+{
+    double ab[3], ap[3], ll = 0, t = 0;
+    for (int x = 0; x < 3; x++) {
+        ab[x] = b[x] - a[x];
+        ap[x] = p[x] - a[x];
+        ll += ab[x] * ab[x];
+        t += ab[x] * ap[x];
+    }
+    t = ll > 0 ? t / ll : 0;
+    t = t < 0 ? 0 : (t > 1 ? 1 : t);
+    double q[3] = {a[0] + t * ab[0], a[1] + t * ab[1], a[2] + t * ab[2]};
+    return sdist3(p, q);
+}
+
+/* Distance from p to the triangle abc: the plane's foot when it falls
+ * inside, else the nearest edge. */
+static double tri_dist(const double *p, const double *a, const double *b, const double *c)
+{
+    double e1[3], e2[3], n[3], ap[3];
+    for (int x = 0; x < 3; x++) {
+        e1[x] = b[x] - a[x];
+        e2[x] = c[x] - a[x];
+        ap[x] = p[x] - a[x];
+    }
+    n[0] = e1[1] * e2[2] - e1[2] * e2[1];
+    n[1] = e1[2] * e2[0] - e1[0] * e2[2];
+    n[2] = e1[0] * e2[1] - e1[1] * e2[0];
+    double nn = n[0] * n[0] + n[1] * n[1] + n[2] * n[2];
+    double best = seg_dist(p, a, b);
+    double d = seg_dist(p, b, c);
+    best = d < best ? d : best;
+    d = seg_dist(p, c, a);
+    best = d < best ? d : best;
+    if (nn > 0) {
+        double h = (ap[0] * n[0] + ap[1] * n[1] + ap[2] * n[2]) / nn;
+        double f[3] = {ap[0] - h * n[0], ap[1] - h * n[1], ap[2] - h * n[2]};
+        /* barycentric coordinates of the foot */
+        double d00 = e1[0] * e1[0] + e1[1] * e1[1] + e1[2] * e1[2];
+        double d01 = e1[0] * e2[0] + e1[1] * e2[1] + e1[2] * e2[2];
+        double d11 = e2[0] * e2[0] + e2[1] * e2[1] + e2[2] * e2[2];
+        double d20 = f[0] * e1[0] + f[1] * e1[1] + f[2] * e1[2];
+        double d21 = f[0] * e2[0] + f[1] * e2[1] + f[2] * e2[2];
+        double den = d00 * d11 - d01 * d01;
+        if (den > 0) {
+            double bv = (d11 * d20 - d01 * d21) / den, bw = (d00 * d21 - d01 * d20) / den;
+            if (bv >= 0 && bw >= 0 && bv + bw <= 1) {
+                d = fabs(h) * sqrt(nn);
+                best = d < best ? d : best;
+            }
+        }
+    }
+    return best;
+}
+
+/* A point of the surface near p found from (u, v) by Gauss-Newton steps
+ * on |S - p|^2 (finite differences, parameters clamped to the cell widened
+ * by one cell); the distance returned is that of a real surface point, so
+ * it bounds the distance from p to the surface from above. */
+static double near_surface(const conica_bspline_surface *s, const double *p, double u, double v,
+                           const double lo[2], const double hi[2])
+{
+    double S[3];
+    conica_bspline_surface_eval(s, u, v, S, NULL);
+    double best = sdist3(S, p);
+    for (int it = 0; it < 6 && best > 0; it++) {
+        double hu = 1e-7 * (hi[0] - lo[0]), hv = 1e-7 * (hi[1] - lo[1]);
+        double Su[3], Sv[3];
+        conica_bspline_surface_eval(s, u + hu, v, Su, NULL);
+        conica_bspline_surface_eval(s, u, v + hv, Sv, NULL);
+        double a[3], b[3], r[3];
+        for (int x = 0; x < 3; x++) {
+            a[x] = (Su[x] - S[x]) / hu;
+            b[x] = (Sv[x] - S[x]) / hv;
+            r[x] = p[x] - S[x];
+        }
+        double aa = a[0] * a[0] + a[1] * a[1] + a[2] * a[2];
+        double ab = a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+        double bb = b[0] * b[0] + b[1] * b[1] + b[2] * b[2];
+        double ar = a[0] * r[0] + a[1] * r[1] + a[2] * r[2];
+        double br = b[0] * r[0] + b[1] * r[1] + b[2] * r[2];
+        double det = aa * bb - ab * ab;
+        if (!(det > 0))
+            break;
+        double du = (bb * ar - ab * br) / det, dv = (aa * br - ab * ar) / det;
+        u += du;
+        v += dv;
+        u = u < lo[0] ? lo[0] : (u > hi[0] ? hi[0] : u);
+        v = v < lo[1] ? lo[1] : (v > hi[1] ? hi[1] : v);
+        conica_bspline_surface_eval(s, u, v, S, NULL);
+        double d = sdist3(S, p);
+        best = d < best ? d : best;
+        if (fabs(du) < 1e-12 * (hi[0] - lo[0]) && fabs(dv) < 1e-12 * (hi[1] - lo[1]))
+            break;
+    }
+    return best;
+}
+
+/* The largest distance, measured by dense evaluation of the surface and
+ * not by the plotter, between each quad of g (either triangulation) and
+ * the surface over the quad's cell: surface samples to the triangles, and
+ * triangle samples to the surface. Also the largest distance of a grid
+ * point from the surface point at its parameters (*on). */
+static double grid_deviation(const conica_bspline_surface *s, const conica_quadgrid *g, int ns,
+                             double *on)
+{
+    double worst = 0;
+    *on = 0;
+    for (size_t i = 0; i < g->nu; i++)
+        for (size_t j = 0; j < g->nv; j++) {
+            double S[3];
+            conica_bspline_surface_eval(s, g->u[i], g->v[j], S, NULL);
+            double d = sdist3(S, g->xyz + (i * g->nv + j) * 3);
+            *on = d > *on ? d : *on;
+        }
+    for (size_t i = 0; i + 1 < g->nu; i++)
+        for (size_t j = 0; j + 1 < g->nv; j++) {
+            const double *c00 = g->xyz + (i * g->nv + j) * 3, *c10 = c00 + g->nv * 3;
+            const double *c01 = c00 + 3, *c11 = c10 + 3;
+            double u0 = g->u[i], u1 = g->u[i + 1], v0 = g->v[j], v1 = g->v[j + 1];
+            double lo[2] = {i ? g->u[i - 1] : u0, j ? g->v[j - 1] : v0};
+            double hi[2] = {i + 2 < g->nu ? g->u[i + 2] : u1, j + 2 < g->nv ? g->v[j + 2] : v1};
+            for (int a = 0; a <= ns; a++)
+                for (int b = 0; b <= ns; b++) {
+                    double sa = (double)a / ns, tb = (double)b / ns;
+                    double u = u0 + sa * (u1 - u0), v = v0 + tb * (v1 - v0), S[3];
+                    conica_bspline_surface_eval(s, u, v, S, NULL);
+                    /* surface -> each triangulation */
+                    double dA = fmin(tri_dist(S, c00, c10, c11), tri_dist(S, c00, c11, c01));
+                    double dB = fmin(tri_dist(S, c00, c10, c01), tri_dist(S, c10, c11, c01));
+                    double d = fmax(dA, dB);
+                    worst = d > worst ? d : worst;
+                    /* each triangulation -> surface, at the point with the
+                     * same barycentric place as (sa, tb) */
+                    double M[4][3];
+                    for (int x = 0; x < 3; x++) {
+                        M[0][x] = sa + tb <= 1 ? c00[x] + sa * (c10[x] - c00[x]) + tb * (c01[x] - c00[x])
+                                               : c11[x] + (1 - sa) * (c01[x] - c11[x]) +
+                                                     (1 - tb) * (c10[x] - c11[x]);
+                        M[1][x] = sa >= tb ? c00[x] + sa * (c10[x] - c00[x]) + tb * (c11[x] - c10[x])
+                                           : c00[x] + tb * (c01[x] - c00[x]) + sa * (c11[x] - c01[x]);
+                        M[2][x] = (1 - sa) * (1 - tb) * c00[x] + sa * (1 - tb) * c10[x] +
+                                  (1 - sa) * tb * c01[x] + sa * tb * c11[x]; /* bilinear */
+                        M[3][x] = M[2][x];
+                    }
+                    for (int k = 0; k < 3; k++) {
+                        d = near_surface(s, M[k], u, v, lo, hi);
+                        worst = d > worst ? d : worst;
+                    }
+                }
+        }
+    return worst;
+}
+
+/* Smallest n from n0 on whose uniform n x n parameter grid measures no
+ * more than dev. */
+static size_t uniform_needed(const conica_bspline_surface *s, double dev, int ns, size_t n0,
+                             size_t nmax)
+{
+    double a0 = s->knots_u[s->degree_u], a1 = s->knots_u[s->nu];
+    double b0 = s->knots_v[s->degree_v], b1 = s->knots_v[s->nv];
+    for (size_t n = n0 < 2 ? 2 : n0; n <= nmax; n++) {
+        conica_quadgrid g;
+        g.nu = g.nv = n;
+        g.u = malloc(n * sizeof *g.u);
+        g.v = malloc(n * sizeof *g.v);
+        g.xyz = malloc(n * n * 3 * sizeof *g.xyz);
+        REQUIRE(g.u && g.v && g.xyz);
+        for (size_t k = 0; k < n; k++) {
+            g.u[k] = a0 + (a1 - a0) * (double)k / (double)(n - 1);
+            g.v[k] = b0 + (b1 - b0) * (double)k / (double)(n - 1);
+        }
+        for (size_t i = 0; i < n; i++)
+            for (size_t j = 0; j < n; j++)
+                conica_bspline_surface_eval(s, g.u[i], g.v[j], g.xyz + (i * n + j) * 3, NULL);
+        double on, d = grid_deviation(s, &g, ns, &on);
+        conica_quadgrid_free(&g);
+        if (d <= dev)
+            return n;
+    }
+    return nmax + 1;
+}
+
+static void check_certified(const conica_bspline_surface *s, double tol, int uniform)
+{
+    conica_plot_settings set = conica_plot_defaults();
+    set.abs_tolerance = tol;
+    conica_quadgrid g;
+    conica_quadgrid_init(&g);
+    conica_plot_stats stats;
+    REQUIRE_EQ(conica_plot_surface_certified(s, &set, &g, &stats, NULL), CONICA_OK);
+    CHECK_EQ_U(stats.points, g.nu * g.nv);
+    CHECK_LE(stats.bound, tol);
+    double on, dev = grid_deviation(s, &g, 5, &on);
+    INFO("tol %g: %zu x %zu grid, bound %.4g, measured %.4g", tol, g.nu, g.nv, stats.bound, dev);
+    CHECK_LE(on, 1e-12);
+    CHECK_LE(dev, tol);
+    CHECK_LE(dev, stats.bound * (1 + 1e-9) + 1e-15);
+    if (uniform) {
+        /* from the square root of our count on: a uniform grid that
+         * passes there already has no more points than ours */
+        size_t n = uniform_needed(s, dev, 6, (size_t)sqrt((double)(g.nu * g.nv)), 200);
+        INFO("uniform grid at the same measured deviation: %zu x %zu", n, n);
+        CHECK_LT((double)(g.nu * g.nv), (double)(n * n));
+    }
+    conica_quadgrid_free(&g);
+}
+
+TEST_CASE("surface: certified quad grid, every quad within tol by dense evaluation",
+          "[plot][surface]")
+{
+    conica_bspline_surface s;
+    conica_bspline_surface_init(&s);
+    SECTION("a bilinear plane is its corners, bound 0")
+    {
+        const double k[] = {0, 0, 1, 1};
+        const double c[] = {0, 1, 1, 2};
+        REQUIRE_EQ(conica_bspline_surface_set(1, 1, 1, k, 4, k, 4, c, 2, 2, NULL, &s, NULL),
+                   CONICA_OK);
+        conica_plot_settings set = conica_plot_defaults();
+        set.abs_tolerance = 1e-6;
+        conica_quadgrid g;
+        conica_quadgrid_init(&g);
+        conica_plot_stats stats;
+        REQUIRE_EQ(conica_plot_surface_certified(&s, &set, &g, &stats, NULL), CONICA_OK);
+        CHECK_EQ_U(g.nu, 2);
+        CHECK_EQ_U(g.nv, 2);
+        CHECK_LE(stats.bound, 1e-13); /* 0 up to the rounding slack */
+        conica_quadgrid_free(&g);
+    }
+    SECTION("a rational sphere octant")
+    {
+        const double k[] = {0, 0, 0, 1, 1, 1};
+        const double r = sqrt(0.5);
+        const double prof[3][2] = {{1, 0}, {1, 1}, {0, 1}};
+        const double wp[3] = {1, r, 1};
+        double c[27], w[9];
+        for (int i = 0; i < 3; i++)
+            for (int j = 0; j < 3; j++) {
+                double *p = c + (i * 3 + j) * 3;
+                p[0] = prof[i][0] * prof[j][0];
+                p[1] = prof[i][0] * prof[j][1];
+                p[2] = prof[i][1];
+                w[i * 3 + j] = wp[i] * wp[j];
+            }
+        REQUIRE_EQ(conica_bspline_surface_set(2, 2, 3, k, 6, k, 6, c, 3, 3, w, &s, NULL),
+                   CONICA_OK);
+        check_certified(&s, 1e-2, 0);
+        check_certified(&s, 1e-3, 0);
+    }
+    SECTION("a paraboloid height surface, steeper in u: fewer points than a uniform grid")
+    {
+        const double k[] = {-1, -1, -1, 1, 1, 1};
+        const double b[] = {1, -1, 1};
+        double c[9];
+        for (int i = 0; i < 3; i++)
+            for (int j = 0; j < 3; j++)
+                c[i * 3 + j] = b[i] + 0.25 * b[j];
+        REQUIRE_EQ(conica_bspline_surface_set(2, 2, 1, k, 6, k, 6, c, 3, 3, NULL, &s, NULL),
+                   CONICA_OK);
+        check_certified(&s, 1e-3, 1);
+    }
+    SECTION("random twisted rational bicubic surfaces with inner knots (fixed seed)")
+    {
+        unsigned seed = 16u;
+        for (int rep = 0; rep < 3; rep++) {
+            const double ku[] = {0, 0, 0, 0, 0.3, 0.5, 1, 1, 1, 1};
+            const double kv[] = {0, 0, 0, 0, 0.6, 1, 1, 1, 1};
+            size_t nu = 6, nv = 5;
+            double c[6 * 5 * 3], w[6 * 5];
+            for (size_t i = 0; i < nu; i++)
+                for (size_t j = 0; j < nv; j++) {
+                    double *p = c + (i * nv + j) * 3;
+                    for (int x = 0; x < 3; x++) {
+                        seed = seed * 1103515245u + 12345u;
+                        p[x] = (double)((seed >> 8) & 0xffff) / 65535.0 - 0.5;
+                    }
+                    p[0] += (double)i;
+                    p[1] += (double)j;
+                    seed = seed * 1103515245u + 12345u;
+                    w[i * nv + j] = 0.5 + 1.5 * (double)((seed >> 8) & 0xffff) / 65535.0;
+                }
+            REQUIRE_EQ(conica_bspline_surface_set(3, 3, 3, ku, 10, kv, 9, c, nu, nv, w, &s, NULL),
+                       CONICA_OK);
+            check_certified(&s, rep == 2 ? 1e-2 : 2e-2, 0);
+        }
+    }
+    SECTION("max_points caps the grid, the output untouched")
+    {
+        const double k[] = {-1, -1, -1, 1, 1, 1};
+        const double c[] = {1, -1, 1, -1, 1, -1, 1, -1, 1};
+        REQUIRE_EQ(conica_bspline_surface_set(2, 2, 1, k, 6, k, 6, c, 3, 3, NULL, &s, NULL),
+                   CONICA_OK);
+        conica_plot_settings set = conica_plot_defaults();
+        set.abs_tolerance = 1e-6;
+        set.max_points = 100;
+        conica_quadgrid g;
+        conica_quadgrid_init(&g);
+        conica_status st;
+        CHECK_EQ(conica_plot_surface_certified(&s, &set, &g, NULL, &st), CONICA_ERR_LIMIT);
+        CHECK(strstr(st.message, "max_points") != NULL);
+        CHECK_EQ_U(g.nu, 0);
+        CHECK(g.xyz == NULL);
+    }
+    conica_bspline_surface_free(&s);
+}

@@ -697,10 +697,6 @@ class CURVE_OT_adaptive_to_poly(_CurveOperator, bpy.types.Operator):
 
 # ---------------------------------------------------------------- surfaces
 
-# Share of Surface to Mesh's tolerance given to each grid line (see execute).
-SURFACE_LINE_SHARE = 0.5
-
-
 def surface_patch(sp):
     """(ctrl, nu, nv, degree_u, degree_v, knots_u, knots_v, weights, cyclic_u,
     cyclic_v) of a NURBS surface spline as Blender evaluates it: the knot
@@ -776,8 +772,11 @@ class OBJECT_OT_conic_surface_to_mesh(bpy.types.Operator):
     tolerance: FloatProperty(
         name="Tolerance", subtype="DISTANCE", default=1e-3, min=1e-6, soft_max=1.0,
         precision=6, step=0.01,
-        description="Largest distance of the mesh's faces from the surface (its grid "
-                    "lines are plotted within half of it)")
+        description="Largest distance of the mesh's faces from the surface and of "
+                    "the surface from the mesh (a certified bound per quad). Below what "
+                    "float32 coordinates can hold at the surface's size (2 float32 "
+                    "spacings at its largest coordinate) it is raised to that, with a "
+                    "warning")
 
     @classmethod
     def poll(cls, context):
@@ -807,12 +806,23 @@ class OBJECT_OT_conic_surface_to_mesh(bpy.types.Operator):
                     continue
                 try:
                     ctrl, nu, nv, du, dv, ku, kv, w, cu, cv = surface_patch(sp)
-                    # the plotter certifies grid lines; a quad's interior
-                    # strays from the surface by about the sum of its two
-                    # edges' distances, so the lines get half the tolerance
+                    # the plotter bounds every quad's distance from the
+                    # surface (both ways, either triangulation); the mesh's
+                    # float32 vertices move by up to FLOAT32_ROUNDING
+                    # spacings at the net's largest coordinate (the surface
+                    # lies in the net's hull), as Curve to Polyline's points
+                    big = max(max(ctrl), -min(ctrl))
+                    spacing = float32_spacing(big)
+                    achievable = FLOAT32_TOL_SPACINGS * spacing
+                    tol = self.tolerance
+                    if tol < achievable:
+                        problems.append("%s, spline %d: tolerance %.3g is below what float32 "
+                                        "coordinates near %.3g can hold; used the achievable "
+                                        "tolerance %.3g" % (ob.name, i, tol, big, achievable))
+                        tol = achievable
                     grid, gu, gv, _info = _conica.surface(
                         ctrl, nu=nu, nv=nv, degree_u=du, degree_v=dv, knots_u=ku,
-                        knots_v=kv, weights=w, tolerance=SURFACE_LINE_SHARE * self.tolerance,
+                        knots_v=kv, weights=w, tolerance=tol - FLOAT32_ROUNDING * spacing,
                         max_points=MAX_POINTS)
                 except _conica.ConicaError as exc:
                     problems.append("%s, spline %d: %s" % (ob.name, i, exc))

@@ -2361,16 +2361,15 @@ PyDoc_STRVAR(surface_doc,
 "surface(ctrl, *, nu, nv, degree_u, degree_v, knots_u, knots_v, weights=None,\n"
 "        tolerance, max_points=4194304)\n"
 "--\n\n"
-"A tensor-product NURBS surface plotted to a quad grid by libconica's\n"
-"two-phase surface plotter (Dahl's thesis, Section 4.1.2): the isocurves at\n"
-"every distinct knot of one direction are plotted within `tolerance`\n"
-"(absolute) by the guaranteed method, the parameters they need collected,\n"
-"then the other direction likewise. ctrl: nu*nv control points, x,y,z each,\n"
+"A tensor-product NURBS surface plotted to a quad grid whose every quad is\n"
+"certified by libconica: the surface and the quad (bilinear, or either of\n"
+"its two triangles) are within `tolerance` (absolute) of each other, by a\n"
+"convex-hull bound per cell. ctrl: nu*nv control points, x,y,z each,\n"
 "index ((i*nv)+j)*3 (i along u); weights: nu*nv positive values or None;\n"
 "knots_u: nu + degree_u + 1 values, knots_v likewise.\n\n"
 "Returns (points, gu, gv, info): points an array('d') of gu*gv x,y,z grid\n"
-"points, index ((i*gv)+j)*3, every one on the surface; info: points, seconds.\n"
-"The grid's quads are not certified by the plotter (only its isocurves).");
+"points, index ((i*gv)+j)*3, every one on the surface; info: points,\n"
+"seconds, bound (the largest certified quad deviation).");
 
 static PyObject *cx_surface(PyObject *self, PyObject *args, PyObject *kw)
 {
@@ -2423,7 +2422,7 @@ static PyObject *cx_surface(PyObject *self, PyObject *args, PyObject *kw)
         goto done;
     }
     conica_code rc;
-    double seconds = 0.0;
+    double seconds = 0.0, stats_bound = 0.0;
     Py_BEGIN_ALLOW_THREADS
     rc = conica_bspline_surface_set(du, dv, 3, ku, nku, kv, nkv, ctrl, (size_t)nu, (size_t)nv,
                                     w, &sf, &st);
@@ -2435,8 +2434,9 @@ static PyObject *cx_surface(PyObject *self, PyObject *args, PyObject *kw)
         conica_plot_stats stats;
         memset(&stats, 0, sizeof stats);
         double t0 = cx_now();
-        rc = conica_plot_surface_envelope(&sf, &set, &g, &stats, &st);
+        rc = conica_plot_surface_certified(&sf, &set, &g, &stats, &st);
         seconds = cx_now() - t0;
+        stats_bound = stats.bound;
     }
     Py_END_ALLOW_THREADS
     if (rc != CONICA_OK) {
@@ -2445,8 +2445,9 @@ static PyObject *cx_surface(PyObject *self, PyObject *args, PyObject *kw)
     }
     {
         PyObject *ap = cx_make_array(S, 'd', g.xyz, g.nu * g.nv, 3, 3, 0.0);
-        PyObject *info = Py_BuildValue("{s:n,s:d}", "points", (Py_ssize_t)(g.nu * g.nv),
-                                       "seconds", seconds);
+        PyObject *info = Py_BuildValue("{s:n,s:d,s:d}", "points",
+                                       (Py_ssize_t)(g.nu * g.nv), "seconds", seconds, "bound",
+                                       stats_bound);
         if (ap && info)
             result = Py_BuildValue("(OnnO)", ap, (Py_ssize_t)g.nu, (Py_ssize_t)g.nv, info);
         Py_XDECREF(ap);

@@ -1,6 +1,7 @@
 /* SPDX-License-Identifier: MIT */
 /* Tensor-product B-spline surfaces (seed 004, Section 4.1): validation,
  * evaluation, and the two-phase quad-grid plot of Section 4.1.2. */
+#include <float.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -420,6 +421,27 @@ static double surf_diag(const conica_bspline_surface *s)
     return sqrt(d2);
 }
 
+/* The arguments every surface plotter checks, and the absolute tolerance
+ * of the settings for s: abs_tolerance, else the pixel tolerance scaled
+ * from the viewport diagonal to the net's extent. */
+static conica_code surf_args(const conica_bspline_surface *s, const conica_plot_settings *set,
+                             const conica_quadgrid *out, double *tol, conica_status *st)
+{
+    if (!s || !s->ctrl || !set || !out)
+        return conica__fail(st, CONICA_ERR_ARG, 0, 0, "NULL argument");
+    if (s->dim == 1 && s->w)
+        return conica__fail(st, CONICA_ERR_UNSUPPORTED, 0, 0,
+                            "rational height surfaces are not supported");
+    *tol = set->abs_tolerance;
+    if (!(*tol > 0)) {
+        double rho = sqrt(set->viewport_w * set->viewport_w + set->viewport_h * set->viewport_h);
+        *tol = set->pixel_tolerance / rho * surf_diag(s);
+    }
+    if (!(*tol > 0) || !isfinite(*tol))
+        return conica__fail(st, CONICA_ERR_ARG, 0, 0, "tolerance must be positive");
+    return CONICA_OK;
+}
+
 /* One direction's isocurves, each plotted into a set of its own (merge:
  * for the envelope) or all into `all` (the union of Section 4.1.2). */
 static conica_code iso_plot_into(const conica_bspline_surface *s, int fix_v, double x, double tol,
@@ -460,22 +482,13 @@ static conica_code plot_surface(const conica_bspline_surface *s, const conica_pl
                                 int merge, conica_quadgrid *out, conica_plot_stats *stats,
                                 conica_status *st)
 {
-    if (!s || !s->ctrl || !set || !out)
-        return conica__fail(st, CONICA_ERR_ARG, 0, 0, "NULL argument");
-    if (set->method != CONICA_PLOT_GUARANTEED)
+    if (set && set->method != CONICA_PLOT_GUARANTEED)
         return conica__fail(st, CONICA_ERR_UNSUPPORTED, 0, 0,
                             "surfaces are plotted with the guaranteed method only");
-    if (s->dim == 1 && s->w)
-        return conica__fail(st, CONICA_ERR_UNSUPPORTED, 0, 0,
-                            "rational height surfaces are not supported");
-    double t0 = conica__now();
-    double tol = set->abs_tolerance;
-    if (!(tol > 0)) {
-        double rho = sqrt(set->viewport_w * set->viewport_w + set->viewport_h * set->viewport_h);
-        tol = set->pixel_tolerance / rho * surf_diag(s);
-    }
-    if (!(tol > 0) || !isfinite(tol))
-        return conica__fail(st, CONICA_ERR_ARG, 0, 0, "tolerance must be positive");
+    double t0 = conica__now(), tol;
+    conica_code rc0 = surf_args(s, set, out, &tol, st);
+    if (rc0 != CONICA_OK)
+        return rc0;
     conica_plot_stats sx;
     memset(&sx, 0, sizeof sx);
     sx.tolerance = tol;
@@ -546,5 +559,516 @@ static conica_code plot_surface(const conica_bspline_surface *s, const conica_pl
     free(xyz);
     free(us.v);
     free(vs.v);
+    return rc;
+}
+
+/* ------------------------------------------------- certified quad grid */
+
+/* Each cell of conica_plot_surface_certified is split into this many
+ * parameter intervals per direction for its bound: the Bézier net of a
+ * sub-patch converges to the patch quadratically, so the bound's excess
+ * over the true deviation falls by about 16x per doubling. */
+#define CELL_SPLITS 4
+
+/* Relative size (to the squared corner extent) below which the turn of a
+ * quad's projected corners counts as zero (a pole's collapsed edge). */
+#define QUAD_FLAT_EPS 1e-12
+
+/* Floating-point slack added to every cell bound, in units of the net's
+ * largest coordinate: the blossoms, the corner points the mesh gets from
+ * conica_bspline_surface_eval and the bound itself round by a few ulps. */
+#define CERT_ROUND_SLACK (64 * DBL_EPSILON)
+
+/* Share of the estimated missing cells one refinement step adds (1: all
+ * that a bound falling as 1/cells^2 in that direction would need; the
+ * removal pass takes back any overshoot, and on Blender's primitives the
+ * grids come out the same as with single steps, 2-4x faster). */
+#define CERT_JUMP 1.0
+
+/* Cap on the refinement steps (one grid line each; max_points caps the
+ * grid long before on any surface that is not degenerate). */
+#define CERT_MAX_ROUNDS 100000
+
+/* Blossom of the degree-p B-spline coefficients d (p+1 points of hd
+ * values, overwritten) on span mu at the arguments t[0..p): the de Boor
+ * triangle (eq. (1.11)) with argument t[r-1] at level r. With every
+ * argument equal it is the point at that parameter; with p - k arguments
+ * a and k arguments b it is the Bézier coefficient k of the span's piece
+ * restricted to [a, b]. The result is left in d + p*hd. */
+static void blossom(const double *knots, size_t mu, int p, const double *t, int hd, double *d)
+{
+    for (int r = 1; r <= p; r++)
+        for (int j = p; j >= r; j--) {
+            size_t i = mu - (size_t)p + (size_t)j;
+            double a = (t[r - 1] - knots[i]) / (knots[i + (size_t)(p + 1 - r)] - knots[i]);
+            for (int c = 0; c < hd; c++)
+                d[j * hd + c] = (1 - a) * d[(j - 1) * hd + c] + a * d[j * hd + c];
+        }
+}
+
+/* Work space of one block (a knot span in u times one in v). */
+typedef struct cert_block {
+    const conica_bspline_surface *s;
+    int p, q;
+    size_t mu, mv;    /* spans */
+    double *net;      /* (p+1)(q+1) homogeneous points of the span pair */
+    double *row;      /* (p+1)(q+1) x 4: u-blossoms per net column */
+    double *h;        /* (p+1)(q+1) x 4: the sub-patch's Bézier net */
+    double *tmp;      /* max(p,q)+1 x 4 */
+    double *args;     /* max(p,q) */
+    double slack;     /* CERT_ROUND_SLACK times the largest coordinate */
+    double flops;
+} cert_block;
+
+/* The u half of a sub-patch's net: row k, column j is the blossom in u
+ * at a0 (p - k times) and a1 (k times) of the block's net column j. */
+static void subpatch_rows(cert_block *B, double a0, double a1, int kmax)
+{
+    int p = B->p, q = B->q;
+    for (int k = 0; k <= kmax; k++) {
+        for (int r = 0; r < p; r++)
+            B->args[r] = r < p - k ? a0 : a1;
+        for (int j = 0; j <= q; j++) {
+            for (int i = 0; i <= p; i++)
+                memcpy(B->tmp + i * 4, B->net + ((size_t)i * (size_t)(q + 1) + (size_t)j) * 4,
+                       4 * sizeof(double));
+            blossom(B->s->knots_u, B->mu, p, B->args, 4, B->tmp);
+            memcpy(B->row + ((size_t)k * (size_t)(q + 1) + (size_t)j) * 4, B->tmp + p * 4,
+                   4 * sizeof(double));
+        }
+    }
+    B->flops += (double)((kmax + 1) * (q + 1)) * (double)(p * (p + 1)) * 6.0;
+}
+
+/* The v half: the homogeneous Bézier net h of the sub-patch [a0,a1] x
+ * [b0,b1] from the rows of subpatch_rows(a0, a1), rows 0..kmax and
+ * columns 0..lmax. */
+static void subpatch_cols(cert_block *B, double b0, double b1, int kmax, int lmax)
+{
+    int q = B->q;
+    for (int l = 0; l <= lmax; l++) {
+        for (int r = 0; r < q; r++)
+            B->args[r] = r < q - l ? b0 : b1;
+        for (int k = 0; k <= kmax; k++) {
+            memcpy(B->tmp, B->row + (size_t)k * (size_t)(q + 1) * 4,
+                   (size_t)(q + 1) * 4 * sizeof(double));
+            blossom(B->s->knots_v, B->mv, q, B->args, 4, B->tmp);
+            memcpy(B->h + ((size_t)k * (size_t)(q + 1) + (size_t)l) * 4, B->tmp + q * 4,
+                   4 * sizeof(double));
+        }
+    }
+    B->flops += (double)((kmax + 1) * (lmax + 1)) * (double)(q * (q + 1)) * 6.0;
+}
+
+/* Bound of |S - Q| on a sub-patch, S the (rational) surface with
+ * homogeneous Bézier net h of degree (p, q), Q the bilinear map with
+ * values c[a][b] (3 values each) at the sub-patch's corners. With W the
+ * weight function, S - Q = (H - W Q) / W; H - W Q and W written in the
+ * Bernstein basis of degree (p+1, q+1) (H degree-elevated, W Q by the
+ * product rule B^p_i B^1_a = C(p,i) C(1,a) / C(p+1,i+a) B^{p+1}_{i+a},
+ * which gives the same factors) have coefficients D_KL and W_KL > 0, so
+ * |S - Q| <= max |D_KL| / W_KL by the convex hull property. */
+static double subpatch_bound(const double *h, int p, int q, double c[2][2][3])
+{
+    double worst = 0;
+    for (int K = 0; K <= p + 1; K++)
+        for (int L = 0; L <= q + 1; L++) {
+            double D[3] = {0, 0, 0}, W = 0;
+            for (int a = 0; a <= 1; a++) {
+                int i = K - a;
+                if (i < 0 || i > p)
+                    continue;
+                double fa = a ? (double)K / (p + 1) : (double)(p + 1 - K) / (p + 1);
+                for (int b = 0; b <= 1; b++) {
+                    int j = L - b;
+                    if (j < 0 || j > q)
+                        continue;
+                    double f = fa * (b ? (double)L / (q + 1) : (double)(q + 1 - L) / (q + 1));
+                    const double *hp = h + ((size_t)i * (size_t)(q + 1) + (size_t)j) * 4;
+                    for (int x = 0; x < 3; x++)
+                        D[x] += f * (hp[x] - hp[3] * c[a][b][x]);
+                    W += f * hp[3];
+                }
+            }
+            double d = sqrt(D[0] * D[0] + D[1] * D[1] + D[2] * D[2]) / W;
+            worst = d > worst ? d : worst;
+        }
+    return worst;
+}
+
+static void sub3(const double *a, const double *b, double *r)
+{
+    for (int x = 0; x < 3; x++)
+        r[x] = a[x] - b[x];
+}
+
+static void cross3(const double *a, const double *b, double *r)
+{
+    r[0] = a[1] * b[2] - a[2] * b[1];
+    r[1] = a[2] * b[0] - a[0] * b[2];
+    r[2] = a[0] * b[1] - a[1] * b[0];
+}
+
+static double dot3(const double *a, const double *b)
+{
+    return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+}
+
+/* Largest distance between the bilinear quad with corners c[a][b] and
+ * either of its triangulations (both ways, Hausdorff). Parametrically the
+ * difference is s t T (or a like product) with T = c00 - c10 - c01 + c11,
+ * so |T| / 4. Geometrically: with n the unit normal of both diagonals,
+ * the quad's convex hull (a tetrahedron, which holds the bilinear quad)
+ * lies in a slab of width d = |(c10 - c00) . n| whose two faces hold one
+ * diagonal each; when the corners projected along n form a convex
+ * quadrilateral, each triangulation covers that projection, so a line
+ * along n through a point of the hull meets both triangulations and the
+ * bilinear quad (its projection is the 2-D bilinear map of a convex
+ * quadrilateral, onto it) within the slab: every such point is within d
+ * of each of them. A planar quad (a surface of revolution's) gives 0. */
+static double quad_term(double c[2][2][3])
+{
+    double T[3], e[4][3], d1[3], d2[3], n[3];
+    for (int x = 0; x < 3; x++)
+        T[x] = c[0][0][x] - c[1][0][x] - c[0][1][x] + c[1][1][x];
+    double best = 0.25 * sqrt(dot3(T, T));
+    const double *P[4] = {c[0][0], c[1][0], c[1][1], c[0][1]}; /* around the quad */
+    sub3(c[1][1], c[0][0], d1);
+    sub3(c[0][1], c[1][0], d2);
+    cross3(d1, d2, n);
+    double nn = sqrt(dot3(n, n)), ext = dot3(d1, d1) + dot3(d2, d2);
+    if (!(nn > QUAD_FLAT_EPS * ext))
+        return best;
+    for (int x = 0; x < 3; x++)
+        n[x] /= nn;
+    for (int k = 0; k < 4; k++)
+        sub3(P[(k + 1) % 4], P[k], e[k]);
+    int pos = 0, neg = 0;
+    for (int k = 0; k < 4; k++) {
+        double z[3];
+        cross3(e[k], e[(k + 1) % 4], z);
+        double t = dot3(z, n);
+        pos += t > QUAD_FLAT_EPS * ext;
+        neg += t < -QUAD_FLAT_EPS * ext;
+    }
+    if (pos && neg) /* a reflex corner in projection: the slab does not apply */
+        return best;
+    if (!pos && !neg)
+        return best;
+    double d = fabs(dot3(e[0], n));
+    return d < best ? d : best;
+}
+
+/* Point of the surface at (u, v) in the block's spans (the blossom with
+ * every argument equal), 3 values. */
+static void block_point(cert_block *B, double u, double v, double *out)
+{
+    subpatch_rows(B, u, u, 0);
+    subpatch_cols(B, v, v, 0, 0);
+    const double *h = B->h;
+    for (int x = 0; x < 3; x++)
+        out[x] = h[x] / h[3];
+}
+
+/* Bound of the cell [u0,u1] x [v0,v1] of the block: its bilinear quad
+ * through the surface's corner points against the surface, over
+ * CELL_SPLITS^2 sub-patches, plus the quad's triangulation term. */
+static double cell_bound(cert_block *B, double u0, double u1, double v0, double v1)
+{
+    double C[2][2][3];
+    block_point(B, u0, v0, C[0][0]);
+    block_point(B, u1, v0, C[1][0]);
+    block_point(B, u0, v1, C[0][1]);
+    block_point(B, u1, v1, C[1][1]);
+    double worst = 0;
+    for (int a = 0; a < CELL_SPLITS; a++) {
+        double s0 = (double)a / CELL_SPLITS, s1 = (double)(a + 1) / CELL_SPLITS;
+        subpatch_rows(B, u0 + s0 * (u1 - u0), u0 + s1 * (u1 - u0), B->p);
+        for (int b = 0; b < CELL_SPLITS; b++) {
+            double t0 = (double)b / CELL_SPLITS, t1 = (double)(b + 1) / CELL_SPLITS;
+            double c[2][2][3];
+            for (int x = 0; x < 3; x++)
+                for (int ia = 0; ia <= 1; ia++)
+                    for (int ib = 0; ib <= 1; ib++) {
+                        double sl = ia ? s1 : s0, tl = ib ? t1 : t0;
+                        c[ia][ib][x] = (1 - sl) * (1 - tl) * C[0][0][x] +
+                                       sl * (1 - tl) * C[1][0][x] + (1 - sl) * tl * C[0][1][x] +
+                                       sl * tl * C[1][1][x];
+                    }
+            subpatch_cols(B, v0 + t0 * (v1 - v0), v0 + t1 * (v1 - v0), B->p, B->q);
+            double d = subpatch_bound(B->h, B->p, B->q, c);
+            worst = d > worst ? d : worst;
+        }
+    }
+    return worst + quad_term(C) + B->slack;
+}
+
+/* Distinct knots of the domain knots[p..n]: their count, written to out
+ * (room for n - p + 1) with the span index mu of each but the last. */
+static size_t breakpoints(const double *knots, int p, size_t n, double *out, size_t *mu)
+{
+    size_t m = 0;
+    for (size_t i = (size_t)p; i <= n; i++) {
+        if (m > 0 && knots[i] == out[m - 1]) {
+            mu[m - 1] = i; /* the last index of a repeated knot starts the span */
+            continue;
+        }
+        out[m] = knots[i];
+        mu[m] = i;
+        m++;
+    }
+    return m;
+}
+
+typedef struct cert_grid {
+    cert_block B;
+    size_t nsu, nsv;       /* spans per direction */
+    double *bu, *bv;       /* breakpoints, nsu + 1 and nsv + 1 */
+    size_t *mu, *mv;       /* span index per span */
+    size_t *cu, *cv;       /* cells per span */
+    double *bb;            /* bound per block, i * nsv + j */
+} cert_grid;
+
+/* Largest cell bound of block (i, j) with cu x cv equal cells; the first
+ * one above limit once there is one. */
+static double block_bound(cert_grid *G, size_t i, size_t j, size_t cu, size_t cv, double limit)
+{
+    cert_block *B = &G->B;
+    const conica_bspline_surface *s = B->s;
+    B->mu = G->mu[i];
+    B->mv = G->mv[j];
+    for (int a = 0; a <= B->p; a++)
+        for (int b = 0; b <= B->q; b++)
+            net_point(s, B->mu - (size_t)B->p + (size_t)a, B->mv - (size_t)B->q + (size_t)b,
+                      B->net + ((size_t)a * (size_t)(B->q + 1) + (size_t)b) * 4);
+    double u0 = G->bu[i], du = (G->bu[i + 1] - u0) / (double)cu;
+    double v0 = G->bv[j], dv = (G->bv[j + 1] - v0) / (double)cv;
+    double worst = 0;
+    for (size_t a = 0; a < cu; a++)
+        for (size_t b = 0; b < cv; b++) {
+            double ua = u0 + (double)a * du, ub = a + 1 == cu ? G->bu[i + 1] : ua + du;
+            double va = v0 + (double)b * dv, vb = b + 1 == cv ? G->bv[j + 1] : va + dv;
+            double d = cell_bound(B, ua, ub, va, vb);
+            worst = d > worst ? d : worst;
+            if (worst > limit)
+                return worst;
+        }
+    return worst;
+}
+
+static void column_bounds(cert_grid *G, size_t i)
+{
+    for (size_t j = 0; j < G->nsv; j++)
+        G->bb[i * G->nsv + j] = block_bound(G, i, j, G->cu[i], G->cv[j], INFINITY);
+}
+
+static void row_bounds(cert_grid *G, size_t j)
+{
+    for (size_t i = 0; i < G->nsu; i++)
+        G->bb[i * G->nsv + j] = block_bound(G, i, j, G->cu[i], G->cv[j], INFINITY);
+}
+
+static size_t sum_sz(const size_t *c, size_t n)
+{
+    size_t t = 0;
+    for (size_t k = 0; k < n; k++)
+        t += c[k];
+    return t;
+}
+
+/* Drop one cell from span k of direction dir (0: u) when every block of
+ * that column or row still passes; returns 1 when it did. */
+static int cert_try_drop(cert_grid *G, int dir, size_t k, double tol)
+{
+    size_t *c = dir ? G->cv : G->cu;
+    if (c[k] < 2)
+        return 0;
+    size_t other = dir ? G->nsu : G->nsv;
+    double *nb = malloc(other * sizeof *nb);
+    if (!nb)
+        return 0;
+    int ok = 1;
+    for (size_t m = 0; m < other && ok; m++) {
+        size_t i = dir ? m : k, j = dir ? k : m;
+        nb[m] = block_bound(G, i, j, dir ? G->cu[i] : G->cu[i] - 1, dir ? G->cv[j] - 1 : G->cv[j],
+                            tol);
+        ok = nb[m] <= tol;
+    }
+    if (ok) {
+        c[k]--;
+        for (size_t m = 0; m < other; m++)
+            G->bb[dir ? m * G->nsv + k : k * G->nsv + m] = nb[m];
+    }
+    free(nb);
+    return ok;
+}
+
+static void cert_grid_free(cert_grid *G)
+{
+    free(G->B.net);
+    free(G->B.row);
+    free(G->B.h);
+    free(G->B.tmp);
+    free(G->B.args);
+    free(G->bu);
+    free(G->bv);
+    free(G->mu);
+    free(G->mv);
+    free(G->cu);
+    free(G->cv);
+    free(G->bb);
+}
+
+conica_code conica_plot_surface_certified(const conica_bspline_surface *s,
+                                          const conica_plot_settings *set, conica_quadgrid *out,
+                                          conica_plot_stats *stats, conica_status *st)
+{
+    double t0 = conica__now(), tol;
+    conica_code rc0 = surf_args(s, set, out, &tol, st);
+    if (rc0 != CONICA_OK)
+        return rc0;
+    int p = s->degree_u, q = s->degree_v, pq = p > q ? p : q;
+    size_t np = (size_t)(p + 1) * (size_t)(q + 1);
+    cert_grid G;
+    memset(&G, 0, sizeof G);
+    G.B.s = s;
+    G.B.p = p;
+    G.B.q = q;
+    for (size_t k = 0; k < s->nu * s->nv; k++) {
+        double hp[4];
+        net_point(s, k / s->nv, k % s->nv, hp);
+        for (int x = 0; x < 3; x++)
+            G.B.slack = fmax(G.B.slack, fabs(hp[x] / hp[3]));
+    }
+    G.B.slack *= CERT_ROUND_SLACK;
+    G.B.net = malloc(np * 4 * sizeof(double));
+    G.B.row = malloc(np * 4 * sizeof(double));
+    G.B.h = malloc(np * 4 * sizeof(double));
+    G.B.tmp = malloc((size_t)(pq + 1) * 4 * sizeof(double));
+    G.B.args = malloc((size_t)(pq + 1) * sizeof(double));
+    size_t mxu = s->nu - (size_t)p + 1, mxv = s->nv - (size_t)q + 1;
+    G.bu = malloc(mxu * sizeof *G.bu);
+    G.bv = malloc(mxv * sizeof *G.bv);
+    G.mu = malloc(mxu * sizeof *G.mu);
+    G.mv = malloc(mxv * sizeof *G.mv);
+    G.cu = malloc(mxu * sizeof *G.cu);
+    G.cv = malloc(mxv * sizeof *G.cv);
+    G.bb = malloc(mxu * mxv * sizeof *G.bb);
+    if (!G.B.net || !G.B.row || !G.B.h || !G.B.tmp || !G.B.args || !G.bu || !G.bv || !G.mu ||
+        !G.mv || !G.cu || !G.cv || !G.bb) {
+        cert_grid_free(&G);
+        return conica__fail(st, CONICA_ERR_NOMEM, 0, 0, "out of memory");
+    }
+    G.nsu = breakpoints(s->knots_u, p, s->nu, G.bu, G.mu) - 1;
+    G.nsv = breakpoints(s->knots_v, q, s->nv, G.bv, G.mv) - 1;
+    if ((G.nsu + 1) * (G.nsv + 1) > set->max_points) {
+        cert_grid_free(&G);
+        return conica__fail(st, CONICA_ERR_LIMIT, 0, 0,
+                            "quad grid of the knots %zu x %zu exceeds %zu points (max_points)",
+                            G.nsu + 1, G.nsv + 1, set->max_points);
+    }
+    for (size_t i = 0; i < G.nsu; i++)
+        G.cu[i] = 1;
+    for (size_t j = 0; j < G.nsv; j++)
+        G.cv[j] = 1;
+    for (size_t i = 0; i < G.nsu; i++)
+        column_bounds(&G, i);
+    /* refine: the worst block gets one more cell in the direction that
+     * lowers its bound most per vertex added (a u line costs a vertex on
+     * every v line and vice versa) */
+    conica_code rc = CONICA_OK;
+    size_t rounds = 0;
+    for (;; rounds++) {
+        size_t wi = 0, wj = 0;
+        double wb = 0;
+        for (size_t k = 0; k < G.nsu * G.nsv; k++)
+            if (G.bb[k] > wb) {
+                wb = G.bb[k];
+                wi = k / G.nsv;
+                wj = k % G.nsv;
+            }
+        if (!(wb > tol))
+            break;
+        size_t nlu = sum_sz(G.cu, G.nsu) + 1, nlv = sum_sz(G.cv, G.nsv) + 1;
+        if (rounds >= CERT_MAX_ROUNDS || (nlu + 1) * nlv > set->max_points ||
+            nlu * (nlv + 1) > set->max_points) {
+            rc = conica__fail(st, CONICA_ERR_LIMIT, 0, 0,
+                              "quad grid %zu x %zu within %g exceeds %zu points (max_points)",
+                              nlu, nlv, tol, set->max_points);
+            break;
+        }
+        double bu = block_bound(&G, wi, wj, G.cu[wi] + 1, G.cv[wj], INFINITY);
+        double bv = block_bound(&G, wi, wj, G.cu[wi], G.cv[wj] + 1, INFINITY);
+        double gu = (wb - bu) / (double)nlv, gv = (wb - bv) / (double)nlu;
+        /* far from the tolerance, several cells at once (CERT_JUMP) */
+        double jump = CERT_JUMP * (sqrt(wb / tol) - 1);
+        if (gu > gv || (gu == gv && bu <= bv)) {
+            size_t k = (size_t)(jump * (double)G.cu[wi]);
+            k = k < 1 ? 1 : k;
+            while (k > 1 && (nlu + k) * nlv > set->max_points)
+                k /= 2;
+            G.cu[wi] += k;
+            column_bounds(&G, wi);
+        } else {
+            size_t k = (size_t)(jump * (double)G.cv[wj]);
+            k = k < 1 ? 1 : k;
+            while (k > 1 && nlu * (nlv + k) > set->max_points)
+                k /= 2;
+            G.cv[wj] += k;
+            row_bounds(&G, wj);
+        }
+    }
+    /* greedy removal: a cell fewer wherever its column or row still passes */
+    for (int changed = rc == CONICA_OK; changed;) {
+        changed = 0;
+        for (size_t i = 0; i < G.nsu; i++)
+            changed |= cert_try_drop(&G, 0, i, tol);
+        for (size_t j = 0; j < G.nsv; j++)
+            changed |= cert_try_drop(&G, 1, j, tol);
+    }
+    conica_quadgrid g;
+    conica_quadgrid_init(&g);
+    if (rc == CONICA_OK) {
+        g.nu = sum_sz(G.cu, G.nsu) + 1;
+        g.nv = sum_sz(G.cv, G.nsv) + 1;
+        g.u = malloc(g.nu * sizeof *g.u);
+        g.v = malloc(g.nv * sizeof *g.v);
+        g.xyz = malloc(g.nu * g.nv * 3 * sizeof *g.xyz);
+        if (!g.u || !g.v || !g.xyz)
+            rc = conica__fail(st, CONICA_ERR_NOMEM, 0, 0, "out of memory");
+    }
+    if (rc == CONICA_OK) {
+        size_t m = 0;
+        for (size_t i = 0; i < G.nsu; i++)
+            for (size_t a = 0; a < G.cu[i]; a++)
+                g.u[m++] = G.bu[i] + (double)a * (G.bu[i + 1] - G.bu[i]) / (double)G.cu[i];
+        g.u[m] = G.bu[G.nsu];
+        m = 0;
+        for (size_t j = 0; j < G.nsv; j++)
+            for (size_t b = 0; b < G.cv[j]; b++)
+                g.v[m++] = G.bv[j] + (double)b * (G.bv[j + 1] - G.bv[j]) / (double)G.cv[j];
+        g.v[m] = G.bv[G.nsv];
+        for (size_t i = 0; i < g.nu; i++)
+            for (size_t j = 0; j < g.nv; j++)
+                conica_bspline_surface_eval(s, g.u[i], g.v[j], g.xyz + (i * g.nv + j) * 3, NULL);
+        double worst = 0;
+        for (size_t k = 0; k < G.nsu * G.nsv; k++)
+            worst = G.bb[k] > worst ? G.bb[k] : worst;
+        conica_quadgrid_free(out);
+        *out = g;
+        if (stats) {
+            memset(stats, 0, sizeof *stats);
+            stats->points = g.nu * g.nv;
+            stats->flops = G.B.flops;
+            stats->iterations = rounds;
+            stats->tolerance = tol;
+            stats->bound = worst;
+            stats->seconds = conica__now() - t0;
+        }
+        conica__ok(st);
+    } else {
+        conica_quadgrid_free(&g);
+    }
+    cert_grid_free(&G);
     return rc;
 }

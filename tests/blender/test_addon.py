@@ -1935,12 +1935,13 @@ def surface_to_mesh_within_tolerance():
     measured by an evaluator of the test's own (tests/blender/surface_eval.py,
     from the control net, weights, orders and knots Blender exposes; first
     checked against Blender's own conversion), every vertex lies on the
-    surface and every face (centre and edge midpoints) within the
-    tolerance."""
+    surface, every face (centre and edge midpoints) within the tolerance,
+    and fewer vertices than Blender's uniform conversion at the same
+    measured deviation."""
     se = surface_eval()
     ops = conica_pkg().operators
     tol = 1e-2
-    for prim in ("surface", "sphere", "torus"):
+    for prim in ("surface", "cylinder", "sphere", "torus"):
         fresh_scene()
         getattr(bpy.ops.surface, "primitive_nurbs_surface_%s_add" % prim)()
         ob = bpy.context.active_object
@@ -1968,8 +1969,46 @@ def surface_to_mesh_within_tolerance():
         report("surface_faces_within_tolerance_" + prim, df <= tol,
                "faces up to %.4g off for %g (%d vertices; Blender's default %d)"
                % (df, tol, len(new.data.vertices), nb))
+        # Blender's uniform conversion at the same measured deviation (the
+        # smallest resolution r that measures no more) has more vertices
+        ours, theirs = len(new.data.vertices), None
+        for r in range(1, 33):
+            for spl in ob.data.splines:
+                spl.resolution_u = spl.resolution_v = r
+            ev = ob.evaluated_get(bpy.context.evaluated_depsgraph_get())
+            me = ev.to_mesh()
+            d = max(se.mesh_deviation(me, dist))
+            n = len(me.vertices)
+            ev.to_mesh_clear()
+            if d <= df:
+                theirs = (r, n, d)
+                break
+        report("surface_fewer_vertices_than_blender_" + prim,
+               theirs is not None and ours < theirs[1],
+               "%d vertices at %.4g against Blender's %r (r, vertices, deviation)"
+               % (ours, df, theirs))
         report("surface_original_kept_" + prim, ob.name in bpy.data.objects and
                not ob.select_get() and new.select_get())
+    # far from the origin a tolerance below float32's reach is raised to
+    # the achievable one with a warning, and the faces stay within that
+    fresh_scene()
+    bpy.ops.surface.primitive_nurbs_surface_sphere_add()
+    ob = bpy.context.active_object
+    sp = ob.data.splines[0]
+    for pt in sp.points:
+        x, y, z, wt = pt.co
+        pt.co = (x + 1e4, y, z, wt)
+    dist = se.Distance(se.Surface(sp, ops.nurbs_knots))
+    select_only(ob)
+    r = bpy.ops.object.conic_surface_to_mesh(tolerance=1e-6)
+    new = bpy.context.active_object
+    warns = [m for lv, m in last_reports() if lv == "WARNING"]
+    achievable = ops.FLOAT32_TOL_SPACINGS * ops.float32_spacing(1e4 + 1.0)
+    ok = r == {"FINISHED"} and new is not ob and len(warns) == 1 and \
+        "used the achievable tolerance" in warns[0]
+    df = se.mesh_deviation(new.data, dist)[1] if ok else None
+    report("surface_float32_tolerance_raised", ok and df <= achievable,
+           "%r %r faces %r off for %g" % (r, last_reports(), df, achievable))
     # a surface with a huge coordinate is refused, nothing made
     fresh_scene()
     bpy.ops.surface.primitive_nurbs_surface_surface_add()

@@ -285,6 +285,30 @@ CONICA_API conica_code conica_plot_surface_envelope(const conica_bspline_surface
         const conica_plot_settings *set, conica_quadgrid *out, conica_plot_stats *stats,
         conica_status *st);
 
+/**
+ * @brief Plot a tensor-product surface to a quad grid whose every quad is
+ *        certified: the distance between the surface and the quad (its
+ *        bilinear interpolant, and either of its two triangulations) is at
+ *        most the tolerance, both ways, by a rigorous bound. The grid lines
+ *        are the distinct knots and, per knot span, equally spaced lines
+ *        in each direction; a cell's bound is the convex-hull bound of
+ *        (H - W Q) / W in the Bernstein basis (Q the bilinear quad, H and W
+ *        the surface's homogeneous numerator and weight) over 4 x 4
+ *        sub-patches obtained by blossoming, plus the distance between the
+ *        bilinear quad and its triangulations (0 for planar quads). Lines
+ *        are added where the worst block gains most per vertex, then
+ *        removed where every cell still passes. Every grid point is
+ *        evaluated on the surface. stats->bound is the largest cell bound.
+ *        The settings' method is not used (the tolerance is abs_tolerance,
+ *        else the pixel tolerance scaled to the net's extent).
+ * @return CONICA_OK, CONICA_ERR_ARG, CONICA_ERR_LIMIT (the grid would pass
+ *         max_points), CONICA_ERR_NOMEM, CONICA_ERR_UNSUPPORTED (rational
+ *         height surface)
+ */
+CONICA_API conica_code conica_plot_surface_certified(const conica_bspline_surface *s,
+        const conica_plot_settings *set, conica_quadgrid *out, conica_plot_stats *stats,
+        conica_status *st);
+
 #ifdef __cplusplus
 }
 #endif
