@@ -1447,7 +1447,11 @@ static conica_code flatten_run(ctx *c, const size_t *segs, size_t m, const doubl
                 else
                     uhi = um;
             }
-            if (ulo > U[lo] || (lo > i0 && ulo == U[lo])) {
+            /* the end moves past the start's dense point (lo > i0), so
+             * the chosen points never outrun the list they overwrite: where
+             * not even the next dense point is within reach (rounding at
+             * coordinates of 1e48), the chord goes to it all the same */
+            if (lo > i0 && ulo >= U[lo]) {
                 u1 = ulo;
                 if (u1 == U[lo]) {
                     p1[0] = X[2 * lo];
