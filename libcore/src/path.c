@@ -419,9 +419,11 @@ conica_code conica_path_samples(conica_path *p, const double *xy, const double *
     if (!grow((void **)&p->sub, &p->subcap, p->nsub, 1, sizeof *p->sub) ||
         !grow((void **)&p->smp, &p->smpcap, p->nsmp, n, 4 * sizeof *p->smp))
         return nomem(st, p);
-    {
-        size_t cap = p->smpcap;
-        size_t *t = realloc(p->smptag, cap * sizeof *t);
+    if (p->smpcap) {
+        /* (never realloc to 0 bytes: that frees the list and returns NULL,
+         * which read as out of memory left a dangling pointer behind:
+         * fuzz_svgsmooth, two empty sample subpaths in a row) */
+        size_t *t = realloc(p->smptag, p->smpcap * sizeof *t);
         if (!t)
             return nomem(st, p);
         p->smptag = t;
