@@ -1002,6 +1002,37 @@ static int poly23(const double *q, int d)
            (d < 3 || q[11] == 1.0);
 }
 
+/* Largest and smallest (C(t) - a) . dir of the Bézier q (degree d) on
+ * [ta, tb] and where: exact for polynomial quadratics and cubics (returns
+ * 1), else the best of PATH_FIT_SAMPLES + 1 samples (returns 0; a golden
+ * section refines them). */
+static int seg_range(const double *q, int d, double ta, double tb, const double a[2],
+                     const double dir[2], double *vmax, double *tmax, double *vmin, double *tmin)
+{
+    int k;
+    if (poly23(q, d)) {
+        poly_range(q, d, ta, tb, a, dir, vmax, tmax, vmin, tmin);
+        return 1;
+    }
+    *vmax = -INFINITY;
+    *vmin = INFINITY;
+    *tmax = *tmin = ta;
+    for (k = 0; k <= PATH_FIT_SAMPLES; k++) {
+        double t = ta + (tb - ta) * k / PATH_FIT_SAMPLES, v, pt[2];
+        bez_eval(q, d, t, pt, NULL, NULL);
+        v = (pt[0] - a[0]) * dir[0] + (pt[1] - a[1]) * dir[1];
+        if (v > *vmax) {
+            *vmax = v;
+            *tmax = t;
+        }
+        if (v < *vmin) {
+            *vmin = v;
+            *tmin = t;
+        }
+    }
+    return 0;
+}
+
 /* Golden-section search for the largest (C(t) - a) . dir of the Bézier
  * q (degree d) on [lo, hi], from *best at *bt up (a sample inside the
  * bracket): one evaluation per step, the other interior point kept. Stops
@@ -1050,24 +1081,15 @@ static double seg_max_along(const conica_path *p, size_t s, double ta, double tb
                             const double dir[2], double best0, int iters, double *targ)
 {
     const double *q = seg_pts(p, s);
-    int d = p->seg[s].degree, k;
-    double best = best0, bt = ta, pt[2];
-    if (poly23(q, d)) {
-        double vmax, tmax, vmin, tmin;
-        poly_range(q, d, ta, tb, a, dir, &vmax, &tmax, &vmin, &tmin);
-        *targ = vmax > best0 ? tmax : ta;
-        return vmax > best0 ? vmax : best0;
+    int d = p->seg[s].degree;
+    double best = best0, bt = ta;
+    double vmax, tmax, vmin, tmin;
+    int exact = seg_range(q, d, ta, tb, a, dir, &vmax, &tmax, &vmin, &tmin);
+    if (vmax > best) {
+        best = vmax;
+        bt = tmax;
     }
-    for (k = 0; k <= PATH_FIT_SAMPLES; k++) {
-        double t = ta + (tb - ta) * k / PATH_FIT_SAMPLES, v;
-        bez_eval(q, d, t, pt, NULL, NULL);
-        v = (pt[0] - a[0]) * dir[0] + (pt[1] - a[1]) * dir[1];
-        if (v > best) {
-            best = v;
-            bt = t;
-        }
-    }
-    if (d > 1) {
+    if (!exact && d > 1) {
         double h = (tb - ta) / PATH_FIT_SAMPLES;
         golden_max(q, d, fmax(ta, bt - h), fmin(tb, bt + h), a, dir, iters, INFINITY, &best, &bt);
     }
@@ -1086,27 +1108,23 @@ static double chord_dev(const conica_path *p, size_t s, double ta, double tb, co
      * side the curve reaches, and not once the answer is known to exceed
      * stop (the greedy chord search asks only whether a chord fits) */
     const double *q = seg_pts(p, s);
-    int d = p->seg[s].degree, k;
-    double n[2], m[2], hi = 0, lo = 0, thi = ta, tlo = ta, pt[2], h;
+    int d = p->seg[s].degree;
+    double n[2], m[2], hi = 0, lo = 0, thi = ta, tlo = ta, h;
     if (!unit2(b[1] - a[1], a[0] - b[0], n))
         return INFINITY;
     if (d == 1 || !(tb > ta))
         return 0.0;
-    if (poly23(q, d)) {
+    {
         double vmax, tmax, vmin, tmin;
-        poly_range(q, d, ta, tb, a, n, &vmax, &tmax, &vmin, &tmin);
-        return fmax(0.0, fmax(vmax, -vmin));
-    }
-    for (k = 0; k <= PATH_FIT_SAMPLES; k++) {
-        double t = ta + (tb - ta) * k / PATH_FIT_SAMPLES, v;
-        bez_eval(q, d, t, pt, NULL, NULL);
-        v = (pt[0] - a[0]) * n[0] + (pt[1] - a[1]) * n[1];
-        if (v > hi) {
-            hi = v;
-            thi = t;
-        } else if (-v > lo) {
-            lo = -v;
-            tlo = t;
+        if (seg_range(q, d, ta, tb, a, n, &vmax, &tmax, &vmin, &tmin))
+            return fmax(0.0, fmax(vmax, -vmin));
+        if (vmax > 0) {
+            hi = vmax;
+            thi = tmax;
+        }
+        if (-vmin > 0) {
+            lo = -vmin;
+            tlo = tmin;
         }
     }
     if (fmax(hi, lo) > stop)
