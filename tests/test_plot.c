@@ -10,6 +10,7 @@
 
 #include "conica/plot.h"
 #include "conica_test.h"
+#include "flatten_check.h"
 
 static int load(const char *name, conica_bspline *s)
 {
@@ -903,6 +904,23 @@ TEST_CASE("surface: two-phase quad grid (Section 4.1.2)", "[plot][surface]")
     conica_bspline_surface_free(&s);
 }
 
+/* The rational sphere octant: the quadratic quarter circle (weights 1,
+ * sqrt(1/2), 1) swept along itself, as 3 x 3 control points and weights. */
+static void sphere_octant(double c[27], double w[9])
+{
+    const double r = sqrt(0.5);
+    const double prof[3][2] = {{1, 0}, {1, 1}, {0, 1}}; /* (radius, height) */
+    const double wp[3] = {1, r, 1};
+    for (int i = 0; i < 3; i++)
+        for (int j = 0; j < 3; j++) {
+            double *p = c + (i * 3 + j) * 3;
+            p[0] = prof[i][0] * prof[j][0];
+            p[1] = prof[i][0] * prof[j][1];
+            p[2] = prof[i][1];
+            w[i * 3 + j] = wp[i] * wp[j];
+        }
+}
+
 TEST_CASE("surface: envelope grid, no union of unaligned isocurve parameters", "[plot][surface]")
 {
     conica_bspline_surface s;
@@ -917,19 +935,8 @@ TEST_CASE("surface: envelope grid, no union of unaligned isocurve parameters", "
      * so the weights of the u-isocurves differ from v to v and their
      * plotted parameters do not line up */
     const double k[] = {0, 0, 0, 1, 1, 1};
-    const double r = sqrt(0.5);
-    const double prof[3][2] = {{1, 0}, {1, 1}, {0, 1}}; /* (radius, height) */
-    const double sweep[3][2] = {{1, 0}, {1, 1}, {0, 1}};
-    const double wp[3] = {1, r, 1}, ws[3] = {1, r, 1};
     double c[27], w[9];
-    for (int i = 0; i < 3; i++)
-        for (int j = 0; j < 3; j++) {
-            double *p = c + (i * 3 + j) * 3;
-            p[0] = prof[i][0] * sweep[j][0];
-            p[1] = prof[i][0] * sweep[j][1];
-            p[2] = prof[i][1];
-            w[i * 3 + j] = wp[i] * ws[j];
-        }
+    sphere_octant(c, w);
     REQUIRE_EQ(conica_bspline_surface_set(2, 2, 3, k, 6, k, 6, c, 3, 3, w, &s, NULL), CONICA_OK);
     REQUIRE_EQ(conica_plot_surface(&s, &set, &g, NULL, NULL), CONICA_OK);
     REQUIRE_EQ(conica_plot_surface_envelope(&s, &set, &e, NULL, NULL), CONICA_OK);
@@ -980,21 +987,6 @@ static double sdist3(const double *a, const double *b)
     return sqrt(d0 * d0 + d1 * d1 + d2 * d2);
 }
 
-/* Distance from p to the segment [a, b]. */
-static double seg_dist(const double *p, const double *a, const double *b)
-{
-    double ab[3], ap[3], ll = 0, t = 0;
-    for (int x = 0; x < 3; x++) {
-        ab[x] = b[x] - a[x];
-        ap[x] = p[x] - a[x];
-        ll += ab[x] * ab[x];
-        t += ab[x] * ap[x];
-    }
-    t = ll > 0 ? t / ll : 0;
-    t = t < 0 ? 0 : (t > 1 ? 1 : t);
-    double q[3] = {a[0] + t * ab[0], a[1] + t * ab[1], a[2] + t * ab[2]};
-    return sdist3(p, q);
-}
 
 /* Distance from p to the triangle abc: the plane's foot when it falls
  * inside, else the nearest edge. */
@@ -1010,10 +1002,10 @@ static double tri_dist(const double *p, const double *a, const double *b, const 
     n[1] = e1[2] * e2[0] - e1[0] * e2[2];
     n[2] = e1[0] * e2[1] - e1[1] * e2[0];
     double nn = n[0] * n[0] + n[1] * n[1] + n[2] * n[2];
-    double best = seg_dist(p, a, b);
-    double d = seg_dist(p, b, c);
+    double best = fc_dist_seg(p, a, b);
+    double d = fc_dist_seg(p, b, c);
     best = d < best ? d : best;
-    d = seg_dist(p, c, a);
+    d = fc_dist_seg(p, c, a);
     best = d < best ? d : best;
     if (nn > 0) {
         double h = (ap[0] * n[0] + ap[1] * n[1] + ap[2] * n[2]) / nn;
@@ -1214,18 +1206,8 @@ TEST_CASE("surface: certified quad grid, every quad within tol by dense evaluati
     SECTION("a rational sphere octant")
     {
         const double k[] = {0, 0, 0, 1, 1, 1};
-        const double r = sqrt(0.5);
-        const double prof[3][2] = {{1, 0}, {1, 1}, {0, 1}};
-        const double wp[3] = {1, r, 1};
         double c[27], w[9];
-        for (int i = 0; i < 3; i++)
-            for (int j = 0; j < 3; j++) {
-                double *p = c + (i * 3 + j) * 3;
-                p[0] = prof[i][0] * prof[j][0];
-                p[1] = prof[i][0] * prof[j][1];
-                p[2] = prof[i][1];
-                w[i * 3 + j] = wp[i] * wp[j];
-            }
+        sphere_octant(c, w);
         REQUIRE_EQ(conica_bspline_surface_set(2, 2, 3, k, 6, k, 6, c, 3, 3, w, &s, NULL),
                    CONICA_OK);
         check_certified(&s, 1e-2, 0);

@@ -27,7 +27,7 @@ void fc_point(const conica_bspline *s, double t, double *out)
     }
 }
 
-static double dist_seg(const double *q, const double *a, const double *b)
+double fc_dist_seg(const double *q, const double *a, const double *b)
 {
     double ab[3], aq[3], l2 = 0, t = 0, r = 0;
     for (int k = 0; k < 3; k++) {
@@ -66,7 +66,7 @@ static double fc_eval(const fc_fn *f, double u)
 {
     double x[3];
     fc_point(f->s, u, x);
-    return f->q ? -dist_pt(f->q, x) : dist_seg(x, f->a, f->b);
+    return f->q ? -dist_pt(f->q, x) : fc_dist_seg(x, f->a, f->b);
 }
 
 static double golden_max(const fc_fn *f, double lo, double hi, double best)

@@ -23,6 +23,8 @@
 
 /* Point of s at t in plot coordinates ((t, f(t)) for a function), out[3]. */
 void fc_point(const conica_bspline *s, double t, double *out);
+/** Distance from the 3-D point q to the segment [a, b]. */
+double fc_dist_seg(const double *q, const double *a, const double *b);
 
 /* Largest distance of f([ua, ub]) to the segment [f(ua), f(ub)]. */
 double fc_chord_dev(const conica_bspline *s, double ua, double ub);
