@@ -24,4 +24,10 @@ void conica__ok(conica_status *st);
  * exact expansion sum of the six products (orient.c). */
 int conica__orient2d(const double *a, const double *b, const double *c);
 
+/* Least and largest value of the scalar Bézier s_0..s_p (1 <= p <= 3) over
+ * [u0, u1] within [0, 1], exactly, and where (ulo, uhi may be NULL):
+ * plot_guaranteed.c. */
+void conica__bern_range(const double *s, int p, double u0, double u1, double *lo, double *ulo,
+                        double *hi, double *uhi);
+
 #endif

@@ -937,62 +937,15 @@ static const double box_dir[4][2] = {{1, 0}, {-1, 0}, {0, 1}, {0, -1}};
 /* Largest and smallest (B(t) - a) . n of a polynomial Bézier q of degree
  * 2 or 3 on [ta, tb], exactly, and where: the distance is the Bézier
  * g_k = (Q_k - a) . n (taken from a, so where the curve sits does not
- * matter), its extremes at the ends and at the roots of its derivative, a
- * quadratic (a line for quadratics) in Bernstein form D_k = g_{k+1} - g_k. */
+ * matter), whose range conica__bern_range gives. */
 static void poly_range(const double *q, int d, double ta, double tb, const double a[2],
                        const double n[2], double *vmax, double *tmax, double *vmin, double *tmin)
 {
-    double g[4], D[3], t[4];
-    int k, nt = 0;
+    double g[4];
+    int k;
     for (k = 0; k <= d; k++)
         g[k] = (q[3 * k] - a[0]) * n[0] + (q[3 * k + 1] - a[1]) * n[1];
-    for (k = 0; k < d; k++)
-        D[k] = g[k + 1] - g[k];
-    t[nt++] = ta;
-    t[nt++] = tb;
-    if (d == 2) {
-        double den = D[0] - D[1];
-        if (den != 0.0)
-            t[nt++] = D[0] / den;
-    } else {
-        /* D0 (1-t)^2 + 2 D1 t (1-t) + D2 t^2 = A t^2 + 2 B t + C */
-        double A = D[0] - 2 * D[1] + D[2], B = D[1] - D[0], C = D[0];
-        double disc = B * B - A * C;
-        if (A == 0.0) {
-            if (B != 0.0)
-                t[nt++] = -C / (2 * B);
-        } else if (disc >= 0) {
-            double r = -B - copysign(sqrt(disc), B); /* no cancellation */
-            if (r != 0.0) {
-                t[nt++] = r / A;
-                t[nt++] = C / r;
-            } else {
-                t[nt++] = 0.0;
-            }
-        }
-    }
-    *vmax = -INFINITY;
-    *vmin = INFINITY;
-    *tmax = *tmin = ta;
-    for (k = 0; k < nt; k++) {
-        double u = t[k], e[4];
-        int i, j;
-        if (!(u >= ta && u <= tb))
-            continue;
-        for (i = 0; i <= d; i++) /* de Casteljau on the distance */
-            e[i] = g[i];
-        for (j = d; j > 0; j--)
-            for (i = 0; i < j; i++)
-                e[i] = fma(u, e[i + 1] - e[i], e[i]);
-        if (e[0] > *vmax) {
-            *vmax = e[0];
-            *tmax = u;
-        }
-        if (e[0] < *vmin) {
-            *vmin = e[0];
-            *tmin = u;
-        }
-    }
+    conica__bern_range(g, d, ta, tb, vmin, tmin, vmax, tmax);
 }
 
 /* A polynomial Bézier of degree 2 or 3 (poly_range's exact extremes). */

@@ -470,25 +470,50 @@ static void bern_roots(const double *b, int q, double *u, int *n)
 }
 
 /* Least and largest value over [u0, u1] within [0, 1] of
- * sum B_i^p(u) s_i for p <= 3, exactly: the ends and the roots of the
- * derivative inside, whose Bernstein coefficients are the differences
- * D_i = s_{i+1} - s_i. */
-static void bern_range_on(const double *s, int p, double u0, double u1, double *lo, double *hi)
+ * sum B_i^p(u) s_i for 1 <= p <= 3, exactly, and where (ulo, uhi may be
+ * NULL): the ends and the roots of the derivative inside, whose Bernstein
+ * coefficients are the differences D_i = s_{i+1} - s_i. Shared with the
+ * curve front end's chord distances (path.c). */
+void conica__bern_range(const double *s, int p, double u0, double u1, double *lo, double *ulo,
+                        double *hi, double *uhi)
 {
     double a = bern_eval(s, p, u0), b = bern_eval(s, p, u1);
-    double l = a < b ? a : b, g = a > b ? a : b, d[3], u[2];
+    double l = a, g = a, tl = u0, tg = u0, d[3], u[2];
     int nu = 0;
+    if (b < l) {
+        l = b;
+        tl = u1;
+    }
+    if (b > g) {
+        g = b;
+        tg = u1;
+    }
     for (int i = 0; i < p; i++)
         d[i] = s[i + 1] - s[i];
     bern_roots(d, p - 1, u, &nu);
     for (int i = 0; i < nu; i++)
         if (u[i] > u0 && u[i] < u1) {
             double v = bern_eval(s, p, u[i]);
-            l = v < l ? v : l;
-            g = v > g ? v : g;
+            if (v < l) {
+                l = v;
+                tl = u[i];
+            }
+            if (v > g) {
+                g = v;
+                tg = u[i];
+            }
         }
     *lo = l;
     *hi = g;
+    if (ulo)
+        *ulo = tl;
+    if (uhi)
+        *uhi = tg;
+}
+
+static void bern_range_on(const double *s, int p, double u0, double u1, double *lo, double *hi)
+{
+    conica__bern_range(s, p, u0, u1, lo, NULL, hi, NULL);
 }
 
 static void bern_range(const double *s, int p, double *lo, double *hi)
