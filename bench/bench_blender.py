@@ -375,5 +375,26 @@ def surface_table():
             print("| %s | %g | %d | %.3g | %s |" % (prim, tol, nv, dev, b))
 
 
+def surface_times():
+    """CPU time of Surface to Mesh (Adaptive) at fine tolerances, where the
+    certified grid has tens of thousands of cells: the operator alone
+    (bpy.ops call, process time), one run each."""
+    print()
+    print("Surfaces: Surface to Mesh (Adaptive) CPU time (process time of the operator)")
+    print("| primitive | tolerance | vertices | CPU s |")
+    print("|---|---|---|---|")
+    for prim in ("sphere", "torus"):
+        for tol in (1e-3, 1e-4):
+            for ob in list(bpy.data.objects):
+                bpy.data.objects.remove(ob, do_unlink=True)
+            getattr(bpy.ops.surface, "primitive_nurbs_surface_%s_add" % prim)()
+            c0 = time.process_time()
+            bpy.ops.object.conic_surface_to_mesh(tolerance=tol)
+            cpu = time.process_time() - c0
+            nv = len(bpy.context.active_object.data.vertices)
+            print("| %s | %g | %d | %.2f |" % (prim, tol, nv, cpu))
+
+
 if os.environ.get("CONICA_BENCH_SURFACES", "1") != "0":
     surface_table()
+    surface_times()

@@ -613,6 +613,8 @@ typedef struct cert_block {
     size_t mu, mv;    /* spans */
     double *net;      /* (p+1)(q+1) homogeneous points of the span pair */
     double *row;      /* (p+1)(q+1) x 4: u-blossoms per net column */
+    double *rows;     /* CELL_SPLITS such row sets: a cell column's (cell_rows) */
+    double *fu, *fv;  /* subpatch_bound's degree-elevation factors, (p+2) x 2, (q+2) x 2 */
     double *h;        /* (p+1)(q+1) x 4: the sub-patch's Bézier net */
     double *tmp;      /* max(p,q)+1 x 4 */
     double *args;     /* max(p,q) */
@@ -622,7 +624,7 @@ typedef struct cert_block {
 
 /* The u half of a sub-patch's net: row k, column j is the blossom in u
  * at a0 (p - k times) and a1 (k times) of the block's net column j. */
-static void subpatch_rows(cert_block *B, double a0, double a1, int kmax)
+static void subpatch_rows(cert_block *B, double a0, double a1, int kmax, double *row)
 {
     int p = B->p, q = B->q;
     for (int k = 0; k <= kmax; k++) {
@@ -633,7 +635,7 @@ static void subpatch_rows(cert_block *B, double a0, double a1, int kmax)
                 memcpy(B->tmp + i * 4, B->net + ((size_t)i * (size_t)(q + 1) + (size_t)j) * 4,
                        4 * sizeof(double));
             blossom(B->s->knots_u, B->mu, p, B->args, 4, B->tmp);
-            memcpy(B->row + ((size_t)k * (size_t)(q + 1) + (size_t)j) * 4, B->tmp + p * 4,
+            memcpy(row + ((size_t)k * (size_t)(q + 1) + (size_t)j) * 4, B->tmp + p * 4,
                    4 * sizeof(double));
         }
     }
@@ -641,16 +643,17 @@ static void subpatch_rows(cert_block *B, double a0, double a1, int kmax)
 }
 
 /* The v half: the homogeneous Bézier net h of the sub-patch [a0,a1] x
- * [b0,b1] from the rows of subpatch_rows(a0, a1), rows 0..kmax and
+ * [b0,b1] from the rows `row` of subpatch_rows(a0, a1), rows 0..kmax and
  * columns 0..lmax. */
-static void subpatch_cols(cert_block *B, double b0, double b1, int kmax, int lmax)
+static void subpatch_cols(cert_block *B, const double *row, double b0, double b1, int kmax,
+                          int lmax)
 {
     int q = B->q;
     for (int l = 0; l <= lmax; l++) {
         for (int r = 0; r < q; r++)
             B->args[r] = r < q - l ? b0 : b1;
         for (int k = 0; k <= kmax; k++) {
-            memcpy(B->tmp, B->row + (size_t)k * (size_t)(q + 1) * 4,
+            memcpy(B->tmp, row + (size_t)k * (size_t)(q + 1) * 4,
                    (size_t)(q + 1) * 4 * sizeof(double));
             blossom(B->s->knots_v, B->mv, q, B->args, 4, B->tmp);
             memcpy(B->h + ((size_t)k * (size_t)(q + 1) + (size_t)l) * 4, B->tmp + q * 4,
@@ -668,9 +671,11 @@ static void subpatch_cols(cert_block *B, double b0, double b1, int kmax, int lma
  * product rule B^p_i B^1_a = C(p,i) C(1,a) / C(p+1,i+a) B^{p+1}_{i+a},
  * which gives the same factors) have coefficients D_KL and W_KL > 0, so
  * |S - Q| <= max |D_KL| / W_KL by the convex hull property. */
-static double subpatch_bound(const double *h, int p, int q, double c[2][2][3])
+static double subpatch_bound(const cert_block *B, double c[2][2][3])
 {
-    double worst = 0;
+    const double *h = B->h;
+    int p = B->p, q = B->q;
+    double worst2 = 0;
     for (int K = 0; K <= p + 1; K++)
         for (int L = 0; L <= q + 1; L++) {
             double D[3] = {0, 0, 0}, W = 0;
@@ -678,22 +683,24 @@ static double subpatch_bound(const double *h, int p, int q, double c[2][2][3])
                 int i = K - a;
                 if (i < 0 || i > p)
                     continue;
-                double fa = a ? (double)K / (p + 1) : (double)(p + 1 - K) / (p + 1);
+                double fa = B->fu[2 * K + a];
                 for (int b = 0; b <= 1; b++) {
                     int j = L - b;
                     if (j < 0 || j > q)
                         continue;
-                    double f = fa * (b ? (double)L / (q + 1) : (double)(q + 1 - L) / (q + 1));
+                    double f = fa * B->fv[2 * L + b];
                     const double *hp = h + ((size_t)i * (size_t)(q + 1) + (size_t)j) * 4;
                     for (int x = 0; x < 3; x++)
                         D[x] += f * (hp[x] - hp[3] * c[a][b][x]);
                     W += f * hp[3];
                 }
             }
-            double d = sqrt(D[0] * D[0] + D[1] * D[1] + D[2] * D[2]) / W;
-            worst = d > worst ? d : worst;
+            /* |D| / W > sqrt(worst2), without a root or a division when not */
+            double dd = D[0] * D[0] + D[1] * D[1] + D[2] * D[2];
+            if (dd > worst2 * (W * W))
+                worst2 = dd / (W * W);
         }
-    return worst;
+    return sqrt(worst2);
 }
 
 static void sub3(const double *a, const double *b, double *r)
@@ -763,19 +770,34 @@ static double quad_term(double c[2][2][3])
  * every argument equal), 3 values. */
 static void block_point(cert_block *B, double u, double v, double *out)
 {
-    subpatch_rows(B, u, u, 0);
-    subpatch_cols(B, v, v, 0, 0);
+    subpatch_rows(B, u, u, 0, B->row);
+    subpatch_cols(B, B->row, v, v, 0, 0);
     const double *h = B->h;
     for (int x = 0; x < 3; x++)
         out[x] = h[x] / h[3];
 }
 
+/* The u halves of the CELL_SPLITS sub-patch columns of the cell column
+ * [u0,u1] (subpatch_rows of each u sub-interval), into B->rows: every
+ * cell of that column shares them. */
+static void cell_rows(cert_block *B, double u0, double u1)
+{
+    size_t np4 = (size_t)(B->p + 1) * (size_t)(B->q + 1) * 4;
+    for (int a = 0; a < CELL_SPLITS; a++) {
+        double s0 = (double)a / CELL_SPLITS, s1 = (double)(a + 1) / CELL_SPLITS;
+        subpatch_rows(B, u0 + s0 * (u1 - u0), u0 + s1 * (u1 - u0), B->p,
+                      B->rows + (size_t)a * np4);
+    }
+}
+
 /* Bound of the cell [u0,u1] x [v0,v1] of the block: its bilinear quad
  * through the surface's corner points against the surface, over
- * CELL_SPLITS^2 sub-patches, plus the quad's triangulation term. */
+ * CELL_SPLITS^2 sub-patches, plus the quad's triangulation term.
+ * cell_rows(B, u0, u1) must have filled B->rows. */
 static double cell_bound(cert_block *B, double u0, double u1, double v0, double v1)
 {
     double C[2][2][3];
+    size_t np4 = (size_t)(B->p + 1) * (size_t)(B->q + 1) * 4;
     block_point(B, u0, v0, C[0][0]);
     block_point(B, u1, v0, C[1][0]);
     block_point(B, u0, v1, C[0][1]);
@@ -783,7 +805,6 @@ static double cell_bound(cert_block *B, double u0, double u1, double v0, double 
     double worst = 0;
     for (int a = 0; a < CELL_SPLITS; a++) {
         double s0 = (double)a / CELL_SPLITS, s1 = (double)(a + 1) / CELL_SPLITS;
-        subpatch_rows(B, u0 + s0 * (u1 - u0), u0 + s1 * (u1 - u0), B->p);
         for (int b = 0; b < CELL_SPLITS; b++) {
             double t0 = (double)b / CELL_SPLITS, t1 = (double)(b + 1) / CELL_SPLITS;
             double c[2][2][3];
@@ -795,8 +816,9 @@ static double cell_bound(cert_block *B, double u0, double u1, double v0, double 
                                        sl * (1 - tl) * C[1][0][x] + (1 - sl) * tl * C[0][1][x] +
                                        sl * tl * C[1][1][x];
                     }
-            subpatch_cols(B, v0 + t0 * (v1 - v0), v0 + t1 * (v1 - v0), B->p, B->q);
-            double d = subpatch_bound(B->h, B->p, B->q, c);
+            subpatch_cols(B, B->rows + (size_t)a * np4, v0 + t0 * (v1 - v0),
+                          v0 + t1 * (v1 - v0), B->p, B->q);
+            double d = subpatch_bound(B, c);
             worst = d > worst ? d : worst;
         }
     }
@@ -827,11 +849,11 @@ typedef struct cert_grid {
     size_t *mu, *mv;       /* span index per span */
     size_t *cu, *cv;       /* cells per span */
     double *bb;            /* bound per block, i * nsv + j */
+    double *wc;            /* centre (u, v) of each block's worst cell */
 } cert_grid;
 
-/* Largest cell bound of block (i, j) with cu x cv equal cells; the first
- * one above limit once there is one. */
-static double block_bound(cert_grid *G, size_t i, size_t j, size_t cu, size_t cv, double limit)
+/* Load block (i, j)'s net into G->B. */
+static void block_load(cert_grid *G, size_t i, size_t j)
 {
     cert_block *B = &G->B;
     const conica_bspline_surface *s = B->s;
@@ -841,31 +863,75 @@ static double block_bound(cert_grid *G, size_t i, size_t j, size_t cu, size_t cv
         for (int b = 0; b <= B->q; b++)
             net_point(s, B->mu - (size_t)B->p + (size_t)a, B->mv - (size_t)B->q + (size_t)b,
                       B->net + ((size_t)a * (size_t)(B->q + 1) + (size_t)b) * 4);
-    double u0 = G->bu[i], du = (G->bu[i + 1] - u0) / (double)cu;
-    double v0 = G->bv[j], dv = (G->bv[j + 1] - v0) / (double)cv;
+}
+
+/* Parameter interval of cell a of the n equal cells of [lo, hi]. */
+static void cell_range(double lo, double hi, size_t n, size_t a, double *c0, double *c1)
+{
+    double d = (hi - lo) / (double)n;
+    *c0 = lo + (double)a * d;
+    *c1 = a + 1 == n ? hi : *c0 + d;
+}
+
+/* Largest cell bound of block (i, j) with cu x cv equal cells; the first
+ * one above limit once there is one. wc (may be NULL) receives the centre
+ * (u, v) of the worst cell. */
+static double block_bound(cert_grid *G, size_t i, size_t j, size_t cu, size_t cv, double limit,
+                          double *wc)
+{
+    cert_block *B = &G->B;
+    block_load(G, i, j);
     double worst = 0;
-    for (size_t a = 0; a < cu; a++)
+    for (size_t a = 0; a < cu; a++) {
+        double ua, ub;
+        cell_range(G->bu[i], G->bu[i + 1], cu, a, &ua, &ub);
+        cell_rows(B, ua, ub);
         for (size_t b = 0; b < cv; b++) {
-            double ua = u0 + (double)a * du, ub = a + 1 == cu ? G->bu[i + 1] : ua + du;
-            double va = v0 + (double)b * dv, vb = b + 1 == cv ? G->bv[j + 1] : va + dv;
+            double va, vb;
+            cell_range(G->bv[j], G->bv[j + 1], cv, b, &va, &vb);
             double d = cell_bound(B, ua, ub, va, vb);
-            worst = d > worst ? d : worst;
+            if (d > worst || (a == 0 && b == 0)) {
+                worst = d;
+                if (wc) {
+                    wc[0] = 0.5 * (ua + ub);
+                    wc[1] = 0.5 * (va + vb);
+                }
+            }
             if (worst > limit)
                 return worst;
         }
+    }
     return worst;
+}
+
+/* Bound of the cell of block (i, j), cut into cu x cv equal cells, that
+ * holds the point (u, v). */
+static double cell_at(cert_grid *G, size_t i, size_t j, size_t cu, size_t cv, double u, double v)
+{
+    double lu = G->bu[i], hu = G->bu[i + 1], lv = G->bv[j], hv = G->bv[j + 1];
+    size_t a = (size_t)((u - lu) / (hu - lu) * (double)cu), b = (size_t)((v - lv) / (hv - lv) * (double)cv);
+    double ua, ub, va, vb;
+    a = a < cu ? a : cu - 1;
+    b = b < cv ? b : cv - 1;
+    cell_range(lu, hu, cu, a, &ua, &ub);
+    cell_range(lv, hv, cv, b, &va, &vb);
+    block_load(G, i, j);
+    cell_rows(&G->B, ua, ub);
+    return cell_bound(&G->B, ua, ub, va, vb);
 }
 
 static void column_bounds(cert_grid *G, size_t i)
 {
     for (size_t j = 0; j < G->nsv; j++)
-        G->bb[i * G->nsv + j] = block_bound(G, i, j, G->cu[i], G->cv[j], INFINITY);
+        G->bb[i * G->nsv + j] =
+            block_bound(G, i, j, G->cu[i], G->cv[j], INFINITY, G->wc + 2 * (i * G->nsv + j));
 }
 
 static void row_bounds(cert_grid *G, size_t j)
 {
     for (size_t i = 0; i < G->nsu; i++)
-        G->bb[i * G->nsv + j] = block_bound(G, i, j, G->cu[i], G->cv[j], INFINITY);
+        G->bb[i * G->nsv + j] =
+            block_bound(G, i, j, G->cu[i], G->cv[j], INFINITY, G->wc + 2 * (i * G->nsv + j));
 }
 
 static size_t sum_sz(const size_t *c, size_t n)
@@ -884,20 +950,23 @@ static int cert_try_drop(cert_grid *G, int dir, size_t k, double tol)
     if (c[k] < 2)
         return 0;
     size_t other = dir ? G->nsu : G->nsv;
-    double *nb = malloc(other * sizeof *nb);
+    double *nb = malloc(3 * other * sizeof *nb), *nc = nb + other;
     if (!nb)
         return 0;
     int ok = 1;
     for (size_t m = 0; m < other && ok; m++) {
         size_t i = dir ? m : k, j = dir ? k : m;
         nb[m] = block_bound(G, i, j, dir ? G->cu[i] : G->cu[i] - 1, dir ? G->cv[j] - 1 : G->cv[j],
-                            tol);
+                            tol, nc + 2 * m);
         ok = nb[m] <= tol;
     }
     if (ok) {
         c[k]--;
-        for (size_t m = 0; m < other; m++)
-            G->bb[dir ? m * G->nsv + k : k * G->nsv + m] = nb[m];
+        for (size_t m = 0; m < other; m++) {
+            size_t at = dir ? m * G->nsv + k : k * G->nsv + m;
+            G->bb[at] = nb[m];
+            memcpy(G->wc + 2 * at, nc + 2 * m, 2 * sizeof *nc);
+        }
     }
     free(nb);
     return ok;
@@ -907,6 +976,8 @@ static void cert_grid_free(cert_grid *G)
 {
     free(G->B.net);
     free(G->B.row);
+    free(G->B.rows);
+    free(G->B.fu);
     free(G->B.h);
     free(G->B.tmp);
     free(G->B.args);
@@ -917,6 +988,7 @@ static void cert_grid_free(cert_grid *G)
     free(G->cu);
     free(G->cv);
     free(G->bb);
+    free(G->wc);
 }
 
 conica_code conica_plot_surface_certified(const conica_bspline_surface *s,
@@ -944,6 +1016,20 @@ conica_code conica_plot_surface_certified(const conica_bspline_surface *s,
     G.B.net = malloc(np * 4 * sizeof(double));
     G.B.row = malloc(np * 4 * sizeof(double));
     G.B.h = malloc(np * 4 * sizeof(double));
+    G.B.rows = malloc(CELL_SPLITS * np * 4 * sizeof(double));
+    G.B.fu = malloc((size_t)(2 * (p + 2) + 2 * (q + 2)) * sizeof(double));
+    if (G.B.fu) {
+        /* B^p_i B^1_a = C(p,i) C(1,a) / C(p+1,i+a) B^{p+1}_{i+a}: K = i + a */
+        G.B.fv = G.B.fu + 2 * (p + 2);
+        for (int K = 0; K <= p + 1; K++) {
+            G.B.fu[2 * K] = (double)(p + 1 - K) / (p + 1);
+            G.B.fu[2 * K + 1] = (double)K / (p + 1);
+        }
+        for (int L = 0; L <= q + 1; L++) {
+            G.B.fv[2 * L] = (double)(q + 1 - L) / (q + 1);
+            G.B.fv[2 * L + 1] = (double)L / (q + 1);
+        }
+    }
     G.B.tmp = malloc((size_t)(pq + 1) * 4 * sizeof(double));
     G.B.args = malloc((size_t)(pq + 1) * sizeof(double));
     size_t mxu = s->nu - (size_t)p + 1, mxv = s->nv - (size_t)q + 1;
@@ -954,8 +1040,9 @@ conica_code conica_plot_surface_certified(const conica_bspline_surface *s,
     G.cu = malloc(mxu * sizeof *G.cu);
     G.cv = malloc(mxv * sizeof *G.cv);
     G.bb = malloc(mxu * mxv * sizeof *G.bb);
-    if (!G.B.net || !G.B.row || !G.B.h || !G.B.tmp || !G.B.args || !G.bu || !G.bv || !G.mu ||
-        !G.mv || !G.cu || !G.cv || !G.bb) {
+    G.wc = malloc(2 * mxu * mxv * sizeof *G.wc);
+    if (!G.B.net || !G.B.row || !G.B.rows || !G.B.fu || !G.B.h || !G.B.tmp || !G.B.args || !G.bu || !G.bv || !G.mu ||
+        !G.mv || !G.cu || !G.cv || !G.bb || !G.wc) {
         cert_grid_free(&G);
         return conica__fail(st, CONICA_ERR_NOMEM, 0, 0, "out of memory");
     }
@@ -997,8 +1084,11 @@ conica_code conica_plot_surface_certified(const conica_bspline_surface *s,
                               nlu, nlv, tol, set->max_points);
             break;
         }
-        double bu = block_bound(&G, wi, wj, G.cu[wi] + 1, G.cv[wj], INFINITY);
-        double bv = block_bound(&G, wi, wj, G.cu[wi], G.cv[wj] + 1, INFINITY);
+        /* the gain of a cell more either way, judged on the worst cell
+         * (the cell of the finer grid that holds its centre) */
+        const double *c = G.wc + 2 * (wi * G.nsv + wj);
+        double bu = cell_at(&G, wi, wj, G.cu[wi] + 1, G.cv[wj], c[0], c[1]);
+        double bv = cell_at(&G, wi, wj, G.cu[wi], G.cv[wj] + 1, c[0], c[1]);
         double gu = (wb - bu) / (double)nlv, gv = (wb - bv) / (double)nlu;
         /* far from the tolerance, several cells at once (CERT_JUMP) */
         double jump = CERT_JUMP * (sqrt(wb / tol) - 1);
