@@ -1289,6 +1289,41 @@ def several_splines_objects_and_edit_mode():
     xs = [min(p.co[0] for p in s.points) for s in c.data.splines if len(s.points) == 32]
     report("edit_mode_selected_spline_only", r == {"FINISHED"} and counts == [8, 32] and
            xs and xs[0] > 3.0 and mode == "EDIT_CURVE", "%r %r %r %s" % (r, counts, xs, mode))
+    sel = {len(s.points): [p.select for p in s.points] for s in c.data.splines}
+    report("edit_mode_selection_as_subdivide", all(sel[32]) and not any(sel[8]),
+           "selected: %d of 32, %d of 8" % (sum(sel[32]), sum(sel[8])))
+    # Every spline has a selected point (one only partly, one with a hidden
+    # point): every result point selected and shown, in both objects in the
+    # mode, whatever the spline type.
+    fresh_scene()
+    objs = []
+    for name in ("D", "E"):
+        ob = new_curve(name)
+        add_poly(ob.data, [(math.cos(i * math.pi / 4), math.sin(i * math.pi / 4), 0.0)
+                           for i in range(8)], True)
+        circle_bezier(ob.data)
+        objs.append(ob)
+    for ob in objs:
+        poly, bez = ob.data.splines[0], ob.data.splines[1]
+        for i, p in enumerate(poly.points):
+            p.select = i == 2
+        poly.points[5].hide = True
+        for i, bp in enumerate(bez.bezier_points):
+            bp.select_control_point = bp.select_left_handle = bp.select_right_handle = i == 0
+    select_only(*objs)
+    bpy.ops.object.mode_set(mode="EDIT")
+    r = bpy.ops.curve.conic_subdivide(levels=2, keep_corners=False)
+    bpy.ops.object.mode_set(mode="OBJECT")
+    flags = []
+    for ob in objs:
+        for s in ob.data.splines:
+            pts = s.points if s.type != "BEZIER" else s.bezier_points
+            flags += [(p.select if s.type != "BEZIER" else p.select_control_point, p.hide)
+                      for p in pts]
+    report("edit_mode_all_splines_selected_shown", r == {"FINISHED"} and len(flags) > 2 * 32 and
+           all(f == (True, False) for f in flags),
+           "%r, %d points, %d selected, %d hidden" %
+           (r, len(flags), sum(f[0] for f in flags), sum(f[1] for f in flags)))
 
 
 @case
