@@ -28,6 +28,9 @@
  * L0*L1, y^2 degenerate (the tangent runs through the other end point, as
  * on collinear runs); such patches use the general fit. */
 #define CONICA__FAST_MIN_SINE 1e-13
+/* ... and with settings.noise > 0 below this many rounding units of the
+ * patch's coordinates against the half edge (SFX(make_frame)). */
+#define CONICA__STRAIGHT_ULPS 4
 /* Irregular patches (S-shaped, or end normals that do not tilt apart):
  * the new point may lie at most this many edge lengths from the edge's
  * midpoint along its normal. Regular (convex) patches, which every conic

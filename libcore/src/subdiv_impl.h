@@ -41,6 +41,7 @@ typedef struct SFX(job) {
     int plain;               /* ablation: textbook quadratic, no FMA */
     int normalize;           /* ablation: normalise sampled normals every level */
     int closed;
+    int noisy;     /* settings.noise > 0: the input is rounded (SFX(make_frame)) */
     int maxgrow;   /* outer neighbours per side when growing a patch */
     size_t n;      /* points of the level being refined */
     const REAL *xy, *nxy;
@@ -67,6 +68,7 @@ typedef struct SFX(frame) {
     REAL hsx, hsy; /* half edge times sc (a power of two): |hs| in [1, 2*sqrt2) */
     REAL sc, hh;   /* the power of two, |hs|^2 */
     REAL ihh;      /* 1 / hh */
+    REAL straight; /* an end normal's sine along the chord at most this: none */
 } SFX(frame);
 
 /* ------------------------------------------------------------ arithmetic */
@@ -316,7 +318,13 @@ static int SFX(collect)(const SFX(job) *j, const SFX(frame) *f, size_t i, int ma
     return cnt;
 }
 
-/* Build the local frame of edge (i, i1); returns 0 for a zero-length edge. */
+/* Build the local frame of edge (i, i1); returns 0 for a zero-length edge.
+ * f->straight: CONICA__FAST_MIN_SINE; for rounded input (settings.noise >
+ * 0) at least CONICA__STRAIGHT_ULPS rounding units of the patch's
+ * coordinates against the half edge (SFX(on_line_tol)'s measure): the
+ * chord's own direction is that uncertain, so a smaller tilt of an end
+ * normal is the rounding of a straight run's points (float32 grids, and
+ * their in-plane rotation by Blender's add-on), whose sign says nothing. */
 static int SFX(make_frame)(const SFX(job) *j, size_t i, size_t i1, SFX(frame) *f)
 {
     const REAL *p = j->xy;
@@ -338,6 +346,12 @@ static int SFX(make_frame)(const SFX(job) *j, size_t i, size_t i1, SFX(frame) *f
     f->hsy = f->hy * f->sc;
     f->hh = FMA(f->hsx, f->hsx, f->hsy * f->hsy);
     f->ihh = 1 / f->hh;
+    f->straight = RC(CONICA__FAST_MIN_SINE);
+    if (j->noisy) {
+        REAL r = RC(CONICA__STRAIGHT_ULPS) * RC(CONICA__ON_LINE_EPS) *
+                 (1 + (M(fabs)(f->mx) + M(fabs)(f->my)) * f->sc);
+        f->straight = r > f->straight ? r : f->straight;
+    }
     return 1;
 }
 
@@ -390,15 +404,15 @@ static void SFX(local_pairs)(const SFX(job) *j, const SFX(frame) *f, const size_
  * Returns 1 with (*py, *gx, *gy), 0 when the line misses the conic, -1 when
  * the pencil is degenerate (caller uses the general fit).
  */
-static int SFX(fast_fit)(const SFX(job) *j, const SFX(pair) *P, int cnt, REAL *py, REAL *gx,
-                         REAL *gy)
+static int SFX(fast_fit)(const SFX(job) *j, const SFX(frame) *f, const SFX(pair) *P, int cnt,
+                         REAL *py, REAL *gx, REAL *gy)
 {
     REAL a0 = P[0].nx, b0 = P[0].ny, a1 = P[1].nx, b1 = P[1].ny;
     REAL mu, lam, A2, B1, C0, y, L0, L1, s;
     int k;
 
     /* A tangent through the other end point makes the pencil singular. */
-    if (M(fabs)(a0) <= RC(CONICA__FAST_MIN_SINE) || M(fabs)(a1) <= RC(CONICA__FAST_MIN_SINE))
+    if (M(fabs)(a0) <= f->straight || M(fabs)(a1) <= f->straight)
         return -1;
     if (cnt == 2) {
         mu = 1;
@@ -793,17 +807,16 @@ static REAL SFX(region_cross)(const SFX(pair) *P)
 }
 
 /* Edges with no convex region. 1: a tangent along the chord (to within
- * CONICA__FAST_MIN_SINE): the region is the chord itself. 2: the tangent
+ * f->straight, SFX(make_frame)): the region is the chord itself. 2: the tangent
  * rays meet on the side of the chord the polygon says the arc cannot bulge
  * to (an end normal that does not lie between its vertex's edge normals,
  * as p_11's given normal in example8): no convex arc joins the end pairs,
  * the curve must cross the chord (an S-shaped edge). 0: a proper
  * triangle. */
-static int SFX(no_region)(const SFX(pair) *P, int side)
+static int SFX(no_region)(const SFX(frame) *f, const SFX(pair) *P, int side)
 {
     REAL cr;
-    if (M(fabs)(P[0].nx) <= RC(CONICA__FAST_MIN_SINE) ||
-        M(fabs)(P[1].nx) <= RC(CONICA__FAST_MIN_SINE))
+    if (M(fabs)(P[0].nx) <= f->straight || M(fabs)(P[1].nx) <= f->straight)
         return 1;
     cr = SFX(region_cross)(P);
     return side != 0 && cr != 0 && (side > 0) != (cr > 0) ? 2 : 0;
@@ -898,7 +911,7 @@ static int SFX(long_arc)(const SFX(job) *j, const SFX(frame) *f, size_t i, size_
                          const SFX(pair) *P, int side, int o[2])
 {
     REAL ux, uy;
-    if ((side != 1 && side != -1) || j->n < 3 || SFX(no_region)(P, side) != 2)
+    if ((side != 1 && side != -1) || j->n < 3 || SFX(no_region)(f, P, side) != 2)
         return 0;
     /* The tangent (-b, a) of the frame normal (a, b) against the travel:
      * o = +1 when it runs along it (the normal to the right), -1 against. */
@@ -1006,7 +1019,7 @@ static int SFX(edge)(SFX(worker) *w, size_t i, REAL *oxy, REAL *on)
      * itself turns both ways, which no piece between inflection points
      * does) the fit is taken as the reference takes it, too. */
     side = SFX(bulge_side)(&f, P, cnt);
-    conflict = side == 2 ? 3 : SFX(no_region)(P, side);
+    conflict = side == 2 ? 3 : SFX(no_region)(&f, P, side);
     if (conflict == 1) {
         ok = 0;
         goto midpoint;
@@ -1027,7 +1040,7 @@ static int SFX(edge)(SFX(worker) *w, size_t i, REAL *oxy, REAL *on)
          * line to within rounding counting as neither) make it irregular. */
         regular = (P[0].nx * P[0].ny) * (P[1].nx * P[1].ny) <= 0 && side != 2;
         if (regular)
-            ok = SFX(fast_fit)(j, P, cnt, &y, &gx, &gy);
+            ok = SFX(fast_fit)(j, &f, P, cnt, &y, &gx, &gy);
         else
             ok = -1;
         if (ok > 0)
@@ -1069,7 +1082,7 @@ static int SFX(edge)(SFX(worker) *w, size_t i, REAL *oxy, REAL *on)
          * reference's lG2. The convex arc instead: the parabola of the
          * pencil, within CONICA__IRREGULAR_MAX_T edge lengths of the
          * midpoint, else the midpoint with the edge normal (below). */
-        ok = SFX(fast_fit)(j, P, 2, &y, &gx, &gy) > 0 &&
+        ok = SFX(fast_fit)(j, &f, P, 2, &y, &gx, &gy) > 0 &&
              M(fabs)(y) <= 2 * RC(CONICA__IRREGULAR_MAX_T);
         local = ok;
         if (ok)
@@ -1101,7 +1114,7 @@ static int SFX(edge)(SFX(worker) *w, size_t i, REAL *oxy, REAL *on)
         /* The parabola of the pencil (the quadratic Bezier through the
          * tangent lines' intersection) lies in the region whenever the
          * region is a proper triangle. */
-        ok = SFX(fast_fit)(j, P, 2, &y, &gx, &gy) > 0 && SFX(in_region)(P, side, y);
+        ok = SFX(fast_fit)(j, &f, P, 2, &y, &gx, &gy) > 0 && SFX(in_region)(P, side, y);
         local = ok;
         if (ok)
             w->fallbacks++;
@@ -1665,6 +1678,7 @@ static conica_code SFX(run)(const SFX(input) *in, const conica_subdiv_settings *
         job.plain = s->plain_quadratic != 0;
         job.normalize = s->normalize_normals != 0;
         job.closed = in->closed;
+        job.noisy = s->noise > 0;
         job.maxgrow = ref ? (s->patch_grow < 3 ? s->patch_grow : 3) : s->patch_grow;
         for (t = 0; t < nth; t++) {
             wk[t].job = &job;
