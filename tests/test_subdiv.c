@@ -884,6 +884,68 @@ TEST_CASE("inflection points on random stars", "[subdiv][inflection]")
     }
 }
 
+TEST_CASE("the inflection test decides alike from double and long double input",
+          "[subdiv][inflection][noise]")
+{
+    /* Double input decides the sides in double where the error bound of
+     * the orientation filter allows, long double input always in long
+     * double (SFX(needs_infl)): wavy open polylines far from the origin
+     * whose neighbours lie within 1e-20..1e-2 of the edge lines, some
+     * exactly on them, with noise 0, random, or a quarter of one of the
+     * distances (the noise test's own boundary). */
+    int trial;
+    size_t total = 0;
+    ct_rng_init(&rng, 77);
+    for (trial = 0; trial < 300; trial++) {
+        enum { NP = 24 };
+        double xy[2 * NP], off = pow(10, ct_rng_range(&rng, 0, 6)), h = ct_rng_range(&rng, 0.5, 2);
+        long double lxy[2 * NP];
+        size_t i;
+        conica_curve in, out;
+        conica_curvel lin, lout;
+        conica_subdiv_settings s = conica_subdiv_defaults();
+        conica_subdiv_info i1, i2;
+        for (i = 0; i < NP; i++) {
+            double d = ct_rng_uniform(&rng) < 0.15 ? 0 : pow(10, ct_rng_range(&rng, -20, -2));
+            xy[2 * i] = off + h * (double)i;
+            xy[2 * i + 1] = off + (ct_rng_uniform(&rng) < 0.5 ? -d : d);
+        }
+        if (trial % 3 == 1)
+            s.noise = pow(10, ct_rng_range(&rng, -18, -4));
+        else if (trial % 3 == 2)
+            s.noise = fabs(xy[2 * (trial % NP) + 1] - off) / 4 * h;
+        for (i = 0; i < 2 * NP; i++)
+            lxy[i] = xy[i];
+        s.levels = 1;
+        s.estimate_normals = 1;
+        in.n = in.cap = NP;
+        in.xy = xy;
+        in.nxy = NULL;
+        in.closed = 0;
+        lin.n = lin.cap = NP;
+        lin.xy = lxy;
+        lin.nxy = NULL;
+        lin.closed = 0;
+        conica_curve_init(&out);
+        conica_curvel_init(&lout);
+        conica_subdiv_info_init(&i1);
+        conica_subdiv_info_init(&i2);
+        INFO("trial %d: offset %g noise %g", trial, off, s.noise);
+        REQUIRE(conica_subdivide(&in, &s, &out, &i1, NULL) == CONICA_OK);
+        REQUIRE(conica_subdivide_curvel(&lin, &s, &lout, &i2, NULL) == CONICA_OK);
+        REQUIRE_EQ_U(i1.inflections, i2.inflections);
+        for (i = 0; i < i1.inflections; i++)
+            CHECK_EQ_U(i1.inflection_index[i], i2.inflection_index[i]);
+        total += i1.inflections;
+        conica_subdiv_info_free(&i1);
+        conica_subdiv_info_free(&i2);
+        conica_curve_free(&out);
+        conica_curvel_free(&lout);
+    }
+    INFO("%zu inflection points in all", total);
+    CHECK_GT((double)total, 100.0);
+}
+
 /* Winding number of the closed polygon c about the origin. */
 static double winding(const conica_curve *c)
 {

@@ -81,6 +81,28 @@ static long double conica__diffprodl(long double a, long double b, long double c
     return ((p - w) + ep) - ew;
 }
 
+/* Which side of the edge line p -> q the point r lies on, as the long
+ * double test of SFX(needs_infl) decides it, from the double filter of
+ * conica__orient2d_approx where its error bound allows: +1 / -1 (left /
+ * right, farther than lim from the line times |q - p|), 0 within lim
+ * (only for lim > 0), 2 when the filter cannot tell (then the long double
+ * test decides). The long double determinant is within a rounding unit of
+ * the exact one, far below the filter's bound, and lim here within
+ * CONICA__SIDE_MARGIN of the long double one. */
+#define CONICA__SIDE_MARGIN 0x1p-45
+#define CONICA__SIDE_TINY 0x1p-1060
+static int conica__side_filter(const double *p, const double *q, const double *r, double lim)
+{
+    double err, e = conica__orient2d_approx(p, q, r, &err), mag = fabs(e);
+    if (!(err < INFINITY) || !(lim < INFINITY))
+        return 2;
+    if (lim > 0 && mag + 2 * err < lim * (1 - CONICA__SIDE_MARGIN) - CONICA__SIDE_TINY)
+        return 0;
+    if (mag - 2 * err > lim * (1 + CONICA__SIDE_MARGIN) + CONICA__SIDE_TINY)
+        return e > 0 ? 1 : -1;
+    return 2;
+}
+
 /* 2^-ilogb(mag) for a finite mag > 0 (the frame's scale, SFX(make_frame)):
  * built from mag's exponent bits where both are normal doubles, which is
  * exactly what ldexp(1, -ilogb(mag)) gives, without its two library calls

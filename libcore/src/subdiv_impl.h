@@ -1307,6 +1307,21 @@ static int SFX(needs_infl)(const SFX(input) *in, int ref, size_t i)
         d1 = nx * (x3 - x1) + ny * (y3 - y1);
         d2 = nx * (x0 - x1) + ny * (y0 - y1);
     } else {
+        if (in->xyd) {
+            /* Double input: the filter decides nearly every edge, the long
+             * double test below only those it cannot. */
+            const double *p = in->xyd;
+            double ex = p[2 * c] - p[2 * i], ey = p[2 * c + 1] - p[2 * i + 1], lim = 0;
+            int s1, s2;
+            if (in->noise > 0)
+                lim = CONICA__NOISE_SIDE * in->noise * sqrt(ex * ex + ey * ey);
+            s1 = conica__side_filter(p + 2 * i, p + 2 * c, p + 2 * d, lim);
+            s2 = s1 == 0 ? 0 : conica__side_filter(p + 2 * i, p + 2 * c, p + 2 * a, lim);
+            if (s1 == 0 || s2 == 0)
+                return 0;
+            if (s1 != 2 && s2 != 2)
+                return s1 != s2;
+        }
         /* Differences of two doubles are exact in long double (short of an
          * exponent gap over 11 bits), the products exact by Dekker. */
         long double ex = (long double)x2 - (long double)x1, ey = (long double)y2 - (long double)y1;
@@ -1435,11 +1450,15 @@ static void SFX(infl_point)(const SFX(input) *in, int ref, size_t i, REAL *pxy, 
     }
 }
 
-static size_t SFX(count_infl)(const SFX(input) *in, int ref)
+/* The edges that need an inflection point: need[i] for edge (i, i+1),
+ * their number returned (SFX(load) reads the flags). */
+static size_t SFX(count_infl)(const SFX(input) *in, int ref, unsigned char *need)
 {
     size_t i, c = 0, ne = in->closed ? in->n : in->n - 1;
-    for (i = 0; i < ne; i++)
-        c += (size_t)SFX(needs_infl)(in, ref, i);
+    for (i = 0; i < ne; i++) {
+        need[i] = (unsigned char)SFX(needs_infl)(in, ref, i);
+        c += need[i];
+    }
     return c;
 }
 
@@ -1547,10 +1566,11 @@ static size_t SFX(infl_at_vertex)(const SFX(input) *in, size_t i, REAL *pxy, REA
     return v;
 }
 
-/* Level 0: the input with unit normals, plus inflection points if asked.
- * Writes the flags (if flags) and the level-0 indices of inserted points. */
-static size_t SFX(load)(const SFX(input) *in, int ref, int insert, REAL *xy, REAL *nn,
-                        unsigned char *flags, size_t *infl_idx)
+/* Level 0: the input with unit normals, plus inflection points on the
+ * edges need (SFX(count_infl)) marks, NULL for none. Writes the flags (if
+ * flags) and the level-0 indices of inserted points. */
+static size_t SFX(load)(const SFX(input) *in, int ref, const unsigned char *need, REAL *xy,
+                        REAL *nn, unsigned char *flags, size_t *infl_idx)
 {
     size_t i, k = 0, ni = 0;
     int flag_next = 0, flag_first = 0;
@@ -1562,7 +1582,7 @@ static size_t SFX(load)(const SFX(input) *in, int ref, int insert, REAL *xy, REA
             flags[k] = (unsigned char)flag_next;
         flag_next = 0;
         k++;
-        if (insert && (in->closed || i + 1 < in->n) && SFX(needs_infl)(in, ref, i)) {
+        if (need && (in->closed || i + 1 < in->n) && need[i]) {
             size_t v = ref ? (size_t)-1 : SFX(infl_at_vertex)(in, i, &xy[2 * k], &nn[2 * k]);
             if (v == (size_t)-1) {
                 SFX(infl_point)(in, ref, i, &xy[2 * k], &nn[2 * k]);
@@ -1604,7 +1624,8 @@ static conica_code SFX(run)(const SFX(input) *in, const conica_subdiv_settings *
     int L = s->levels, lev;
     int ref = s->reference_compatible != 0;
     int insert = s->insert_inflections && L > 0;
-    size_t ninfl = insert ? SFX(count_infl)(in, ref) : 0;
+    unsigned char *need = insert ? malloc(in->n) : NULL; /* SFX(count_infl) */
+    size_t ninfl = need ? SFX(count_infl)(in, ref, need) : 0;
     size_t n0 = in->n + ninfl, N, NB = 0, i;
     REAL *A = NULL, *An = NULL, *B = NULL, *Bn = NULL;
     unsigned char *F[2] = {NULL, NULL}; /* inflection flags, double-buffered like A/B */
@@ -1618,14 +1639,20 @@ static conica_code SFX(run)(const SFX(input) *in, const conica_subdiv_settings *
                              : 1, t;
     conica_code code = CONICA_OK;
 
+    if (insert && !need)
+        return conica__fail(st, CONICA_ERR_NOMEM, 0, 0, "out of memory for %zu input points",
+                            in->n);
     N = conica_subdiv_count(n0, in->closed, L);
-    if (N == 0 || N > s->max_points)
+    if (N == 0 || N > s->max_points || N > ((size_t)-1) / (2 * sizeof(REAL))) {
+        free(need);
+        if (N > 0 && N <= s->max_points)
+            return conica__fail(st, CONICA_ERR_LIMIT, 0, 0, "output of %zu points is too large",
+                                N);
         return conica__fail(st, CONICA_ERR_LIMIT, 0, 0,
                             "%d levels on %zu points (%zu inflection points added) would make "
                             "more than the %zu points allowed (max_points)",
                             L, in->n, ninfl, s->max_points);
-    if (N > ((size_t)-1) / (2 * sizeof(REAL)))
-        return conica__fail(st, CONICA_ERR_LIMIT, 0, 0, "output of %zu points is too large", N);
+    }
     if (L > 0)
         NB = conica_subdiv_count(n0, in->closed, L - 1);
     A = malloc(2 * N * sizeof *A);
@@ -1656,6 +1683,7 @@ static conica_code SFX(run)(const SFX(input) *in, const conica_subdiv_settings *
         free(F[0]);
         free(F[1]);
         free(infl);
+        free(need);
 #if REAL_IS_DOUBLE
         for (t = 0; t < nth; t++)
             conica__svdws_free(&ws[t]);
@@ -1667,7 +1695,9 @@ static conica_code SFX(run)(const SFX(input) *in, const conica_subdiv_settings *
      * lands in A (double buffering, no allocation per level or point). */
     {
         REAL *sx = (L % 2) ? B : A, *sn = (L % 2) ? Bn : An;
-        size_t cur = SFX(load)(in, ref, insert, sx, sn, L > 0 ? F[L % 2] : NULL, infl);
+        size_t cur = SFX(load)(in, ref, need, sx, sn, L > 0 ? F[L % 2] : NULL, infl);
+
+        free(need);
 
         job.wev = (REAL)s->w_edge_point;
         job.wen = (REAL)s->w_edge_normal;
