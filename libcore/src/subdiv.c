@@ -52,6 +52,8 @@
  * each (below that, thread start-up costs more than it saves). */
 #define CONICA__MAX_THREADS 16
 #define CONICA__THREAD_MIN_EDGES 4096
+/* Edges per batch of SFX(level) (prepare, fit, finish: see SFX(edge_prep)). */
+#define CONICA__EDGE_BATCH 8
 /* One-sided Jacobi: sweeps before giving up (converges in < 10 here). */
 #define CONICA__JACOBI_MAX_SWEEPS 60
 /* Dekker's splitter for the 64-bit significand of x87 long double: 2^32+1. */

@@ -957,30 +957,49 @@ static int SFX(long_arc_point)(const SFX(pair) *P, const int o[2], int want, REA
     return isfinite(*gx) && isfinite(*gy) && !(*gx == 0 && *gy == 0);
 }
 
-/* Edge point of edge (i, i+1) in default mode (local frame). Returns 1
- * when the point is an inflection point (an S-shaped edge's midpoint),
- * which the next levels treat as seed 000 treats those of eq. (9). */
-static int SFX(edge)(SFX(worker) *w, size_t i, REAL *oxy, REAL *on)
-{
-    const SFX(job) *j = w->job;
-    size_t idx[CONICA__FIT_MAX_PAIRS], i1;
+/*
+ * Edge point of edge (i, i+1) in default mode (local frame), in three
+ * steps so that SFX(level) can run the closed-form fits of several edges
+ * back to back (their long chains of dependent divisions and square roots
+ * then overlap in the processor; each edge's arithmetic is unchanged):
+ * SFX(edge_prep) classifies the patch, the pencil fit of SFX(fast_fit) runs
+ * where it says so (EDGE_FAST), SFX(edge_finish) does the rest. The state
+ * between them: */
+enum { SFX(EDGE_DONE), SFX(EDGE_MIDPOINT), SFX(EDGE_FAST), SFX(EDGE_REST) };
+typedef struct SFX(estate) {
+    size_t idx[CONICA__FIT_MAX_PAIRS];
     SFX(pair) P[CONICA__FIT_MAX_PAIRS];
     SFX(frame) f;
-    REAL y = 0, gx = 0, gy = 0, ox = 0, oy = 0, nx = 0, ny = 0;
-    int cnt, ok = 0, g, maxl = 1, maxr = 1, regular = 1, local = 0, side, conflict, infl = 0;
-    int want = 0, orient[2] = {0, 0};
+    REAL y, gx, gy; /* the fast fit's result */
+    int stage, cnt, ok, regular, side, conflict, want, orient[2];
+} SFX(estate);
 
-    if (j->ref) {
-        SFX(edge_ref)(w, i, oxy, on);
-        return 0;
-    }
+/* Up to the fit: the patch, its frame and pairs, and its class. Stage
+ * EDGE_DONE when the point is already stored (coincident end points). */
+static void SFX(edge_prep)(SFX(worker) *w, size_t i, SFX(estate) *st, REAL *oxy, REAL *on)
+{
+    const SFX(job) *j = w->job;
+    size_t *idx = st->idx, i1;
+    SFX(pair) *P = st->P;
+    int cnt, ok = 0, maxl = 1, maxr = 1, regular = 1, side, conflict;
+    int want = 0;
+
+    st->orient[0] = st->orient[1] = 0;
+    st->y = st->gx = st->gy = 0;
+    st->cnt = 0;
+    st->ok = 0;
+    st->regular = 1;
+    st->side = 0;
+    st->conflict = 0;
+    st->want = 0;
     i1 = SFX(next)(j, i);
-    if (!SFX(make_frame)(j, i, i1, &f)) {
+    if (!SFX(make_frame)(j, i, i1, &st->f)) {
         /* Coincident end points (rounding at extreme levels): repeat the
          * point; its normal is as good as any. */
         w->fallbacks++;
         SFX(store)(j, j->xy[2 * i], j->xy[2 * i + 1], j->nxy[2 * i], j->nxy[2 * i + 1], oxy, on);
-        return 0;
+        st->stage = SFX(EDGE_DONE);
+        return;
     }
     /* Seed 000 after (10): next to an inflection point the patch is the
      * inflection point, the edge's other end and two neighbours beyond it.
@@ -993,8 +1012,8 @@ static int SFX(edge)(SFX(worker) *w, size_t i, REAL *oxy, REAL *on)
         if (j->infl[i1])
             maxl = 2;
     }
-    cnt = SFX(collect)(j, &f, i, maxl, maxr, idx);
-    SFX(local_pairs)(j, &f, idx, cnt, P);
+    cnt = SFX(collect)(j, &st->f, i, maxl, maxr, idx);
+    SFX(local_pairs)(j, &st->f, idx, cnt, P);
     /* The pencil describes a convex arc between the end points; it is used
      * when the patch looks like one: the end normals do not tilt the same
      * way (a0*b0 and a1*b1 not of one strict sign, whatever the normals'
@@ -1018,13 +1037,13 @@ static int SFX(edge)(SFX(worker) *w, size_t i, REAL *oxy, REAL *on)
      * neighbours lie on both sides of the edge (conflict 3: the polygon
      * itself turns both ways, which no piece between inflection points
      * does) the fit is taken as the reference takes it, too. */
-    side = SFX(bulge_side)(&f, P, cnt);
-    conflict = side == 2 ? 3 : SFX(no_region)(&f, P, side);
+    side = SFX(bulge_side)(&st->f, P, cnt);
+    conflict = side == 2 ? 3 : SFX(no_region)(&st->f, P, side);
     if (conflict == 1) {
-        ok = 0;
-        goto midpoint;
+        st->stage = SFX(EDGE_MIDPOINT); /* want 0: oriented by the end normals */
+        return;
     }
-    if (conflict == 2 && SFX(long_arc)(j, &f, i, i1, P, side, orient)) {
+    if (conflict == 2 && SFX(long_arc)(j, &st->f, i, i1, P, side, st->orient)) {
         /* A long arc (SFX(long_arc)): its region is the wedge of the chord
          * and the two tangent rays, unbounded on `side`, which
          * SFX(in_region) tests as it tests a triangle; the point is the
@@ -1035,17 +1054,42 @@ static int SFX(edge)(SFX(worker) *w, size_t i, REAL *oxy, REAL *on)
         conflict = 0;
         regular = 0;
     }
+    st->stage = SFX(EDGE_REST);
     if (j->fast && want == 0) {
         /* Outer neighbours on both sides (side 2, with points on the edge
          * line to within rounding counting as neither) make it irregular. */
         regular = (P[0].nx * P[0].ny) * (P[1].nx * P[1].ny) <= 0 && side != 2;
         if (regular)
-            ok = SFX(fast_fit)(j, &f, P, cnt, &y, &gx, &gy);
+            st->stage = SFX(EDGE_FAST); /* ok = SFX(fast_fit)(...) */
         else
             ok = -1;
-        if (ok > 0)
-            local = 1;
     }
+    st->cnt = cnt;
+    st->ok = ok;
+    st->regular = regular;
+    st->side = side;
+    st->conflict = conflict;
+    st->want = want;
+}
+
+/* The rest, from the fit's result on (stage EDGE_FAST: st->ok, y, gx, gy
+ * from SFX(fast_fit)). Returns 1 when the point is an inflection point (an
+ * S-shaped edge's midpoint), which the next levels treat as seed 000
+ * treats those of eq. (9). */
+static int SFX(edge_finish)(SFX(worker) *w, size_t i, SFX(estate) *st, REAL *oxy, REAL *on)
+{
+    const SFX(job) *j = w->job;
+    size_t *idx = st->idx;
+    const SFX(pair) *P = st->P;
+    SFX(frame) f = st->f;
+    REAL y = st->y, gx = st->gx, gy = st->gy, ox = 0, oy = 0, nx = 0, ny = 0;
+    int cnt = st->cnt, ok = st->ok, g, regular = st->regular, local = 0, side = st->side;
+    int conflict = st->conflict, infl = 0, want = st->want, *orient = st->orient;
+
+    if (st->stage == SFX(EDGE_MIDPOINT))
+        goto midpoint;
+    if (st->stage == SFX(EDGE_FAST) && ok > 0)
+        local = 1;
     if (!j->fast || ok < 0 || want != 0)
         ok = SFX(svd_tframe)(w, &f, idx, cnt, !regular, want, &y, &ox, &oy, &nx, &ny);
     if (ok > 0 && conflict == 0 && !SFX(in_region)(P, side, y))
@@ -1074,7 +1118,7 @@ static int SFX(edge)(SFX(worker) *w, size_t i, REAL *oxy, REAL *on)
         if (ok)
             w->fallbacks++;
     }
-    if (!ok && conflict >= 2 && j->infl && (j->infl[i] || j->infl[i1])) {
+    if (!ok && conflict >= 2 && j->infl && (j->infl[i] || j->infl[SFX(next)(j, i)])) {
         /* An S-shaped edge next to an inflection point: the inflection is
          * already there, and a second one at the midpoint would start a
          * cascade (every level's edge next to the new inflection point is
@@ -1169,19 +1213,38 @@ oriented : {
 static void SFX(level)(SFX(worker) *w, REAL *dxy, REAL *dn, size_t e_begin, size_t e_end)
 {
     const SFX(job) *j = w->job;
-    size_t e;
-    for (e = e_begin; e < e_end; e++) {
-        int fl;
-        dxy[4 * e] = j->xy[2 * e];
-        dxy[4 * e + 1] = j->xy[2 * e + 1];
-        dn[4 * e] = j->nxy[2 * e];
-        dn[4 * e + 1] = j->nxy[2 * e + 1];
-        if (j->dinfl)
-            j->dinfl[2 * e] = j->infl[e];
-        if (e + 1 < j->n || j->closed) {
-            fl = SFX(edge)(w, e, dxy + 4 * e + 2, dn + 4 * e + 2);
+    SFX(estate) st[CONICA__EDGE_BATCH];
+    size_t e, b, e1;
+    for (b = e_begin; b < e_end; b = e1) {
+        e1 = e_end - b > CONICA__EDGE_BATCH ? b + CONICA__EDGE_BATCH : e_end;
+        for (e = b; e < e1; e++) {
+            dxy[4 * e] = j->xy[2 * e];
+            dxy[4 * e + 1] = j->xy[2 * e + 1];
+            dn[4 * e] = j->nxy[2 * e];
+            dn[4 * e + 1] = j->nxy[2 * e + 1];
             if (j->dinfl)
-                j->dinfl[2 * e + 1] = (unsigned char)fl;
+                j->dinfl[2 * e] = j->infl[e];
+            st[e - b].stage = SFX(EDGE_DONE);
+            if (e + 1 < j->n || j->closed) {
+                if (j->ref)
+                    SFX(edge_ref)(w, e, dxy + 4 * e + 2, dn + 4 * e + 2);
+                else
+                    SFX(edge_prep)(w, e, &st[e - b], dxy + 4 * e + 2, dn + 4 * e + 2);
+                if (j->dinfl)
+                    j->dinfl[2 * e + 1] = 0;
+            }
+        }
+        for (e = b; e < e1; e++) {
+            SFX(estate) *t = &st[e - b];
+            if (t->stage == SFX(EDGE_FAST))
+                t->ok = SFX(fast_fit)(j, &t->f, t->P, t->cnt, &t->y, &t->gx, &t->gy);
+        }
+        for (e = b; e < e1; e++) {
+            if (st[e - b].stage != SFX(EDGE_DONE)) {
+                int fl = SFX(edge_finish)(w, e, &st[e - b], dxy + 4 * e + 2, dn + 4 * e + 2);
+                if (j->dinfl)
+                    j->dinfl[2 * e + 1] = (unsigned char)fl;
+            }
         }
     }
 }
