@@ -14,6 +14,7 @@
 #include <string.h>
 
 #include "conica/subdiv.h"
+#include "fidelity.h"
 #include "ts_fairness.h"
 
 #define PI_L 3.14159265358979323846264338327950288L
@@ -1227,14 +1228,11 @@ static double f32(double x)
     return f;
 }
 
-/* Largest | |p| - 1 | over the points of c. */
+/* Largest | |p| - 1 | over n points (the unit circle's radial error). */
 static double radial_max(const double *xy, size_t n)
 {
-    double e = 0;
-    size_t i;
-    for (i = 0; i < n; i++)
-        e = fmax(e, fabs(hypot(xy[2 * i], xy[2 * i + 1]) - 1));
-    return e;
+    static const double origin[2] = {0, 0};
+    return ts_ellipse_radial_error(xy, n, origin, 1, 1, 0, NULL);
 }
 
 TEST_CASE("a float32 circle decides alike in every rotation (settings.noise)",
