@@ -8,6 +8,14 @@
  *   bench_subdiv --case circle   one run of one case (for /usr/bin/time -v)
  *   bench_subdiv --case ellipse|rose [--precise]
  *   bench_subdiv --repeats 50    best of 50 instead of 5 (on a loaded machine)
+ *
+ * Then rounded input (settings.noise): the 1000-point convex spline of
+ * bench/bench_blender.py's make_curve rounded to float32 at k = 3 (the
+ * add-on's edit-mode Conic Subdivide, best of at least 50), and 20 000
+ * points of the unit circle rounded to float32 or to 7 significant digits,
+ * unrotated and rotated (best of at most 3).
+ *   bench_subdiv --case blender  the spline's row alone (--case noisy: the
+ *                                circles' rows alone)
  */
 #include <math.h>
 #include <stdio.h>
@@ -16,6 +24,7 @@
 #include <time.h>
 
 #include "conica/subdiv.h"
+#include "fidelity.h"
 
 #define PI_L 3.14159265358979323846264338327950288L
 static int repeats = 5; /* best of 5 (issue 3); --repeats N under load */
@@ -209,7 +218,8 @@ static int one_case(const char *name, int precise)
                 : strcmp(name, "ellipse") == 0 ? S_ELLIPSE
                 : strcmp(name, "rose") == 0 ? S_ROSE : -1;
     if (which < 0) {
-        fprintf(stderr, "bench_subdiv: unknown case '%s' (circle, ellipse, rose)\n", name);
+        fprintf(stderr, "bench_subdiv: unknown case '%s' (circle, ellipse, rose, blender, noisy)\n",
+                name);
         return 2;
     }
     speed_input(which, &in, &s.levels);
@@ -226,6 +236,122 @@ static int one_case(const char *name, int precise)
     return 0;
 }
 
+/* ------------------------------------------------------ rounded input */
+
+static double round_f32(double x)
+{
+    volatile float f = (float)x; /* a store: gcc 12 -O2 has dropped a plain cast */
+    return f;
+}
+
+static double round_dec7(double x)
+{
+    char buf[32];
+    snprintf(buf, sizeof buf, "%.7g", x);
+    return strtod(buf, NULL);
+}
+
+/* Largest | |p| - 1 | over n points (the test support's radial error). */
+static double radial_max(const double *xy, size_t n)
+{
+    static const double origin[2] = {0, 0};
+    return ts_ellipse_radial_error(xy, n, origin, 1, 1, 0, NULL);
+}
+
+/* One row: which 0 the Blender spline, 1 the float32 circle, 2 the 7-digit
+ * circle; angle rotates the circle (before the 7-digit rounding, after the
+ * float32 one: the add-on rotates float32 points into their plane). */
+static void noisy_row(int which, double angle, int levels, double noise, int reps)
+{
+    size_t n = which == 0 ? 1000 : 20000, i;
+    double *xy = malloc(2 * n * sizeof *xy), c = cos(angle), sn = sin(angle), best = 1e300;
+    conica_curve in, out;
+    conica_subdiv_settings s = conica_subdiv_defaults();
+    conica_subdiv_info info;
+    conica_status st;
+    int r;
+    if (!xy)
+        exit(1);
+    for (i = 0; i < n; i++) {
+        double t = 2 * (double)PI_L * (double)i / (double)n, x, y;
+        if (which == 0) {
+            x = round_f32(3.0 * cos(t));
+            y = round_f32(2.0 * sin(t) + 0.2 * pow(sin(t), 3));
+        } else {
+            x = cos(t);
+            y = sin(t);
+            if (which == 1) {
+                x = round_f32(x);
+                y = round_f32(y);
+            }
+            xy[2 * i] = c * x - sn * y;
+            y = sn * x + c * y;
+            x = xy[2 * i];
+            if (which == 2) {
+                x = round_dec7(x);
+                y = round_dec7(y);
+            }
+        }
+        xy[2 * i] = x;
+        xy[2 * i + 1] = y;
+    }
+    in.n = in.cap = n;
+    in.xy = xy;
+    in.nxy = NULL;
+    in.closed = 1;
+    s.levels = levels;
+    s.noise = noise;
+    s.estimate_normals = 1;
+    s.normal_method = CONICA_NORMALS_CIRCLE; /* as the curve front end (path.c) */
+    conica_curve_init(&out);
+    conica_subdiv_info_init(&info);
+    for (r = 0; r < reps; r++) {
+        double t0 = now(), t;
+        if (conica_subdivide(&in, &s, &out, &info, &st) != CONICA_OK) {
+            printf("error: %s\n", st.message);
+            exit(1);
+        }
+        t = now() - t0;
+        best = t < best ? t : best;
+    }
+    if (which == 0)
+        printf("| 1000-point convex spline (float32), k=%d, noise %.3g | %zu | %.3f ms | %.3f | "
+               "%zu / %zu / %zu | - |\n",
+               levels, noise, out.n, best * 1e3, best * 1e6 / (double)info.edge_points,
+               info.patch_grown, info.midpoint_fallbacks, info.inflections);
+    else
+        printf("| circle 20 000 pts (%s), rotated %.4g, k=%d, noise %.3g | %zu | %.3f s | %.3f | "
+               "%zu / %zu / %zu | %.3g / %.3g |\n",
+               which == 1 ? "float32" : "7 digits", angle, levels, noise, out.n, best,
+               best * 1e6 / (double)info.edge_points, info.patch_grown, info.midpoint_fallbacks,
+               info.inflections, radial_max(out.xy, out.n), radial_max(xy, n));
+    conica_subdiv_info_free(&info);
+    conica_curve_free(&out);
+    free(xy);
+}
+
+static void noisy_tables(int rows)
+{
+    /* The add-on's rotation of a circle in Blender's XY plane into its
+     * best-fit plane (the basis u = (-0.0792, 0.9969), v = (-0.9969,
+     * -0.0792) that _conica computes for it). */
+    double add_on = atan2(-0.99685585384298858, -0.079236397311880383);
+    int big = repeats < 3 ? repeats : 3;
+    printf("\nRounded input (settings.noise): best of %d (the spline: of %d), estimated circle "
+           "normals\n",
+           big, repeats > 50 ? repeats : 50);
+    printf("| case | output points | time | us per edge point | grown / last resorts / "
+           "inflections | radial error max: output / input |\n|---|---|---|---|---|---|\n");
+    if (rows & 1)
+        noisy_row(0, 0, 3, ldexp(1.0, -23), repeats > 50 ? repeats : 50);
+    if (rows & 2) {
+        noisy_row(1, 0, 7, 6e-8, big);
+        noisy_row(1, add_on, 7, 6e-8, big);
+        noisy_row(2, 0, 6, 5e-8, big);
+        noisy_row(2, add_on, 6, 5e-8, big);
+    }
+}
+
 int main(int argc, char **argv)
 {
     int i, c, k, m;
@@ -240,9 +366,14 @@ int main(int argc, char **argv)
         else if (strcmp(argv[i], "--repeats") == 0 && i + 1 < argc && atoi(argv[i + 1]) > 0)
             repeats = atoi(argv[++i]);
         else {
-            fprintf(stderr, "usage: bench_subdiv [--case circle|ellipse|rose] [--precise] [--repeats N]\n");
+            fprintf(stderr, "usage: bench_subdiv [--case circle|ellipse|rose|blender|noisy] "
+                            "[--precise] [--repeats N]\n");
             return 2;
         }
+    }
+    if (one && (strcmp(one, "blender") == 0 || strcmp(one, "noisy") == 0)) {
+        noisy_tables(strcmp(one, "blender") == 0 ? 1 : 2);
+        return 0;
     }
     if (one)
         return one_case(one, precise);
@@ -282,5 +413,6 @@ int main(int argc, char **argv)
                    m >> 1 ? ", reference-compatible" : "", 4 + 4 * k, E, Em, E0, Em0);
         }
     printf("(the reference itself: relative max error 3.4e-2 / 4.0e-2 at k = 4 / 12 for r = 5e5)\n");
+    noisy_tables(3);
     return 0;
 }

@@ -14,9 +14,10 @@ DEMO_DEPS += $(BENCH_ABLATION)
 
 # ---- bench_subdiv (issue 3): speed and accuracy of conica_subdivide
 BENCH_SUBDIV := $(BUILD)/bench/bench_subdiv
-$(BENCH_SUBDIV): $(BUILD)/obj/bench/bench_subdiv.o $(CORE_A)
+$(BUILD)/obj/bench/bench_subdiv.o: CPPFLAGS += -Itests/support
+$(BENCH_SUBDIV): $(BUILD)/obj/bench/bench_subdiv.o $(BUILD)/lib/libconica_testsupport.a $(CORE_A)
 	@mkdir -p $(@D)
-	$(CC) $(LDFLAGS) -o $@ $< $(CORE_A) $(CORE_LIBS)
+	$(CC) $(LDFLAGS) -o $@ $< $(BUILD)/lib/libconica_testsupport.a $(CORE_A) $(CORE_LIBS)
 BENCH_BINS += $(BENCH_SUBDIV)
 
 # ---- bench_svg (issue 6): SVG layer (XML + path I/O) against the geometry it feeds

@@ -23,6 +23,11 @@ void conica__ok(conica_status *st);
  * of a -> b), exact for finite input: a floating-point filter, then an
  * exact expansion sum of the six products (orient.c). */
 int conica__orient2d(const double *a, const double *b, const double *c);
+/* The same determinant in double, and in *err a bound on its error (inf or
+ * NaN where a product overflows): its sign is certain where |det| > *err,
+ * and |det| compares with a threshold t certainly where ||det| - t| > *err
+ * (orient.c). */
+double conica__orient2d_approx(const double *a, const double *b, const double *c, double *err);
 
 /* Least and largest value of the scalar Bézier s_0..s_p (1 <= p <= 3) over
  * [u0, u1] within [0, 1], exactly, and where (ulo, uhi may be NULL):

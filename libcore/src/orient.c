@@ -33,19 +33,27 @@ static size_t grow(double *e, size_t m, double b)
     return k;
 }
 
-int conica__orient2d(const double *a, const double *b, const double *c)
+/* Underflow: products below the normal range lose up to half a unit of
+ * the smallest subnormal each; a few such units cover both. */
+#define CONICA__ORIENT_TINY 0x1p-1070
+
+double conica__orient2d_approx(const double *a, const double *b, const double *c, double *err)
 {
-    /* det = (ax-cx)(by-cy) - (ay-cy)(bx-cx); Shewchuk's ccwerrboundA filter. */
+    /* det = (ax-cx)(by-cy) - (ay-cy)(bx-cx); Shewchuk's ccwerrboundA
+     * (3 + 16 eps) eps bounds the error of all five roundings. */
     double l = (a[0] - c[0]) * (b[1] - c[1]);
     double r = (a[1] - c[1]) * (b[0] - c[0]);
-    double det = l - r;
-    double bound = 3.3306690738754716e-16 * (fabs(l) + fabs(r));
+    *err = 3.3306690738754716e-16 * (fabs(l) + fabs(r)) + CONICA__ORIENT_TINY;
+    return l - r;
+}
+
+int conica__orient2d(const double *a, const double *b, const double *c)
+{
+    double bound, det = conica__orient2d_approx(a, b, c, &bound);
     if (det > bound)
         return 1;
     if (-det > bound)
         return -1;
-    if (l == 0.0 && r == 0.0)
-        return 0;
     /* Exact: det = ax by - ax cy - cx by - ay bx + ay cx + cy bx, each
      * product split into hi + lo with fma (exact for finite, non-underflowing
      * values), the twelve terms summed as an expansion; its sign is the sign

@@ -28,6 +28,9 @@
  * L0*L1, y^2 degenerate (the tangent runs through the other end point, as
  * on collinear runs); such patches use the general fit. */
 #define CONICA__FAST_MIN_SINE 1e-13
+/* ... and with settings.noise > 0 below this many rounding units of the
+ * patch's coordinates against the half edge (SFX(make_frame)). */
+#define CONICA__STRAIGHT_ULPS 4
 /* Irregular patches (S-shaped, or end normals that do not tilt apart):
  * the new point may lie at most this many edge lengths from the edge's
  * midpoint along its normal. Regular (convex) patches, which every conic
@@ -49,6 +52,8 @@
  * each (below that, thread start-up costs more than it saves). */
 #define CONICA__MAX_THREADS 16
 #define CONICA__THREAD_MIN_EDGES 4096
+/* Edges per batch of SFX(level) (prepare, fit, finish: see SFX(edge_prep)). */
+#define CONICA__EDGE_BATCH 8
 /* One-sided Jacobi: sweeps before giving up (converges in < 10 here). */
 #define CONICA__JACOBI_MAX_SWEEPS 60
 /* Dekker's splitter for the 64-bit significand of x87 long double: 2^32+1. */
@@ -76,6 +81,28 @@ static long double conica__diffprodl(long double a, long double b, long double c
     conica__two_prodl(d, c, &w, &ew);
     conica__two_prodl(a, b, &p, &ep);
     return ((p - w) + ep) - ew;
+}
+
+/* Which side of the edge line p -> q the point r lies on, as the long
+ * double test of SFX(needs_infl) decides it, from the double filter of
+ * conica__orient2d_approx where its error bound allows: +1 / -1 (left /
+ * right, farther than lim from the line times |q - p|), 0 within lim
+ * (only for lim > 0), 2 when the filter cannot tell (then the long double
+ * test decides). The long double determinant is within a rounding unit of
+ * the exact one, far below the filter's bound, and lim here within
+ * CONICA__SIDE_MARGIN of the long double one. */
+#define CONICA__SIDE_MARGIN 0x1p-45
+#define CONICA__SIDE_TINY 0x1p-1060
+static int conica__side_filter(const double *p, const double *q, const double *r, double lim)
+{
+    double err, e = conica__orient2d_approx(p, q, r, &err), mag = fabs(e);
+    if (!(err < INFINITY) || !(lim < INFINITY))
+        return 2;
+    if (lim > 0 && mag + 2 * err < lim * (1 - CONICA__SIDE_MARGIN) - CONICA__SIDE_TINY)
+        return 0;
+    if (mag - 2 * err > lim * (1 + CONICA__SIDE_MARGIN) + CONICA__SIDE_TINY)
+        return e > 0 ? 1 : -1;
+    return 2;
 }
 
 /* 2^-ilogb(mag) for a finite mag > 0 (the frame's scale, SFX(make_frame)):

@@ -41,6 +41,7 @@ typedef struct SFX(job) {
     int plain;               /* ablation: textbook quadratic, no FMA */
     int normalize;           /* ablation: normalise sampled normals every level */
     int closed;
+    int noisy;     /* settings.noise > 0: the input is rounded (SFX(make_frame)) */
     int maxgrow;   /* outer neighbours per side when growing a patch */
     size_t n;      /* points of the level being refined */
     const REAL *xy, *nxy;
@@ -67,6 +68,7 @@ typedef struct SFX(frame) {
     REAL hsx, hsy; /* half edge times sc (a power of two): |hs| in [1, 2*sqrt2) */
     REAL sc, hh;   /* the power of two, |hs|^2 */
     REAL ihh;      /* 1 / hh */
+    REAL straight; /* an end normal's sine along the chord at most this: none */
 } SFX(frame);
 
 /* ------------------------------------------------------------ arithmetic */
@@ -316,7 +318,13 @@ static int SFX(collect)(const SFX(job) *j, const SFX(frame) *f, size_t i, int ma
     return cnt;
 }
 
-/* Build the local frame of edge (i, i1); returns 0 for a zero-length edge. */
+/* Build the local frame of edge (i, i1); returns 0 for a zero-length edge.
+ * f->straight: CONICA__FAST_MIN_SINE; for rounded input (settings.noise >
+ * 0) at least CONICA__STRAIGHT_ULPS rounding units of the patch's
+ * coordinates against the half edge (SFX(on_line_tol)'s measure): the
+ * chord's own direction is that uncertain, so a smaller tilt of an end
+ * normal is the rounding of a straight run's points (float32 grids, and
+ * their in-plane rotation by Blender's add-on), whose sign says nothing. */
 static int SFX(make_frame)(const SFX(job) *j, size_t i, size_t i1, SFX(frame) *f)
 {
     const REAL *p = j->xy;
@@ -338,6 +346,12 @@ static int SFX(make_frame)(const SFX(job) *j, size_t i, size_t i1, SFX(frame) *f
     f->hsy = f->hy * f->sc;
     f->hh = FMA(f->hsx, f->hsx, f->hsy * f->hsy);
     f->ihh = 1 / f->hh;
+    f->straight = RC(CONICA__FAST_MIN_SINE);
+    if (j->noisy) {
+        REAL r = RC(CONICA__STRAIGHT_ULPS) * RC(CONICA__ON_LINE_EPS) *
+                 (1 + (M(fabs)(f->mx) + M(fabs)(f->my)) * f->sc);
+        f->straight = r > f->straight ? r : f->straight;
+    }
     return 1;
 }
 
@@ -390,15 +404,15 @@ static void SFX(local_pairs)(const SFX(job) *j, const SFX(frame) *f, const size_
  * Returns 1 with (*py, *gx, *gy), 0 when the line misses the conic, -1 when
  * the pencil is degenerate (caller uses the general fit).
  */
-static int SFX(fast_fit)(const SFX(job) *j, const SFX(pair) *P, int cnt, REAL *py, REAL *gx,
-                         REAL *gy)
+static int SFX(fast_fit)(const SFX(job) *j, const SFX(frame) *f, const SFX(pair) *P, int cnt,
+                         REAL *py, REAL *gx, REAL *gy)
 {
     REAL a0 = P[0].nx, b0 = P[0].ny, a1 = P[1].nx, b1 = P[1].ny;
     REAL mu, lam, A2, B1, C0, y, L0, L1, s;
     int k;
 
     /* A tangent through the other end point makes the pencil singular. */
-    if (M(fabs)(a0) <= RC(CONICA__FAST_MIN_SINE) || M(fabs)(a1) <= RC(CONICA__FAST_MIN_SINE))
+    if (M(fabs)(a0) <= f->straight || M(fabs)(a1) <= f->straight)
         return -1;
     if (cnt == 2) {
         mu = 1;
@@ -793,17 +807,16 @@ static REAL SFX(region_cross)(const SFX(pair) *P)
 }
 
 /* Edges with no convex region. 1: a tangent along the chord (to within
- * CONICA__FAST_MIN_SINE): the region is the chord itself. 2: the tangent
+ * f->straight, SFX(make_frame)): the region is the chord itself. 2: the tangent
  * rays meet on the side of the chord the polygon says the arc cannot bulge
  * to (an end normal that does not lie between its vertex's edge normals,
  * as p_11's given normal in example8): no convex arc joins the end pairs,
  * the curve must cross the chord (an S-shaped edge). 0: a proper
  * triangle. */
-static int SFX(no_region)(const SFX(pair) *P, int side)
+static int SFX(no_region)(const SFX(frame) *f, const SFX(pair) *P, int side)
 {
     REAL cr;
-    if (M(fabs)(P[0].nx) <= RC(CONICA__FAST_MIN_SINE) ||
-        M(fabs)(P[1].nx) <= RC(CONICA__FAST_MIN_SINE))
+    if (M(fabs)(P[0].nx) <= f->straight || M(fabs)(P[1].nx) <= f->straight)
         return 1;
     cr = SFX(region_cross)(P);
     return side != 0 && cr != 0 && (side > 0) != (cr > 0) ? 2 : 0;
@@ -898,7 +911,7 @@ static int SFX(long_arc)(const SFX(job) *j, const SFX(frame) *f, size_t i, size_
                          const SFX(pair) *P, int side, int o[2])
 {
     REAL ux, uy;
-    if ((side != 1 && side != -1) || j->n < 3 || SFX(no_region)(P, side) != 2)
+    if ((side != 1 && side != -1) || j->n < 3 || SFX(no_region)(f, P, side) != 2)
         return 0;
     /* The tangent (-b, a) of the frame normal (a, b) against the travel:
      * o = +1 when it runs along it (the normal to the right), -1 against. */
@@ -944,30 +957,49 @@ static int SFX(long_arc_point)(const SFX(pair) *P, const int o[2], int want, REA
     return isfinite(*gx) && isfinite(*gy) && !(*gx == 0 && *gy == 0);
 }
 
-/* Edge point of edge (i, i+1) in default mode (local frame). Returns 1
- * when the point is an inflection point (an S-shaped edge's midpoint),
- * which the next levels treat as seed 000 treats those of eq. (9). */
-static int SFX(edge)(SFX(worker) *w, size_t i, REAL *oxy, REAL *on)
-{
-    const SFX(job) *j = w->job;
-    size_t idx[CONICA__FIT_MAX_PAIRS], i1;
+/*
+ * Edge point of edge (i, i+1) in default mode (local frame), in three
+ * steps so that SFX(level) can run the closed-form fits of several edges
+ * back to back (their long chains of dependent divisions and square roots
+ * then overlap in the processor; each edge's arithmetic is unchanged):
+ * SFX(edge_prep) classifies the patch, the pencil fit of SFX(fast_fit) runs
+ * where it says so (EDGE_FAST), SFX(edge_finish) does the rest. The state
+ * between them: */
+enum { SFX(EDGE_DONE), SFX(EDGE_MIDPOINT), SFX(EDGE_FAST), SFX(EDGE_REST) };
+typedef struct SFX(estate) {
+    size_t idx[CONICA__FIT_MAX_PAIRS];
     SFX(pair) P[CONICA__FIT_MAX_PAIRS];
     SFX(frame) f;
-    REAL y = 0, gx = 0, gy = 0, ox = 0, oy = 0, nx = 0, ny = 0;
-    int cnt, ok = 0, g, maxl = 1, maxr = 1, regular = 1, local = 0, side, conflict, infl = 0;
-    int want = 0, orient[2] = {0, 0};
+    REAL y, gx, gy; /* the fast fit's result */
+    int stage, cnt, ok, regular, side, conflict, want, orient[2];
+} SFX(estate);
 
-    if (j->ref) {
-        SFX(edge_ref)(w, i, oxy, on);
-        return 0;
-    }
+/* Up to the fit: the patch, its frame and pairs, and its class. Stage
+ * EDGE_DONE when the point is already stored (coincident end points). */
+static void SFX(edge_prep)(SFX(worker) *w, size_t i, SFX(estate) *st, REAL *oxy, REAL *on)
+{
+    const SFX(job) *j = w->job;
+    size_t *idx = st->idx, i1;
+    SFX(pair) *P = st->P;
+    int cnt, ok = 0, maxl = 1, maxr = 1, regular = 1, side, conflict;
+    int want = 0;
+
+    st->orient[0] = st->orient[1] = 0;
+    st->y = st->gx = st->gy = 0;
+    st->cnt = 0;
+    st->ok = 0;
+    st->regular = 1;
+    st->side = 0;
+    st->conflict = 0;
+    st->want = 0;
     i1 = SFX(next)(j, i);
-    if (!SFX(make_frame)(j, i, i1, &f)) {
+    if (!SFX(make_frame)(j, i, i1, &st->f)) {
         /* Coincident end points (rounding at extreme levels): repeat the
          * point; its normal is as good as any. */
         w->fallbacks++;
         SFX(store)(j, j->xy[2 * i], j->xy[2 * i + 1], j->nxy[2 * i], j->nxy[2 * i + 1], oxy, on);
-        return 0;
+        st->stage = SFX(EDGE_DONE);
+        return;
     }
     /* Seed 000 after (10): next to an inflection point the patch is the
      * inflection point, the edge's other end and two neighbours beyond it.
@@ -980,8 +1012,8 @@ static int SFX(edge)(SFX(worker) *w, size_t i, REAL *oxy, REAL *on)
         if (j->infl[i1])
             maxl = 2;
     }
-    cnt = SFX(collect)(j, &f, i, maxl, maxr, idx);
-    SFX(local_pairs)(j, &f, idx, cnt, P);
+    cnt = SFX(collect)(j, &st->f, i, maxl, maxr, idx);
+    SFX(local_pairs)(j, &st->f, idx, cnt, P);
     /* The pencil describes a convex arc between the end points; it is used
      * when the patch looks like one: the end normals do not tilt the same
      * way (a0*b0 and a1*b1 not of one strict sign, whatever the normals'
@@ -1005,13 +1037,13 @@ static int SFX(edge)(SFX(worker) *w, size_t i, REAL *oxy, REAL *on)
      * neighbours lie on both sides of the edge (conflict 3: the polygon
      * itself turns both ways, which no piece between inflection points
      * does) the fit is taken as the reference takes it, too. */
-    side = SFX(bulge_side)(&f, P, cnt);
-    conflict = side == 2 ? 3 : SFX(no_region)(P, side);
+    side = SFX(bulge_side)(&st->f, P, cnt);
+    conflict = side == 2 ? 3 : SFX(no_region)(&st->f, P, side);
     if (conflict == 1) {
-        ok = 0;
-        goto midpoint;
+        st->stage = SFX(EDGE_MIDPOINT); /* want 0: oriented by the end normals */
+        return;
     }
-    if (conflict == 2 && SFX(long_arc)(j, &f, i, i1, P, side, orient)) {
+    if (conflict == 2 && SFX(long_arc)(j, &st->f, i, i1, P, side, st->orient)) {
         /* A long arc (SFX(long_arc)): its region is the wedge of the chord
          * and the two tangent rays, unbounded on `side`, which
          * SFX(in_region) tests as it tests a triangle; the point is the
@@ -1022,17 +1054,42 @@ static int SFX(edge)(SFX(worker) *w, size_t i, REAL *oxy, REAL *on)
         conflict = 0;
         regular = 0;
     }
+    st->stage = SFX(EDGE_REST);
     if (j->fast && want == 0) {
         /* Outer neighbours on both sides (side 2, with points on the edge
          * line to within rounding counting as neither) make it irregular. */
         regular = (P[0].nx * P[0].ny) * (P[1].nx * P[1].ny) <= 0 && side != 2;
         if (regular)
-            ok = SFX(fast_fit)(j, P, cnt, &y, &gx, &gy);
+            st->stage = SFX(EDGE_FAST); /* ok = SFX(fast_fit)(...) */
         else
             ok = -1;
-        if (ok > 0)
-            local = 1;
     }
+    st->cnt = cnt;
+    st->ok = ok;
+    st->regular = regular;
+    st->side = side;
+    st->conflict = conflict;
+    st->want = want;
+}
+
+/* The rest, from the fit's result on (stage EDGE_FAST: st->ok, y, gx, gy
+ * from SFX(fast_fit)). Returns 1 when the point is an inflection point (an
+ * S-shaped edge's midpoint), which the next levels treat as seed 000
+ * treats those of eq. (9). */
+static int SFX(edge_finish)(SFX(worker) *w, size_t i, SFX(estate) *st, REAL *oxy, REAL *on)
+{
+    const SFX(job) *j = w->job;
+    size_t *idx = st->idx;
+    const SFX(pair) *P = st->P;
+    SFX(frame) f = st->f;
+    REAL y = st->y, gx = st->gx, gy = st->gy, ox = 0, oy = 0, nx = 0, ny = 0;
+    int cnt = st->cnt, ok = st->ok, g, regular = st->regular, local = 0, side = st->side;
+    int conflict = st->conflict, infl = 0, want = st->want, *orient = st->orient;
+
+    if (st->stage == SFX(EDGE_MIDPOINT))
+        goto midpoint;
+    if (st->stage == SFX(EDGE_FAST) && ok > 0)
+        local = 1;
     if (!j->fast || ok < 0 || want != 0)
         ok = SFX(svd_tframe)(w, &f, idx, cnt, !regular, want, &y, &ox, &oy, &nx, &ny);
     if (ok > 0 && conflict == 0 && !SFX(in_region)(P, side, y))
@@ -1061,7 +1118,7 @@ static int SFX(edge)(SFX(worker) *w, size_t i, REAL *oxy, REAL *on)
         if (ok)
             w->fallbacks++;
     }
-    if (!ok && conflict >= 2 && j->infl && (j->infl[i] || j->infl[i1])) {
+    if (!ok && conflict >= 2 && j->infl && (j->infl[i] || j->infl[SFX(next)(j, i)])) {
         /* An S-shaped edge next to an inflection point: the inflection is
          * already there, and a second one at the midpoint would start a
          * cascade (every level's edge next to the new inflection point is
@@ -1069,7 +1126,7 @@ static int SFX(edge)(SFX(worker) *w, size_t i, REAL *oxy, REAL *on)
          * reference's lG2. The convex arc instead: the parabola of the
          * pencil, within CONICA__IRREGULAR_MAX_T edge lengths of the
          * midpoint, else the midpoint with the edge normal (below). */
-        ok = SFX(fast_fit)(j, P, 2, &y, &gx, &gy) > 0 &&
+        ok = SFX(fast_fit)(j, &f, P, 2, &y, &gx, &gy) > 0 &&
              M(fabs)(y) <= 2 * RC(CONICA__IRREGULAR_MAX_T);
         local = ok;
         if (ok)
@@ -1101,7 +1158,7 @@ static int SFX(edge)(SFX(worker) *w, size_t i, REAL *oxy, REAL *on)
         /* The parabola of the pencil (the quadratic Bezier through the
          * tangent lines' intersection) lies in the region whenever the
          * region is a proper triangle. */
-        ok = SFX(fast_fit)(j, P, 2, &y, &gx, &gy) > 0 && SFX(in_region)(P, side, y);
+        ok = SFX(fast_fit)(j, &f, P, 2, &y, &gx, &gy) > 0 && SFX(in_region)(P, side, y);
         local = ok;
         if (ok)
             w->fallbacks++;
@@ -1156,19 +1213,38 @@ oriented : {
 static void SFX(level)(SFX(worker) *w, REAL *dxy, REAL *dn, size_t e_begin, size_t e_end)
 {
     const SFX(job) *j = w->job;
-    size_t e;
-    for (e = e_begin; e < e_end; e++) {
-        int fl;
-        dxy[4 * e] = j->xy[2 * e];
-        dxy[4 * e + 1] = j->xy[2 * e + 1];
-        dn[4 * e] = j->nxy[2 * e];
-        dn[4 * e + 1] = j->nxy[2 * e + 1];
-        if (j->dinfl)
-            j->dinfl[2 * e] = j->infl[e];
-        if (e + 1 < j->n || j->closed) {
-            fl = SFX(edge)(w, e, dxy + 4 * e + 2, dn + 4 * e + 2);
+    SFX(estate) st[CONICA__EDGE_BATCH];
+    size_t e, b, e1;
+    for (b = e_begin; b < e_end; b = e1) {
+        e1 = e_end - b > CONICA__EDGE_BATCH ? b + CONICA__EDGE_BATCH : e_end;
+        for (e = b; e < e1; e++) {
+            dxy[4 * e] = j->xy[2 * e];
+            dxy[4 * e + 1] = j->xy[2 * e + 1];
+            dn[4 * e] = j->nxy[2 * e];
+            dn[4 * e + 1] = j->nxy[2 * e + 1];
             if (j->dinfl)
-                j->dinfl[2 * e + 1] = (unsigned char)fl;
+                j->dinfl[2 * e] = j->infl[e];
+            st[e - b].stage = SFX(EDGE_DONE);
+            if (e + 1 < j->n || j->closed) {
+                if (j->ref)
+                    SFX(edge_ref)(w, e, dxy + 4 * e + 2, dn + 4 * e + 2);
+                else
+                    SFX(edge_prep)(w, e, &st[e - b], dxy + 4 * e + 2, dn + 4 * e + 2);
+                if (j->dinfl)
+                    j->dinfl[2 * e + 1] = 0;
+            }
+        }
+        for (e = b; e < e1; e++) {
+            SFX(estate) *t = &st[e - b];
+            if (t->stage == SFX(EDGE_FAST))
+                t->ok = SFX(fast_fit)(j, &t->f, t->P, t->cnt, &t->y, &t->gx, &t->gy);
+        }
+        for (e = b; e < e1; e++) {
+            if (st[e - b].stage != SFX(EDGE_DONE)) {
+                int fl = SFX(edge_finish)(w, e, &st[e - b], dxy + 4 * e + 2, dn + 4 * e + 2);
+                if (j->dinfl)
+                    j->dinfl[2 * e + 1] = (unsigned char)fl;
+            }
         }
     }
 }
@@ -1294,6 +1370,21 @@ static int SFX(needs_infl)(const SFX(input) *in, int ref, size_t i)
         d1 = nx * (x3 - x1) + ny * (y3 - y1);
         d2 = nx * (x0 - x1) + ny * (y0 - y1);
     } else {
+        if (in->xyd) {
+            /* Double input: the filter decides nearly every edge, the long
+             * double test below only those it cannot. */
+            const double *p = in->xyd;
+            double ex = p[2 * c] - p[2 * i], ey = p[2 * c + 1] - p[2 * i + 1], lim = 0;
+            int s1, s2;
+            if (in->noise > 0)
+                lim = CONICA__NOISE_SIDE * in->noise * sqrt(ex * ex + ey * ey);
+            s1 = conica__side_filter(p + 2 * i, p + 2 * c, p + 2 * d, lim);
+            s2 = s1 == 0 ? 0 : conica__side_filter(p + 2 * i, p + 2 * c, p + 2 * a, lim);
+            if (s1 == 0 || s2 == 0)
+                return 0;
+            if (s1 != 2 && s2 != 2)
+                return s1 != s2;
+        }
         /* Differences of two doubles are exact in long double (short of an
          * exponent gap over 11 bits), the products exact by Dekker. */
         long double ex = (long double)x2 - (long double)x1, ey = (long double)y2 - (long double)y1;
@@ -1422,11 +1513,15 @@ static void SFX(infl_point)(const SFX(input) *in, int ref, size_t i, REAL *pxy, 
     }
 }
 
-static size_t SFX(count_infl)(const SFX(input) *in, int ref)
+/* The edges that need an inflection point: need[i] for edge (i, i+1),
+ * their number returned (SFX(load) reads the flags). */
+static size_t SFX(count_infl)(const SFX(input) *in, int ref, unsigned char *need)
 {
     size_t i, c = 0, ne = in->closed ? in->n : in->n - 1;
-    for (i = 0; i < ne; i++)
-        c += (size_t)SFX(needs_infl)(in, ref, i);
+    for (i = 0; i < ne; i++) {
+        need[i] = (unsigned char)SFX(needs_infl)(in, ref, i);
+        c += need[i];
+    }
     return c;
 }
 
@@ -1534,10 +1629,11 @@ static size_t SFX(infl_at_vertex)(const SFX(input) *in, size_t i, REAL *pxy, REA
     return v;
 }
 
-/* Level 0: the input with unit normals, plus inflection points if asked.
- * Writes the flags (if flags) and the level-0 indices of inserted points. */
-static size_t SFX(load)(const SFX(input) *in, int ref, int insert, REAL *xy, REAL *nn,
-                        unsigned char *flags, size_t *infl_idx)
+/* Level 0: the input with unit normals, plus inflection points on the
+ * edges need (SFX(count_infl)) marks, NULL for none. Writes the flags (if
+ * flags) and the level-0 indices of inserted points. */
+static size_t SFX(load)(const SFX(input) *in, int ref, const unsigned char *need, REAL *xy,
+                        REAL *nn, unsigned char *flags, size_t *infl_idx)
 {
     size_t i, k = 0, ni = 0;
     int flag_next = 0, flag_first = 0;
@@ -1549,7 +1645,7 @@ static size_t SFX(load)(const SFX(input) *in, int ref, int insert, REAL *xy, REA
             flags[k] = (unsigned char)flag_next;
         flag_next = 0;
         k++;
-        if (insert && (in->closed || i + 1 < in->n) && SFX(needs_infl)(in, ref, i)) {
+        if (need && (in->closed || i + 1 < in->n) && need[i]) {
             size_t v = ref ? (size_t)-1 : SFX(infl_at_vertex)(in, i, &xy[2 * k], &nn[2 * k]);
             if (v == (size_t)-1) {
                 SFX(infl_point)(in, ref, i, &xy[2 * k], &nn[2 * k]);
@@ -1591,7 +1687,8 @@ static conica_code SFX(run)(const SFX(input) *in, const conica_subdiv_settings *
     int L = s->levels, lev;
     int ref = s->reference_compatible != 0;
     int insert = s->insert_inflections && L > 0;
-    size_t ninfl = insert ? SFX(count_infl)(in, ref) : 0;
+    unsigned char *need = insert ? malloc(in->n) : NULL; /* SFX(count_infl) */
+    size_t ninfl = need ? SFX(count_infl)(in, ref, need) : 0;
     size_t n0 = in->n + ninfl, N, NB = 0, i;
     REAL *A = NULL, *An = NULL, *B = NULL, *Bn = NULL;
     unsigned char *F[2] = {NULL, NULL}; /* inflection flags, double-buffered like A/B */
@@ -1605,14 +1702,20 @@ static conica_code SFX(run)(const SFX(input) *in, const conica_subdiv_settings *
                              : 1, t;
     conica_code code = CONICA_OK;
 
+    if (insert && !need)
+        return conica__fail(st, CONICA_ERR_NOMEM, 0, 0, "out of memory for %zu input points",
+                            in->n);
     N = conica_subdiv_count(n0, in->closed, L);
-    if (N == 0 || N > s->max_points)
+    if (N == 0 || N > s->max_points || N > ((size_t)-1) / (2 * sizeof(REAL))) {
+        free(need);
+        if (N > 0 && N <= s->max_points)
+            return conica__fail(st, CONICA_ERR_LIMIT, 0, 0, "output of %zu points is too large",
+                                N);
         return conica__fail(st, CONICA_ERR_LIMIT, 0, 0,
                             "%d levels on %zu points (%zu inflection points added) would make "
                             "more than the %zu points allowed (max_points)",
                             L, in->n, ninfl, s->max_points);
-    if (N > ((size_t)-1) / (2 * sizeof(REAL)))
-        return conica__fail(st, CONICA_ERR_LIMIT, 0, 0, "output of %zu points is too large", N);
+    }
     if (L > 0)
         NB = conica_subdiv_count(n0, in->closed, L - 1);
     A = malloc(2 * N * sizeof *A);
@@ -1643,6 +1746,7 @@ static conica_code SFX(run)(const SFX(input) *in, const conica_subdiv_settings *
         free(F[0]);
         free(F[1]);
         free(infl);
+        free(need);
 #if REAL_IS_DOUBLE
         for (t = 0; t < nth; t++)
             conica__svdws_free(&ws[t]);
@@ -1654,7 +1758,9 @@ static conica_code SFX(run)(const SFX(input) *in, const conica_subdiv_settings *
      * lands in A (double buffering, no allocation per level or point). */
     {
         REAL *sx = (L % 2) ? B : A, *sn = (L % 2) ? Bn : An;
-        size_t cur = SFX(load)(in, ref, insert, sx, sn, L > 0 ? F[L % 2] : NULL, infl);
+        size_t cur = SFX(load)(in, ref, need, sx, sn, L > 0 ? F[L % 2] : NULL, infl);
+
+        free(need);
 
         job.wev = (REAL)s->w_edge_point;
         job.wen = (REAL)s->w_edge_normal;
@@ -1665,6 +1771,7 @@ static conica_code SFX(run)(const SFX(input) *in, const conica_subdiv_settings *
         job.plain = s->plain_quadratic != 0;
         job.normalize = s->normalize_normals != 0;
         job.closed = in->closed;
+        job.noisy = s->noise > 0;
         job.maxgrow = ref ? (s->patch_grow < 3 ? s->patch_grow : 3) : s->patch_grow;
         for (t = 0; t < nth; t++) {
             wk[t].job = &job;
