@@ -170,6 +170,23 @@ static int cx_float_format(const char *fmt, Py_ssize_t itemsize)
     return 0;
 }
 
+/* 1 when obj is a contiguous float32 buffer (array('f'), Blender's
+ * foreach_get targets), else 0; never raises. */
+static int cx_is_float32_buffer(PyObject *obj)
+{
+    Py_buffer view;
+    int f32;
+    if (!PyObject_CheckBuffer(obj))
+        return 0;
+    if (PyObject_GetBuffer(obj, &view, PyBUF_C_CONTIGUOUS | PyBUF_FORMAT) != 0) {
+        PyErr_Clear();
+        return 0;
+    }
+    f32 = cx_float_format(view.format, view.itemsize) == 'f';
+    PyBuffer_Release(&view);
+    return f32;
+}
+
 /* TypeError "what[i]: expected <expected>, got <type name>" (no [i] when
  * i < 0). The limited API has no tp_name: the name comes from
  * PyType_GetName (3.11). */
@@ -807,7 +824,7 @@ PyDoc_STRVAR(subdivide_doc,
 "          estimate=False, normal_method='area', inflections=True, tangents=False,\n"
 "          attrs=None, nattrs=0, handles=False, plane_tol=1e-6, abs_tol=0.0,\n"
 "          stride=0, typecode='d',\n"
-"          max_points=4194304, want_normals=True)\n"
+"          max_points=4194304, want_normals=True, precision=None)\n"
 "--\n\n"
 "Conic-preserving subdivision of one point-normal polygon (the CONIS paper, Section 1.1),\n"
 "the bare scheme: no corners, the points and normals as given. Blender curves go\n"
@@ -821,7 +838,11 @@ PyDoc_STRVAR(subdivide_doc,
 "attrs: nattrs values per point (radius, tilt, ...) interpolated onto the output.\n"
 "handles=True also returns Bezier handles along the conic tangents.\n"
 "stride > dim pads every output point with 1.0 (stride 4 = Blender's POLY 'co').\n"
-"want_normals=False skips the output normals (None is returned for them).\n\n"
+"want_normals=False skips the output normals (None is returned for them).\n"
+"precision: how far the input points may be from the curve they sample by\n"
+"rounding (absolute); the scheme then reads no inflection and no turn into\n"
+"that noise. None: float32 rounding when points is a float32 buffer\n"
+"(array('f'), Blender's foreach_get), else 0 (exact).\n\n"
 "Returns (points, normals, attrs or None, inflections, info) or, with handles=True,\n"
 "(points, normals, attrs, inflections, info, left_handles, right_handles).\n"
 "info is a dict: points, inflections, seconds (libcore), plane data.");
@@ -882,21 +903,29 @@ static PyObject *cx_subdivide(PyObject *self, PyObject *args, PyObject *kw)
                              "estimate", "normal_method", "inflections", "tangents",
                              "attrs", "nattrs", "handles",
                              "plane_tol", "abs_tol", "stride", "typecode", "max_points",
-                             "want_normals", NULL};
+                             "want_normals", "precision", NULL};
     cx_state *S = cx_get_state(self);
-    PyObject *opoints, *onormals = Py_None, *oattrs = Py_None;
+    PyObject *opoints, *onormals = Py_None, *oattrs = Py_None, *oprec = Py_None;
     PyObject *otype = NULL;
     int dim = 2, closed = 0, levels = 3, precise = 0, estimate = 0, inflections = 1;
     int tangents = 0, nattrs = 0, handles = 0, stride = 0, want_normals = 1;
     const char *method = "area";
     double plane_tol = 1e-6, abs_tol = 0.0;
     Py_ssize_t max_points = (Py_ssize_t)CX_DEFAULT_MAX_POINTS;
-    if (!PyArg_ParseTupleAndKeywords(args, kw, "O|O$ipippsppOipddiOnp:subdivide", kwlist,
+    if (!PyArg_ParseTupleAndKeywords(args, kw, "O|O$ipippsppOipddiOnpO:subdivide", kwlist,
                                      &opoints, &onormals, &dim, &closed, &levels, &precise,
                                      &estimate, &method, &inflections, &tangents, &oattrs,
                                      &nattrs, &handles, &plane_tol, &abs_tol, &stride, &otype,
-                                     &max_points, &want_normals))
+                                     &max_points, &want_normals, &oprec))
         return NULL;
+    double precision = -1.0; /* None: from the points' storage, below */
+    if (oprec != Py_None) {
+        precision = PyFloat_AsDouble(oprec);
+        if (precision == -1.0 && PyErr_Occurred())
+            return NULL;
+        if (!isfinite(precision) || precision < 0)
+            return cx_raisef(S->arg_error, "precision must be None or a finite number >= 0");
+    }
     char typecode;
     if (!cx_typecode(S, otype, &typecode))
         return NULL;
@@ -929,6 +958,7 @@ static PyObject *cx_subdivide(PyObject *self, PyObject *args, PyObject *kw)
     memset(&job, 0, sizeof job);
     conica_curve_init(&job.out);
 
+    int f32 = cx_is_float32_buffer(opoints);
     if (!cx_read_doubles(opoints, "points", &pts, &npts_v))
         goto done;
     if (npts_v % (size_t)dim != 0) {
@@ -1037,6 +1067,14 @@ static PyObject *cx_subdivide(PyObject *self, PyObject *args, PyObject *kw)
         job.set.estimate_normals = estimate || nrm == NULL;
         job.set.normal_method = nm;
         job.set.insert_inflections = inflections;
+        if (precision >= 0) {
+            job.set.noise = precision;
+        } else if (f32) {
+            double max_abs = 0.0;
+            for (size_t i = 0; i < npts_v; i++)
+                max_abs = fabs(pts[i]) > max_abs ? fabs(pts[i]) : max_abs;
+            job.set.noise = conica_path_float32_precision(max_abs);
+        }
         job.set.max_points = (size_t)max_points * (handles ? 2u : 1u) + 1;
         /* The GIL is released: use the cores (libcore splits a level's edges
          * only when each thread gets enough of them, and its results are

@@ -174,6 +174,33 @@ def huge_degree_message_does_not_overflow():
 
 # ---------------------------------------------------------------- driver
 
+@case
+def float32_points_are_read_as_rounded():
+    """A dense circle stored in float32 and turned in its plane (what the
+    add-on makes of a Blender POLY spline): its rounding is below the sag
+    of an edge, so read as exact it makes the scheme insert inflection
+    points; subdivide() takes a float32 buffer's rounding as its precision
+    (settings.noise) and inserts none, and precision=0 says exact."""
+    c = conica()
+    n, a = 20000, 1.65
+    pts = array.array("f")
+    for i in range(n):
+        x = float(array.array("f", [math.cos(2 * math.pi * i / n)])[0])
+        y = float(array.array("f", [math.sin(2 * math.pi * i / n)])[0])
+        pts.extend((math.cos(a) * x - math.sin(a) * y, math.sin(a) * x + math.cos(a) * y))
+    r = c.subdivide(pts, closed=True, levels=2, estimate=True, normal_method="circle")
+    assert r[4]["inflections"] == 0, r[4]
+    assert len(r[0]) == 2 * 4 * n, len(r[0])
+    exact = c.subdivide(array.array("d", pts), closed=True, levels=2, estimate=True,
+                        normal_method="circle")
+    assert exact[4]["inflections"] > 0, exact[4]
+    same = c.subdivide(array.array("d", pts), closed=True, levels=2, estimate=True,
+                       normal_method="circle", precision=6e-8)
+    assert same[4]["inflections"] == 0, same[4]
+    msg = expect(c.ArgumentError, c.subdivide, pts, closed=True, precision=-1.0)
+    assert "precision" in msg, msg
+
+
 def run_one(name):
     for fn in CASES:
         if fn.__name__ == name:

@@ -48,9 +48,12 @@ typedef struct conica_subdiv_settings {
     size_t max_points;         /**< output budget, default CONICA_SUBDIV_DEFAULT_MAX_POINTS */
     int threads;               /**< 0/1 = single thread; results are bit-identical for any value */
     /** Rounding of the input coordinates (absolute, e.g. float32 spacing or
-     *  half a unit of the last digit written); 0 (default): exact. A
-     *  neighbour within a few times this of an edge line is on no side of
-     *  it, so rounding noise makes no inflection points. */
+     *  half a unit of the last digit written); 0 (default): exact. When > 0,
+     *  a neighbour within a few times this of an edge line is on no side of
+     *  it, and an end normal within a few rounding units of the chord's
+     *  perpendicular counts as perpendicular (a straight run of rounded
+     *  points), so rounding noise makes no inflection points and no
+     *  S-shaped edges. */
     double noise;
 } conica_subdiv_settings;
 
