@@ -465,6 +465,24 @@ conica_code conica_path_samples(conica_path *p, const double *xy, const double *
 /* Point c, first and second derivative of a rational Bézier of degree d
  * with control points q (x, y, w triples) at t: de Casteljau on the
  * homogeneous points and their hodographs, then the quotient rule. */
+/* One coordinate of a polynomial cubic in Bernstein form (u = 1 - t): the
+ * point, first and second derivative. The formulas live here once, so the
+ * check's unrolled cubic loops give bez_eval's values bit for bit. */
+static inline double bern3(const double *p, double u, double t)
+{
+    return u * u * (u * p[0] + 3 * t * p[3]) + t * t * (3 * u * p[6] + t * p[9]);
+}
+
+static inline double bern3_d1(const double *p, double u, double t)
+{
+    return 3 * (u * u * (p[3] - p[0]) + 2 * u * t * (p[6] - p[3]) + t * t * (p[9] - p[6]));
+}
+
+static inline double bern3_d2(const double *p, double u, double t)
+{
+    return 6 * (u * (p[6] - 2 * p[3] + p[0]) + t * (p[9] - 2 * p[6] + p[3]));
+}
+
 /* Polynomial Bézier of degree 1..3 in Bernstein form (the common case of
  * lines, quadratic and cubic segments): no homogeneous detour. */
 static inline void bez_eval_poly3(const double *q, int d, double t, double c[2], double d1[2],
@@ -472,6 +490,16 @@ static inline void bez_eval_poly3(const double *q, int d, double t, double c[2],
 {
     double u = 1.0 - t;
     int k;
+    if (d == 3) {
+        for (k = 0; k < 2; k++) {
+            c[k] = bern3(q + k, u, t);
+            if (d1)
+                d1[k] = bern3_d1(q + k, u, t);
+            if (d2)
+                d2[k] = bern3_d2(q + k, u, t);
+        }
+        return;
+    }
     for (k = 0; k < 2; k++) {
         double p0 = q[k], p1 = q[3 + k];
         if (d == 1) {
@@ -480,20 +508,13 @@ static inline void bez_eval_poly3(const double *q, int d, double t, double c[2],
                 d1[k] = p1 - p0;
             if (d2)
                 d2[k] = 0;
-        } else if (d == 2) {
+        } else {
             double p2 = q[6 + k];
             c[k] = u * u * p0 + 2 * u * t * p1 + t * t * p2;
             if (d1)
                 d1[k] = 2 * (u * (p1 - p0) + t * (p2 - p1));
             if (d2)
                 d2[k] = 2 * (p2 - 2 * p1 + p0);
-        } else {
-            double p2 = q[6 + k], p3 = q[9 + k];
-            c[k] = u * u * (u * p0 + 3 * t * p1) + t * t * (3 * u * p2 + t * p3);
-            if (d1)
-                d1[k] = 3 * (u * u * (p1 - p0) + 2 * u * t * (p2 - p1) + t * t * (p3 - p2));
-            if (d2)
-                d2[k] = 6 * (u * (p2 - 2 * p1 + p0) + t * (p3 - 2 * p2 + p1));
         }
     }
 }
@@ -1507,7 +1528,7 @@ static conica_code flatten_seg(ctx *c, size_t s, const double nend[2], unsigned 
  * the values are bit for bit those of bez_eval); others through bez_eval. */
 typedef struct seg_fn {
     const double *q;
-    int d, poly;
+    int d, poly, cubic;
 } seg_fn;
 
 static seg_fn seg_fn_of(const double *q, int d)
@@ -1517,15 +1538,41 @@ static seg_fn seg_fn_of(const double *q, int d)
     f.d = d;
     f.poly = d <= 3 && q[2] == 1.0 && q[5] == 1.0 && (d < 2 || q[8] == 1.0) &&
              (d < 3 || q[11] == 1.0);
+    f.cubic = f.poly && d == 3;
     return f;
 }
 
+/* The point and both derivatives (the polynomial cubic, SVG's common case,
+ * unrolled in place: bern3* are bez_eval_poly3's own formulas). */
 static inline void seg_fn_eval(const seg_fn *f, double t, double c[2], double d1[2], double d2[2])
 {
-    if (f->poly)
+    if (f->cubic) {
+        double u = 1.0 - t;
+        c[0] = bern3(f->q, u, t);
+        c[1] = bern3(f->q + 1, u, t);
+        d1[0] = bern3_d1(f->q, u, t);
+        d1[1] = bern3_d1(f->q + 1, u, t);
+        d2[0] = bern3_d2(f->q, u, t);
+        d2[1] = bern3_d2(f->q + 1, u, t);
+    } else if (f->poly) {
         bez_eval_poly3(f->q, f->d, t, c, d1, d2);
-    else
+    } else {
         bez_eval(f->q, f->d, t, c, d1, d2);
+    }
+}
+
+/* The point alone. */
+static inline void seg_fn_point(const seg_fn *f, double t, double c[2])
+{
+    if (f->cubic) {
+        double u = 1.0 - t;
+        c[0] = bern3(f->q, u, t);
+        c[1] = bern3(f->q + 1, u, t);
+    } else if (f->poly) {
+        bez_eval_poly3(f->q, f->d, t, c, NULL, NULL);
+    } else {
+        bez_eval(f->q, f->d, t, c, NULL, NULL);
+    }
 }
 
 /* Closest point of segment f to x for t in [lo, hi], from the guess t0:
@@ -1608,7 +1655,7 @@ static double check_edge(const double *q, int d, double ta, double tb, const dou
         E = heap + 2 * (M + 1);
     }
     for (j = 0; j <= M; j++)
-        seg_fn_eval(&f, ta + (tb - ta) * (double)j / (double)M, D + 2 * j, NULL, NULL);
+        seg_fn_point(&f, ta + (tb - ta) * (double)j / (double)M, D + 2 * j);
     if (tau) {
         tau[0] = ta;
         tau[m] = tb;
