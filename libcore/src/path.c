@@ -1633,26 +1633,56 @@ static double dist2(const double *a, const double *b)
 /* Dense points and chords of one check on the stack up to this many. */
 #define PATH_CHECK_STACK 1024
 
+/* Largest |C''| of a polynomial piece of degree <= 3 on [ta, tb]: C'' is
+ * linear in t there (constant for a quadratic), so its length, a convex
+ * function, peaks at an end. */
+static double poly_d2_max(const seg_fn *f, double ta, double tb)
+{
+    double c[2], d1[2], a[2], b[2];
+    if (f->d < 2)
+        return 0;
+    seg_fn_eval(f, ta, c, d1, a);
+    seg_fn_eval(f, tb, c, d1, b);
+    return fmax(hypot(a[0], a[1]), hypot(b[0], b[1]));
+}
+
+/* Safety factor on a bound before it may stand in for a measurement (its
+ * own rounding: a handful of operations, each within 2^-53). */
+#define PATH_BOUND_MARGIN (1 + 1e-12)
+
 /*
  * Compare the limit polyline v[0..m] (v[0], v[m] the samples at ta, tb) of
  * one sample edge with the segment on [ta, tb]: tau[i] gets each point's
  * parameter (may be NULL); returns the largest distance in either
  * direction, the chords' own bulge counted against us.
+ *
+ * need: the caller needs the exact figure only where it exceeds need
+ * (the largest already measured, at most the tolerance; INFINITY: only
+ * tau is wanted). Where a rigorous bound of it does not exceed need, the
+ * bound is returned instead, and the search of the dense points against
+ * the polyline is skipped: for a polynomial piece with the points' feet in
+ * order, C on [tau_i, tau_i+1] lies within max(|C(tau_i) - v_i|,
+ * |C(tau_i+1) - v_i+1|) + (tau_i+1 - tau_i)^2 / 8 max|C''| of chord i (the
+ * chord of the two feet is that close to chord i, C within the linear
+ * interpolation error of the chord of its feet), which bounds every dense
+ * point's distance from the polyline. The verdict against the tolerance
+ * and the largest value over a piece are those of the full search.
  */
 static double check_edge(const double *q, int d, double ta, double tb, const double *v, size_t m,
-                         double *tau)
+                         double *tau, double need)
 {
     size_t M = 2 * m, i, j, prev;
     double worst2 = 0, wb2 = 0, sag = 0, *heap = NULL;
-    double dense[2 * (2 * PATH_CHECK_STACK + 1)], chord[3 * PATH_CHECK_STACK], *D = dense,
-           *E = chord;
+    double dense[2 * (2 * PATH_CHECK_STACK + 1)], chord[3 * PATH_CHECK_STACK],
+           foot[PATH_CHECK_STACK + 1], *D = dense, *E = chord, *F = foot;
     seg_fn f = seg_fn_of(q, d);
     if (M + 1 > 2 * PATH_CHECK_STACK + 1) {
-        heap = malloc((2 * (M + 1) + 3 * m) * sizeof *heap);
+        heap = malloc((2 * (M + 1) + 3 * m + m + 1) * sizeof *heap);
         if (!heap)
             return INFINITY;
         D = heap;
         E = heap + 2 * (M + 1);
+        F = E + 3 * m;
     }
     for (j = 0; j <= M; j++)
         seg_fn_point(&f, ta + (tb - ta) * (double)j / (double)M, D + 2 * j);
@@ -1690,11 +1720,35 @@ static double check_edge(const double *q, int d, double ta, double tb, const dou
         t0 = project(&f, v + 2 * i, t0, tlo, thi, &dist);
         if (tau)
             tau[i] = t0;
+        F[i] = dist;
         worst2 = dist * dist > worst2 ? dist * dist : worst2;
         sx = v[2 * i - 2] - 2 * v[2 * i] + v[2 * i + 2];
         sy = v[2 * i - 1] - 2 * v[2 * i + 1] + v[2 * i + 3];
         sx = sx * sx + sy * sy;
         sag = sx > sag ? sx : sag;
+    }
+    if (tau && f.poly) {
+        /* the bound of the polyline's distance from the segment (above) */
+        double c[2], d2max = poly_d2_max(&f, ta, tb), bound = 0;
+        int sorted = 1;
+        seg_fn_point(&f, ta, c);
+        F[0] = sqrt(dist2(c, v));
+        seg_fn_point(&f, tb, c);
+        F[m] = sqrt(dist2(c, v + 2 * m));
+        for (i = 0; i < m && sorted; i++) {
+            double dt = tau[i + 1] - tau[i];
+            sorted = dt >= 0;
+            bound = fmax(bound, fmax(F[i], F[i + 1]) + 0.125 * dt * dt * d2max);
+        }
+        bound = fmax(bound + 1.6 * 0.125 * sqrt(sag), sqrt(worst2));
+        if (sorted && bound * PATH_BOUND_MARGIN <= need) {
+            free(heap);
+            return bound;
+        }
+    }
+    if (need == INFINITY) {
+        free(heap);
+        return sqrt(worst2);
     }
     /* segment -> limit polyline, likewise; each chord's direction and
      * squared length once */
@@ -2001,7 +2055,8 @@ static conica_code smooth_piece(ctx *c, const piece *P, double *deviation)
             q = piece_q(c, P, kk, &d);
             /* tau[idx[i] + j]: parameters of the edge's points (its end
              * point's is overwritten by the next edge's start) */
-            e = check_edge(q, d, t0, t1, v, idx[i + 1] - idx[i], T + idx[i]);
+            e = check_edge(q, d, t0, t1, v, idx[i + 1] - idx[i], T + idx[i],
+                           fmin(c->tol, fmax(*deviation, worst)));
             free(buf);
             if (!(e <= c->tol)) {
                 bad[i] = 1;
@@ -2103,7 +2158,7 @@ static conica_code smooth_piece(ctx *c, const piece *P, double *deviation)
             break;
         }
         if (!T)
-            check_edge(q, d, t0, t1, v, m, tau);
+            check_edge(q, d, t0, t1, v, m, tau, INFINITY);
         tau[m] = t1;
         for (j = step; j <= m; j += step) {
             size_t o = idx[i] + j;
