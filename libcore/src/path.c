@@ -1650,46 +1650,69 @@ static double poly_d2_max(const seg_fn *f, double ta, double tb)
  * own rounding: a handful of operations, each within 2^-53). */
 #define PATH_BOUND_MARGIN (1 + 1e-12)
 
+/* The bound of check_edge's comment from the points' parameters tau[0..m]
+ * and their distances F[i] = |C(tau_i) - v_i|, the limit chords' bulge
+ * and the largest point distance added; INFINITY when tau is out of order. */
+static double feet_bound(const double *tau, const double *F, size_t m, double d2max, double sag,
+                         double worst2)
+{
+    double bound = 0;
+    size_t i;
+    for (i = 0; i < m; i++) {
+        double dt = tau[i + 1] - tau[i];
+        if (!(dt >= 0))
+            return INFINITY;
+        bound = fmax(bound, fmax(F[i], F[i + 1]) + 0.125 * dt * dt * d2max);
+    }
+    return fmax(bound + 1.6 * 0.125 * sqrt(sag), sqrt(worst2));
+}
+
 /*
  * Compare the limit polyline v[0..m] (v[0], v[m] the samples at ta, tb) of
- * one sample edge with the segment on [ta, tb]: tau[i] gets each point's
- * parameter (may be NULL); returns the largest distance in either
- * direction, the chords' own bulge counted against us.
+ * one sample edge with the segment on [ta, tb]; returns the largest
+ * distance in either direction, the chords' own bulge counted against us.
+ * tau[i] gets the parameter of point i (its foot on the segment) where
+ * i % keep == 0 (keep 0: none wanted; the others may get any parameter).
  *
  * need: the caller needs the exact figure only where it exceeds need
  * (the largest already measured, at most the tolerance; INFINITY: only
  * tau is wanted). Where a rigorous bound of it does not exceed need, the
  * bound is returned instead, and the search of the dense points against
- * the polyline is skipped: for a polynomial piece with the points' feet in
- * order, C on [tau_i, tau_i+1] lies within max(|C(tau_i) - v_i|,
- * |C(tau_i+1) - v_i+1|) + (tau_i+1 - tau_i)^2 / 8 max|C''| of chord i (the
- * chord of the two feet is that close to chord i, C within the linear
- * interpolation error of the chord of its feet), which bounds every dense
- * point's distance from the polyline. The verdict against the tolerance
- * and the largest value over a piece are those of the full search.
+ * the polyline is skipped: for a polynomial piece and any parameters
+ * tau_0 <= ... <= tau_m with F_i = |C(tau_i) - v_i|, C on [tau_i, tau_i+1]
+ * lies within max(F_i, F_i+1) + (tau_i+1 - tau_i)^2 / 8 max|C''| of chord
+ * i (the chord of C(tau_i), C(tau_i+1) is that close to chord i, C within
+ * the linear interpolation error of that chord), which bounds every dense
+ * point's distance from the polyline, and F_i bounds point i's distance
+ * from the segment. So the points whose parameter is not wanted first get
+ * the point of the dense polyline nearest to them, mapped to its
+ * parameter, instead of Newton's foot, and get Newton's only when the bound
+ * does not do. The verdict against the tolerance and the largest value
+ * over a piece are those of the full search.
  */
 static double check_edge(const double *q, int d, double ta, double tb, const double *v, size_t m,
-                         double *tau, double need)
+                         double *tau, size_t keep, double need)
 {
-    size_t M = 2 * m, i, j, prev;
-    double worst2 = 0, wb2 = 0, sag = 0, *heap = NULL;
+    size_t M = 2 * m, i, j, prev, nskip = 0;
+    double worst2 = 0, wb2 = 0, sag = 0, *heap = NULL, span = (tb - ta) / (double)M;
     double dense[2 * (2 * PATH_CHECK_STACK + 1)], chord[3 * PATH_CHECK_STACK],
            foot[PATH_CHECK_STACK + 1], *D = dense, *E = chord, *F = foot;
+    size_t nearest[PATH_CHECK_STACK + 1], *N = nearest;
     seg_fn f = seg_fn_of(q, d);
-    if (M + 1 > 2 * PATH_CHECK_STACK + 1) {
-        heap = malloc((2 * (M + 1) + 3 * m + m + 1) * sizeof *heap);
+    int bounded = f.poly && need < INFINITY;
+    if (m > PATH_CHECK_STACK) {
+        heap = malloc((2 * (M + 1) + 3 * m + m + 1) * sizeof *heap + (m + 1) * sizeof *N);
         if (!heap)
             return INFINITY;
         D = heap;
         E = heap + 2 * (M + 1);
         F = E + 3 * m;
+        N = (size_t *)(void *)(F + m + 1);
     }
     for (j = 0; j <= M; j++)
         seg_fn_point(&f, ta + (tb - ta) * (double)j / (double)M, D + 2 * j);
-    if (tau) {
-        tau[0] = ta;
-        tau[m] = tb;
-    }
+    tau[0] = ta;
+    tau[m] = tb;
     /* limit points -> segment: the nearest dense point, searched from the
      * previous point's (the correspondence is monotone), the window doubled
      * while the best lies on its edge */
@@ -1714,36 +1737,70 @@ static double check_edge(const double *q, int d, double ta, double tb, const dou
             break;
         }
         prev = bj;
-        t0 = ta + (tb - ta) * (double)bj / (double)M;
-        tlo = ta + (tb - ta) * (double)(bj ? bj - 1 : 0) / (double)M;
-        thi = ta + (tb - ta) * (double)(bj < M ? bj + 1 : M) / (double)M;
-        t0 = project(&f, v + 2 * i, t0, tlo, thi, &dist);
-        if (tau)
-            tau[i] = t0;
-        F[i] = dist;
-        worst2 = dist * dist > worst2 ? dist * dist : worst2;
         sx = v[2 * i - 2] - 2 * v[2 * i] + v[2 * i + 2];
         sy = v[2 * i - 1] - 2 * v[2 * i + 1] + v[2 * i + 3];
         sx = sx * sx + sy * sy;
         sag = sx > sag ? sx : sag;
+        N[i] = bj;
+        if (bounded && (keep == 0 || i % keep != 0)) {
+            /* the nearer dense chord at bj, the point of it nearest to v_i */
+            size_t k2 = bj == 0 ? 1
+                        : bj == M || dist2(D + 2 * (bj - 1), v + 2 * i) <
+                                           dist2(D + 2 * (bj + 1), v + 2 * i)
+                            ? bj - 1
+                            : bj + 1;
+            double ex = D[2 * k2] - D[2 * bj], ey = D[2 * k2 + 1] - D[2 * bj + 1];
+            double el = ex * ex + ey * ey, c[2], sp;
+            sp = el > 0 ? ((v[2 * i] - D[2 * bj]) * ex + (v[2 * i + 1] - D[2 * bj + 1]) * ey) / el
+                        : 0;
+            sp = sp > 0 ? sp : 0;
+            sp = sp < 1 ? sp : 1;
+            t0 = ta + (tb - ta) * (double)bj / (double)M +
+                 sp * span * (k2 > bj ? 1.0 : -1.0);
+            seg_fn_point(&f, t0, c);
+            tau[i] = t0;
+            F[i] = sqrt(dist2(c, v + 2 * i));
+            worst2 = F[i] * F[i] > worst2 ? F[i] * F[i] : worst2;
+            nskip++;
+            continue;
+        }
+        t0 = ta + (tb - ta) * (double)bj / (double)M;
+        tlo = ta + (tb - ta) * (double)(bj ? bj - 1 : 0) / (double)M;
+        thi = ta + (tb - ta) * (double)(bj < M ? bj + 1 : M) / (double)M;
+        t0 = project(&f, v + 2 * i, t0, tlo, thi, &dist);
+        tau[i] = t0;
+        F[i] = dist;
+        worst2 = dist * dist > worst2 ? dist * dist : worst2;
     }
-    if (tau && f.poly) {
+    if (bounded) {
         /* the bound of the polyline's distance from the segment (above) */
-        double c[2], d2max = poly_d2_max(&f, ta, tb), bound = 0;
-        int sorted = 1;
+        double c[2], d2max = poly_d2_max(&f, ta, tb);
         seg_fn_point(&f, ta, c);
         F[0] = sqrt(dist2(c, v));
         seg_fn_point(&f, tb, c);
         F[m] = sqrt(dist2(c, v + 2 * m));
-        for (i = 0; i < m && sorted; i++) {
-            double dt = tau[i + 1] - tau[i];
-            sorted = dt >= 0;
-            bound = fmax(bound, fmax(F[i], F[i + 1]) + 0.125 * dt * dt * d2max);
-        }
-        bound = fmax(bound + 1.6 * 0.125 * sqrt(sag), sqrt(worst2));
-        if (sorted && bound * PATH_BOUND_MARGIN <= need) {
-            free(heap);
-            return bound;
+        for (;;) {
+            double bound = feet_bound(tau, F, m, d2max, sag, worst2);
+            if (bound * PATH_BOUND_MARGIN <= need) {
+                free(heap);
+                return bound;
+            }
+            if (!nskip)
+                break;
+            /* Newton's feet for the points that went without, the largest
+             * distance measured again, and the bound tried once more */
+            worst2 = 0;
+            for (i = 1; i < m; i++) {
+                if (keep == 0 || i % keep != 0) {
+                    size_t bj = N[i];
+                    double t0 = ta + (tb - ta) * (double)bj / (double)M;
+                    double tlo = ta + (tb - ta) * (double)(bj ? bj - 1 : 0) / (double)M;
+                    double thi = ta + (tb - ta) * (double)(bj < M ? bj + 1 : M) / (double)M;
+                    tau[i] = project(&f, v + 2 * i, t0, tlo, thi, F + i);
+                }
+                worst2 = F[i] * F[i] > worst2 ? F[i] * F[i] : worst2;
+            }
+            nskip = 0;
         }
     }
     if (need == INFINITY) {
@@ -1919,7 +1976,7 @@ static const double *edge_points(const conica_curve *o, size_t a, size_t b, doub
 static conica_code smooth_piece(ctx *c, const piece *P, double *deviation)
 {
     int ok = 0, round, lev, L = 0, d;
-    size_t ns = 0, cap, i, k, ne, *idx = NULL, ninfl = 0, step = 1;
+    size_t ns = 0, cap, i, k, ne, *idx = NULL, ninfl = 0, step = 1, keep = 1;
     smp *S = NULL;
     double *T = NULL; /* parameters of the check output's points */
     const double *q;
@@ -2042,6 +2099,14 @@ static conica_code smooth_piece(ctx *c, const piece *P, double *deviation)
             break;
         }
         idx[ns] = out.n; /* closed: the last edge runs to the first point again */
+        /* the output levels, and so the check points whose parameters the
+         * output takes: every step-th (below), all, or none (the output
+         * comes from a subdivision of its own) */
+        lev = c->s.level_tolerance > 0
+                  ? levels_for(c->sxy, c->snxy, ns, P->closed, c->s.level_tolerance, 0,
+                               PATH_LEVELS_MAX)
+                  : c->s.levels;
+        keep = lev < L && ninfl == 0 ? (size_t)1 << (L - lev) : lev == L ? 1 : 0;
         worst = 0;
         for (i = 0; i < ne; i++) {
             size_t kk;
@@ -2055,7 +2120,7 @@ static conica_code smooth_piece(ctx *c, const piece *P, double *deviation)
             q = piece_q(c, P, kk, &d);
             /* tau[idx[i] + j]: parameters of the edge's points (its end
              * point's is overwritten by the next edge's start) */
-            e = check_edge(q, d, t0, t1, v, idx[i + 1] - idx[i], T + idx[i],
+            e = check_edge(q, d, t0, t1, v, idx[i + 1] - idx[i], T + idx[i], keep,
                            fmin(c->tol, fmax(*deviation, worst)));
             free(buf);
             if (!(e <= c->tol)) {
@@ -2117,11 +2182,6 @@ static conica_code smooth_piece(ctx *c, const piece *P, double *deviation)
     c->r->samples += ns;
     if (worst > *deviation)
         *deviation = worst;
-    /* the output levels */
-    lev = c->s.level_tolerance > 0
-              ? levels_for(c->sxy, c->snxy, ns, P->closed, c->s.level_tolerance, 0,
-                           PATH_LEVELS_MAX)
-              : c->s.levels;
     if (lev < L && ninfl == 0) {
         /* The scheme keeps every point of a level in the next one, so with
          * no inflection point inserted the level-lev points are every
@@ -2158,7 +2218,7 @@ static conica_code smooth_piece(ctx *c, const piece *P, double *deviation)
             break;
         }
         if (!T)
-            check_edge(q, d, t0, t1, v, m, tau, INFINITY);
+            check_edge(q, d, t0, t1, v, m, tau, 1, INFINITY);
         tau[m] = t1;
         for (j = step; j <= m; j += step) {
             size_t o = idx[i] + j;
