@@ -802,16 +802,18 @@ static conica_code take(ctx *c, size_t n)
     return CONICA_OK;
 }
 
-/* Append a point to the current polyline (its budget already taken). */
-static int add_pt(ctx *c, const double xy[2], const double nxy[2], size_t seg, double t,
-                  unsigned flags)
+/* Room for `more` points on the current polyline (its five arrays grown
+ * together, at least doubling). */
+static int reserve(ctx *c, size_t more)
 {
     conica_path_polyline *l = c->L;
-    if (l->n == c->lcap) {
+    if (l->n + more > c->lcap) {
         size_t cap = c->lcap ? 2 * c->lcap : 16;
         double *x;
         size_t *s;
         unsigned char *f;
+        if (cap < l->n + more)
+            cap = l->n + more;
         if (!(x = realloc(l->xy, 2 * cap * sizeof *x)))
             return 0;
         l->xy = x;
@@ -829,6 +831,16 @@ static int add_pt(ctx *c, const double xy[2], const double nxy[2], size_t seg, d
         l->flags = f;
         c->lcap = cap;
     }
+    return 1;
+}
+
+/* Append a point to the current polyline (its budget already taken). */
+static int add_pt(ctx *c, const double xy[2], const double nxy[2], size_t seg, double t,
+                  unsigned flags)
+{
+    conica_path_polyline *l = c->L;
+    if (l->n == c->lcap && !reserve(c, 1))
+        return 0;
     l->xy[2 * l->n] = xy[0];
     l->xy[2 * l->n + 1] = xy[1];
     l->nxy[2 * l->n] = nxy[0];
@@ -2851,31 +2863,63 @@ static conica_code samples_subpath(ctx *c, const conica_path_subpath *sp, int sm
                 }
                 break;
             }
-            /* map output points to sample edges */
+            /* map output points to sample edges; the polyline sized once
+             * for the piece, and the first piece's points and normals taken
+             * over as the subdivision wrote them */
             from = first ? 0 : 1;
             rc = take(c, o.n - from);
-            {
-                size_t e = 0, last_i = 0;
-                for (k = 0; k < o.n && rc == CONICA_OK; k++) {
-                    size_t v = (start + e) % n;
+            if (rc == CONICA_OK) {
+                conica_path_polyline *l = c->L;
+                size_t e = 0, last_i = 0, at;
+                double inv = ldexp(1.0, -lev); /* 2^-lev: t = steps / 2^lev exactly */
+                int own = 0;
+                if (!l->xy && !l->nxy && from == 0 && o.nxy) {
+                    l->seg = malloc(o.n * sizeof *l->seg);
+                    l->t = malloc(o.n * sizeof *l->t);
+                    l->flags = malloc(o.n ? o.n : 1);
+                    if (l->seg && l->t && l->flags) {
+                        l->xy = o.xy;
+                        l->nxy = o.nxy;
+                        o.xy = o.nxy = NULL;
+                        c->lcap = o.n;
+                        own = 1;
+                    }
+                }
+                if (!own && !reserve(c, o.n - from))
+                    rc = fail_nomem(c);
+                /* ve: the sample the next vertex is, vcur: the last one's */
+                size_t ve = start % n, vcur = ve;
+                for (k = 0, at = l->n; k < o.n && rc == CONICA_OK; k++) {
+                    size_t v;
                     unsigned fl = 0;
                     double t = 0;
-                    if (e < cnt && o.xy[2 * k] == xy[2 * e] && o.xy[2 * k + 1] == xy[2 * e + 1]) {
+                    const double *pk = own ? l->xy + 2 * k : o.xy + 2 * k;
+                    if (e < cnt && pk[0] == xy[2 * e] && pk[1] == xy[2 * e + 1]) {
                         fl = CONICA_PATH_PT_VERTEX;
+                        v = vcur = ve;
+                        ve = ve + 1 == n ? 0 : ve + 1;
                         last_i = k;
                         e++;
                     } else {
-                        v = (start + e - 1) % n;
-                        t = (double)(k - last_i) / ldexp(1.0, lev);
+                        v = vcur;
+                        t = (double)(k - last_i) * inv;
                         t = t > 1 ? 1 : t;
                     }
                     if (fl && !piece_closed && (k == 0 || k + 1 == o.n) && nc)
                         fl |= CONICA_PATH_PT_CORNER;
                     if (k < from)
                         continue;
-                    if (!add_pt(c, o.xy + 2 * k, o.nxy + 2 * k, sp->first + v, t, fl))
-                        rc = fail_nomem(c);
+                    if (!own) {
+                        memcpy(l->xy + 2 * at, o.xy + 2 * k, 2 * sizeof *l->xy);
+                        memcpy(l->nxy + 2 * at, o.nxy + 2 * k, 2 * sizeof *l->nxy);
+                    }
+                    l->seg[at] = sp->first + v;
+                    l->t[at] = t;
+                    l->flags[at] = (unsigned char)fl;
+                    at++;
                 }
+                if (rc == CONICA_OK)
+                    l->n = at;
             }
             conica_curve_free(&o);
             first = 0;
