@@ -1615,9 +1615,14 @@ static double project(const seg_fn *f, const double x[2], double t0, double lo, 
             break; /* converged */
         dd = fabs(tn - t);
         t = tn;
-        seg_fn_eval(f, t, c, d1, d2);
-        if (dd <= PATH_NEWTON_SETTLED * (hi - lo))
-            k = PATH_NEWTON_STEPS; /* settled: this evaluation is the last */
+        if (dd <= PATH_NEWTON_SETTLED * (hi - lo) || k + 1 == PATH_NEWTON_STEPS) {
+            /* settled (or out of steps): this evaluation is the last, and
+             * only its point is wanted */
+            seg_fn_point(f, t, c);
+            k = PATH_NEWTON_STEPS;
+        } else {
+            seg_fn_eval(f, t, c, d1, d2);
+        }
         dd = (c[0] - x[0]) * (c[0] - x[0]) + (c[1] - x[1]) * (c[1] - x[1]);
         if (dd < bd) {
             bd = dd;
