@@ -1660,7 +1660,7 @@ static double poly_d2_max(const seg_fn *f, double ta, double tb)
         return 0;
     seg_fn_eval(f, ta, c, d1, a);
     seg_fn_eval(f, tb, c, d1, b);
-    return fmax(hypot(a[0], a[1]), hypot(b[0], b[1]));
+    return sqrt(fmax(a[0] * a[0] + a[1] * a[1], b[0] * b[0] + b[1] * b[1]));
 }
 
 /* Safety factor on a bound before it may stand in for a measurement (its
@@ -1676,12 +1676,14 @@ static double feet_bound(const double *tau, const double *F, size_t m, double d2
     double bound = 0;
     size_t i;
     for (i = 0; i < m; i++) {
-        double dt = tau[i + 1] - tau[i];
+        double dt = tau[i + 1] - tau[i], b;
         if (!(dt >= 0))
             return INFINITY;
-        bound = fmax(bound, fmax(F[i], F[i + 1]) + 0.125 * dt * dt * d2max);
+        b = (F[i] > F[i + 1] ? F[i] : F[i + 1]) + 0.125 * dt * dt * d2max;
+        bound = b > bound ? b : bound;
     }
-    return fmax(bound + 1.6 * 0.125 * sqrt(sag), sqrt(worst2));
+    bound += 1.6 * 0.125 * sqrt(sag);
+    return bound > sqrt(worst2) ? bound : sqrt(worst2);
 }
 
 /*
