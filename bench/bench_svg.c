@@ -8,6 +8,7 @@
  * flattening within 0.01 units. Prints figures, asserts nothing.
  *
  *   build/bench/bench_svg [--write FILE] [SUBPATHS [VERTICES]]
+ *   build/bench/bench_svg --samples     (the samples run below alone)
  *
  * --write FILE also saves the generated document, for timing the tool end
  * to end: `build/bin/svgsmooth --stats --levels 3 -o out.svg FILE`.
@@ -213,6 +214,8 @@ int main(int argc, char **argv)
     conica_svg_settings s = conica_svg_defaults();
     text doc;
     int rc = 0;
+    if (argc == 2 && !strcmp(argv[1], "--samples"))
+        return samples_run();
     if (argc > 2 && !strcmp(argv[1], "--write")) {
         write_to = argv[2];
         argc -= 2;
@@ -221,7 +224,7 @@ int main(int argc, char **argv)
     nsub = argc > 1 ? (size_t)atol(argv[1]) : 10000;
     nv = argc > 2 ? (size_t)atol(argv[2]) : 100;
     if (nsub == 0 || nv < 4 || nv % 2) {
-        fprintf(stderr, "usage: bench_svg [SUBPATHS [EVEN VERTICES >= 4]]\n");
+        fprintf(stderr, "usage: bench_svg [--write FILE] [SUBPATHS [EVEN VERTICES >= 4]] | --samples\n");
         return 2;
     }
     doc = make_doc(nsub, nv);
