@@ -8,9 +8,16 @@
  * flattening within 0.01 units. Prints figures, asserts nothing.
  *
  *   build/bench/bench_svg [--write FILE] [SUBPATHS [VERTICES]]
+ *   build/bench/bench_svg --samples     (the samples run below alone)
  *
  * --write FILE also saves the generated document, for timing the tool end
  * to end: `build/bin/svgsmooth --stats --levels 3 -o out.svg FILE`.
+ *
+ * Then samples through the front end (issue 16, "Large curves"): a closed
+ * polygon of 20 000 float32-rounded points of a circle, what Blender's
+ * POLY splines and `svgsmooth --lines-as-samples` give conica_path, at
+ * level 7 with no corners: conica_path_smooth() beside conica_subdivide()
+ * alone on the same samples (normals estimated alike), best of 3.
  */
 #include <math.h>
 #include <stdio.h>
@@ -18,6 +25,9 @@
 #include <string.h>
 #include <time.h>
 
+#include "conica/curve.h"
+#include "conica/path.h"
+#include "conica/subdiv.h"
 #include "conica_svg.h"
 
 #ifndef M_PI
@@ -133,6 +143,70 @@ static int run(const char *label, const text *doc, const conica_svg_settings *s)
     return 0;
 }
 
+/* The 20 000-point circle through conica_path and through conica_subdivide
+ * alone: CPU seconds (best of 3) and points of each. */
+static int samples_run(void)
+{
+    const size_t n = 20000;
+    const int levels = 7;
+    double *xy = malloc(2 * n * sizeof *xy), best[2] = {INFINITY, INFINITY};
+    size_t i, pts[2] = {0, 0};
+    int rep, rc = 0;
+    if (!xy)
+        return 1;
+    for (i = 0; i < n; i++) {
+        double a = 2 * M_PI * (double)i / (double)n;
+        xy[2 * i] = (double)(float)cos(a);
+        xy[2 * i + 1] = (double)(float)sin(a);
+    }
+    for (rep = 0; rep < 3 && !rc; rep++) {
+        conica_path p;
+        conica_path_result r;
+        conica_path_settings ps = conica_path_defaults();
+        conica_curve in, out;
+        conica_subdiv_settings ss = conica_subdiv_defaults();
+        double t0;
+        conica_path_init(&p);
+        conica_path_result_init(&r);
+        ps.levels = levels;
+        ps.corner_angle = M_PI;
+        ps.precision = conica_path_float32_precision(1.0);
+        t0 = now();
+        if (conica_path_samples(&p, xy, NULL, n, 1, 0, NULL) != CONICA_OK ||
+            conica_path_smooth(&p, &ps, &r, NULL) != CONICA_OK)
+            rc = 1;
+        best[0] = fmin(best[0], now() - t0);
+        pts[0] = r.points;
+        conica_path_result_free(&r);
+        conica_path_free(&p);
+        conica_curve_init(&in);
+        conica_curve_init(&out);
+        ss.levels = levels;
+        ss.noise = ps.precision;
+        t0 = now();
+        if (conica_curve_set(xy, NULL, n, 1, &in, NULL) != CONICA_OK ||
+            conica_curve_estimate_normals(&in, CONICA_NORMALS_CIRCLE, NULL) != CONICA_OK ||
+            conica_subdivide(&in, &ss, &out, NULL, NULL) != CONICA_OK)
+            rc = 1;
+        best[1] = fmin(best[1], now() - t0);
+        pts[1] = out.n;
+        conica_curve_free(&in);
+        conica_curve_free(&out);
+    }
+    free(xy);
+    if (rc) {
+        fprintf(stderr, "bench_svg: the samples run failed\n");
+        return 1;
+    }
+    printf("\nsamples: closed float32 circle of %zu points, level %d, no corners (CPU s, best of 3)\n\n",
+           n, levels);
+    printf("%-34s %10s %9s\n", "call", "points", "CPU s");
+    printf("%-34s %10zu %9.3f\n", "conica_path_smooth (samples)", pts[0], best[0]);
+    printf("%-34s %10zu %9.3f\n", "conica_subdivide alone", pts[1], best[1]);
+    printf("%-34s %10s %9.2f\n", "front end / subdivision", "", best[0] / best[1]);
+    return 0;
+}
+
 int main(int argc, char **argv)
 {
     const char *write_to = NULL;
@@ -140,6 +214,8 @@ int main(int argc, char **argv)
     conica_svg_settings s = conica_svg_defaults();
     text doc;
     int rc = 0;
+    if (argc == 2 && !strcmp(argv[1], "--samples"))
+        return samples_run();
     if (argc > 2 && !strcmp(argv[1], "--write")) {
         write_to = argv[2];
         argc -= 2;
@@ -148,7 +224,7 @@ int main(int argc, char **argv)
     nsub = argc > 1 ? (size_t)atol(argv[1]) : 10000;
     nv = argc > 2 ? (size_t)atol(argv[2]) : 100;
     if (nsub == 0 || nv < 4 || nv % 2) {
-        fprintf(stderr, "usage: bench_svg [SUBPATHS [EVEN VERTICES >= 4]]\n");
+        fprintf(stderr, "usage: bench_svg [--write FILE] [SUBPATHS [EVEN VERTICES >= 4]] | --samples\n");
         return 2;
     }
     doc = make_doc(nsub, nv);
@@ -171,5 +247,6 @@ int main(int argc, char **argv)
     s.tolerance = 0.01;
     rc |= run("flatten --tolerance .01", &doc, &s);
     free(doc.s);
+    rc |= samples_run();
     return rc;
 }

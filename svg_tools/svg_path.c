@@ -173,12 +173,16 @@ static size_t fast_layout(const fast_num *f, int neg, int precision, char *out)
         while (ne)
             out[n++] = eb[--ne];
     } else if (e >= 0) {
-        for (i = 0; i <= (size_t)e; i++)
-            out[n++] = i < nd ? f->dg[i] : '0';
-        if (nd > (size_t)e + 1) {
-            out[n++] = '.';
-            for (i = (size_t)e + 1; i < nd; i++)
-                out[n++] = f->dg[i];
+        size_t whole = (size_t)e + 1; /* digits before the point */
+        if (nd <= whole) {
+            memcpy(out + n, f->dg, nd);
+            memset(out + n + nd, '0', whole - nd);
+            n += whole;
+        } else {
+            memcpy(out + n, f->dg, whole);
+            out[n + whole] = '.';
+            memcpy(out + n + whole + 1, f->dg + whole, nd - whole);
+            n += nd + 1;
         }
     } else {
         out[n++] = '.';

@@ -8,7 +8,9 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "conica/curve.h"
 #include "conica/path.h"
+#include "conica/subdiv.h"
 #include "conica_test.h"
 #include "fidelity.h"
 #include "glyphs.h"
@@ -395,6 +397,81 @@ TEST_CASE("rounding noise makes no inflection points", "[path][noise]")
     conica_path_result_free(&r);
     conica_path_free(&p);
     free(xy);
+}
+
+/* The points of one subdivided run of samples (normals estimated as the
+ * front end estimates them), the naive reference for what it writes. */
+static void subdivide_run(const double *xy, size_t n, int closed, int levels, double noise,
+                          conica_curve *out)
+{
+    conica_curve in;
+    conica_subdiv_settings ss = conica_subdiv_defaults();
+    conica_curve_init(&in);
+    REQUIRE(conica_curve_set(xy, NULL, n, closed, &in, NULL) == CONICA_OK);
+    REQUIRE(conica_curve_estimate_normals(&in, CONICA_NORMALS_CIRCLE, NULL) == CONICA_OK);
+    ss.levels = levels;
+    ss.noise = noise;
+    REQUIRE(conica_subdivide(&in, &ss, out, NULL, NULL) == CONICA_OK);
+    conica_curve_free(&in);
+}
+
+TEST_CASE("samples come out as their subdivision writes them: points, normals, edges, parameters",
+          "[path][samples]")
+{
+    /* a closed float32 circle (one piece, the whole subpath) and a D of a
+     * half circle closed by its diameter (corners at both ends: the arc
+     * and the straight back are pieces of their own) */
+    int shape;
+    for (shape = 0; shape < 2; shape++) {
+        size_t n = shape == 0 ? 500 : 17, i, k, m;
+        int lev = shape == 0 ? 5 : 4;
+        double *xy = malloc(2 * n * sizeof *xy), step = ldexp(1.0, -lev);
+        conica_path p;
+        conica_path_result r;
+        conica_path_settings s = conica_path_defaults();
+        conica_curve ref;
+        const conica_path_polyline *L;
+        REQUIRE(xy != NULL);
+        for (i = 0; i < n; i++) {
+            double a = shape == 0 ? 2 * M_PI * (double)i / (double)n
+                                  : -0.5 * M_PI + M_PI * (double)i / (double)(n - 1);
+            xy[2 * i] = (double)(float)(1 + cos(a));
+            xy[2 * i + 1] = (double)(float)(2 + sin(a));
+        }
+        conica_path_init(&p);
+        conica_path_result_init(&r);
+        conica_curve_init(&ref);
+        REQUIRE(conica_path_samples(&p, xy, NULL, n, 1, 100, NULL) == CONICA_OK);
+        s.levels = lev;
+        s.precision = conica_path_float32_precision(3.0);
+        REQUIRE(conica_path_smooth(&p, &s, &r, NULL) == CONICA_OK);
+        subdivide_run(xy, n, shape == 0, lev, s.precision, &ref);
+        L = &r.lines[0];
+        /* the D: the arc's points, its back edge adding none (it ends
+         * where the polyline starts) */
+        m = ref.n;
+        REQUIRE_EQ_U(L->n, m);
+        CHECK_EQ_U(r.corners, shape == 0 ? 0 : 2);
+        for (k = 0; k < m; k++) {
+            size_t e = k >> lev;
+            double t = (double)(k & (((size_t)1 << lev) - 1)) * step;
+            unsigned fl = t == 0 ? CONICA_PATH_PT_VERTEX : 0;
+            if (shape == 1 && t == 0 && (k == 0 || k + 1 == m))
+                fl |= CONICA_PATH_PT_CORNER;
+            if (memcmp(L->xy + 2 * k, ref.xy + 2 * k, 2 * sizeof *ref.xy) != 0 ||
+                memcmp(L->nxy + 2 * k, ref.nxy + 2 * k, 2 * sizeof *ref.nxy) != 0 ||
+                L->seg[k] != e || L->t[k] != t || L->flags[k] != fl) {
+                INFO("shape %d point %zu: seg %zu t %g flags %u", shape, k, L->seg[k], L->t[k],
+                     (unsigned)L->flags[k]);
+                CHECK(0);
+                break;
+            }
+        }
+        conica_curve_free(&ref);
+        conica_path_result_free(&r);
+        conica_path_free(&p);
+        free(xy);
+    }
 }
 
 /* Simple roots in (0, 1) of the turning of the cubic q (x, y pairs):

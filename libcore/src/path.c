@@ -465,6 +465,24 @@ conica_code conica_path_samples(conica_path *p, const double *xy, const double *
 /* Point c, first and second derivative of a rational Bézier of degree d
  * with control points q (x, y, w triples) at t: de Casteljau on the
  * homogeneous points and their hodographs, then the quotient rule. */
+/* One coordinate of a polynomial cubic in Bernstein form (u = 1 - t): the
+ * point, first and second derivative. The formulas live here once, so the
+ * check's unrolled cubic loops give bez_eval's values bit for bit. */
+static inline double bern3(const double *p, double u, double t)
+{
+    return u * u * (u * p[0] + 3 * t * p[3]) + t * t * (3 * u * p[6] + t * p[9]);
+}
+
+static inline double bern3_d1(const double *p, double u, double t)
+{
+    return 3 * (u * u * (p[3] - p[0]) + 2 * u * t * (p[6] - p[3]) + t * t * (p[9] - p[6]));
+}
+
+static inline double bern3_d2(const double *p, double u, double t)
+{
+    return 6 * (u * (p[6] - 2 * p[3] + p[0]) + t * (p[9] - 2 * p[6] + p[3]));
+}
+
 /* Polynomial Bézier of degree 1..3 in Bernstein form (the common case of
  * lines, quadratic and cubic segments): no homogeneous detour. */
 static inline void bez_eval_poly3(const double *q, int d, double t, double c[2], double d1[2],
@@ -472,6 +490,16 @@ static inline void bez_eval_poly3(const double *q, int d, double t, double c[2],
 {
     double u = 1.0 - t;
     int k;
+    if (d == 3) {
+        for (k = 0; k < 2; k++) {
+            c[k] = bern3(q + k, u, t);
+            if (d1)
+                d1[k] = bern3_d1(q + k, u, t);
+            if (d2)
+                d2[k] = bern3_d2(q + k, u, t);
+        }
+        return;
+    }
     for (k = 0; k < 2; k++) {
         double p0 = q[k], p1 = q[3 + k];
         if (d == 1) {
@@ -480,20 +508,13 @@ static inline void bez_eval_poly3(const double *q, int d, double t, double c[2],
                 d1[k] = p1 - p0;
             if (d2)
                 d2[k] = 0;
-        } else if (d == 2) {
+        } else {
             double p2 = q[6 + k];
             c[k] = u * u * p0 + 2 * u * t * p1 + t * t * p2;
             if (d1)
                 d1[k] = 2 * (u * (p1 - p0) + t * (p2 - p1));
             if (d2)
                 d2[k] = 2 * (p2 - 2 * p1 + p0);
-        } else {
-            double p2 = q[6 + k], p3 = q[9 + k];
-            c[k] = u * u * (u * p0 + 3 * t * p1) + t * t * (3 * u * p2 + t * p3);
-            if (d1)
-                d1[k] = 3 * (u * u * (p1 - p0) + 2 * u * t * (p2 - p1) + t * t * (p3 - p2));
-            if (d2)
-                d2[k] = 6 * (u * (p2 - 2 * p1 + p0) + t * (p3 - 2 * p2 + p1));
         }
     }
 }
@@ -781,16 +802,18 @@ static conica_code take(ctx *c, size_t n)
     return CONICA_OK;
 }
 
-/* Append a point to the current polyline (its budget already taken). */
-static int add_pt(ctx *c, const double xy[2], const double nxy[2], size_t seg, double t,
-                  unsigned flags)
+/* Room for `more` points on the current polyline (its five arrays grown
+ * together, at least doubling). */
+static int reserve(ctx *c, size_t more)
 {
     conica_path_polyline *l = c->L;
-    if (l->n == c->lcap) {
+    if (l->n + more > c->lcap) {
         size_t cap = c->lcap ? 2 * c->lcap : 16;
         double *x;
         size_t *s;
         unsigned char *f;
+        if (cap < l->n + more)
+            cap = l->n + more;
         if (!(x = realloc(l->xy, 2 * cap * sizeof *x)))
             return 0;
         l->xy = x;
@@ -808,6 +831,16 @@ static int add_pt(ctx *c, const double xy[2], const double nxy[2], size_t seg, d
         l->flags = f;
         c->lcap = cap;
     }
+    return 1;
+}
+
+/* Append a point to the current polyline (its budget already taken). */
+static int add_pt(ctx *c, const double xy[2], const double nxy[2], size_t seg, double t,
+                  unsigned flags)
+{
+    conica_path_polyline *l = c->L;
+    if (l->n == c->lcap && !reserve(c, 1))
+        return 0;
     l->xy[2 * l->n] = xy[0];
     l->xy[2 * l->n + 1] = xy[1];
     l->nxy[2 * l->n] = nxy[0];
@@ -1507,7 +1540,7 @@ static conica_code flatten_seg(ctx *c, size_t s, const double nend[2], unsigned 
  * the values are bit for bit those of bez_eval); others through bez_eval. */
 typedef struct seg_fn {
     const double *q;
-    int d, poly;
+    int d, poly, cubic;
 } seg_fn;
 
 static seg_fn seg_fn_of(const double *q, int d)
@@ -1517,15 +1550,41 @@ static seg_fn seg_fn_of(const double *q, int d)
     f.d = d;
     f.poly = d <= 3 && q[2] == 1.0 && q[5] == 1.0 && (d < 2 || q[8] == 1.0) &&
              (d < 3 || q[11] == 1.0);
+    f.cubic = f.poly && d == 3;
     return f;
 }
 
+/* The point and both derivatives (the polynomial cubic, SVG's common case,
+ * unrolled in place: bern3* are bez_eval_poly3's own formulas). */
 static inline void seg_fn_eval(const seg_fn *f, double t, double c[2], double d1[2], double d2[2])
 {
-    if (f->poly)
+    if (f->cubic) {
+        double u = 1.0 - t;
+        c[0] = bern3(f->q, u, t);
+        c[1] = bern3(f->q + 1, u, t);
+        d1[0] = bern3_d1(f->q, u, t);
+        d1[1] = bern3_d1(f->q + 1, u, t);
+        d2[0] = bern3_d2(f->q, u, t);
+        d2[1] = bern3_d2(f->q + 1, u, t);
+    } else if (f->poly) {
         bez_eval_poly3(f->q, f->d, t, c, d1, d2);
-    else
+    } else {
         bez_eval(f->q, f->d, t, c, d1, d2);
+    }
+}
+
+/* The point alone. */
+static inline void seg_fn_point(const seg_fn *f, double t, double c[2])
+{
+    if (f->cubic) {
+        double u = 1.0 - t;
+        c[0] = bern3(f->q, u, t);
+        c[1] = bern3(f->q + 1, u, t);
+    } else if (f->poly) {
+        bez_eval_poly3(f->q, f->d, t, c, NULL, NULL);
+    } else {
+        bez_eval(f->q, f->d, t, c, NULL, NULL);
+    }
 }
 
 /* Closest point of segment f to x for t in [lo, hi], from the guess t0:
@@ -1556,9 +1615,14 @@ static double project(const seg_fn *f, const double x[2], double t0, double lo, 
             break; /* converged */
         dd = fabs(tn - t);
         t = tn;
-        seg_fn_eval(f, t, c, d1, d2);
-        if (dd <= PATH_NEWTON_SETTLED * (hi - lo))
-            k = PATH_NEWTON_STEPS; /* settled: this evaluation is the last */
+        if (dd <= PATH_NEWTON_SETTLED * (hi - lo) || k + 1 == PATH_NEWTON_STEPS) {
+            /* settled (or out of steps): this evaluation is the last, and
+             * only its point is wanted */
+            seg_fn_point(f, t, c);
+            k = PATH_NEWTON_STEPS;
+        } else {
+            seg_fn_eval(f, t, c, d1, d2);
+        }
         dd = (c[0] - x[0]) * (c[0] - x[0]) + (c[1] - x[1]) * (c[1] - x[1]);
         if (dd < bd) {
             bd = dd;
@@ -1586,33 +1650,88 @@ static double dist2(const double *a, const double *b)
 /* Dense points and chords of one check on the stack up to this many. */
 #define PATH_CHECK_STACK 1024
 
+/* Largest |C''| of a polynomial piece of degree <= 3 on [ta, tb]: C'' is
+ * linear in t there (constant for a quadratic), so its length, a convex
+ * function, peaks at an end. */
+static double poly_d2_max(const seg_fn *f, double ta, double tb)
+{
+    double c[2], d1[2], a[2], b[2];
+    if (f->d < 2)
+        return 0;
+    seg_fn_eval(f, ta, c, d1, a);
+    seg_fn_eval(f, tb, c, d1, b);
+    return sqrt(fmax(a[0] * a[0] + a[1] * a[1], b[0] * b[0] + b[1] * b[1]));
+}
+
+/* Safety factor on a bound before it may stand in for a measurement (its
+ * own rounding: a handful of operations, each within 2^-53). */
+#define PATH_BOUND_MARGIN (1 + 1e-12)
+
+/* The bound of check_edge's comment from the points' parameters tau[0..m]
+ * and their distances F[i] = |C(tau_i) - v_i|, the limit chords' bulge
+ * and the largest point distance added; INFINITY when tau is out of order. */
+static double feet_bound(const double *tau, const double *F, size_t m, double d2max, double sag,
+                         double worst2)
+{
+    double bound = 0;
+    size_t i;
+    for (i = 0; i < m; i++) {
+        double dt = tau[i + 1] - tau[i], b;
+        if (!(dt >= 0))
+            return INFINITY;
+        b = (F[i] > F[i + 1] ? F[i] : F[i + 1]) + 0.125 * dt * dt * d2max;
+        bound = b > bound ? b : bound;
+    }
+    bound += 1.6 * 0.125 * sqrt(sag);
+    return bound > sqrt(worst2) ? bound : sqrt(worst2);
+}
+
 /*
  * Compare the limit polyline v[0..m] (v[0], v[m] the samples at ta, tb) of
- * one sample edge with the segment on [ta, tb]: tau[i] gets each point's
- * parameter (may be NULL); returns the largest distance in either
- * direction, the chords' own bulge counted against us.
+ * one sample edge with the segment on [ta, tb]; returns the largest
+ * distance in either direction, the chords' own bulge counted against us.
+ * tau[i] gets the parameter of point i (its foot on the segment) where
+ * i % keep == 0 (keep 0: none wanted; the others may get any parameter).
+ *
+ * need: the caller needs the exact figure only where it exceeds need
+ * (the largest already measured, at most the tolerance; INFINITY: only
+ * tau is wanted). Where a rigorous bound of it does not exceed need, the
+ * bound is returned instead, and the search of the dense points against
+ * the polyline is skipped: for a polynomial piece and any parameters
+ * tau_0 <= ... <= tau_m with F_i = |C(tau_i) - v_i|, C on [tau_i, tau_i+1]
+ * lies within max(F_i, F_i+1) + (tau_i+1 - tau_i)^2 / 8 max|C''| of chord
+ * i (the chord of C(tau_i), C(tau_i+1) is that close to chord i, C within
+ * the linear interpolation error of that chord), which bounds every dense
+ * point's distance from the polyline, and F_i bounds point i's distance
+ * from the segment. So the points whose parameter is not wanted first get
+ * the point of the dense polyline nearest to them, mapped to its
+ * parameter, instead of Newton's foot, and get Newton's only when the bound
+ * does not do. The verdict against the tolerance and the largest value
+ * over a piece are those of the full search.
  */
 static double check_edge(const double *q, int d, double ta, double tb, const double *v, size_t m,
-                         double *tau)
+                         double *tau, size_t keep, double need)
 {
-    size_t M = 2 * m, i, j, prev;
-    double worst2 = 0, wb2 = 0, sag = 0, *heap = NULL;
-    double dense[2 * (2 * PATH_CHECK_STACK + 1)], chord[3 * PATH_CHECK_STACK], *D = dense,
-           *E = chord;
+    size_t M = 2 * m, i, j, prev, nskip = 0;
+    double worst2 = 0, wb2 = 0, sag = 0, *heap = NULL, span = (tb - ta) / (double)M;
+    double dense[2 * (2 * PATH_CHECK_STACK + 1)], chord[3 * PATH_CHECK_STACK],
+           foot[PATH_CHECK_STACK + 1], *D = dense, *E = chord, *F = foot;
+    size_t nearest[PATH_CHECK_STACK + 1], *N = nearest;
     seg_fn f = seg_fn_of(q, d);
-    if (M + 1 > 2 * PATH_CHECK_STACK + 1) {
-        heap = malloc((2 * (M + 1) + 3 * m) * sizeof *heap);
+    int bounded = f.poly && need < INFINITY;
+    if (m > PATH_CHECK_STACK) {
+        heap = malloc((2 * (M + 1) + 3 * m + m + 1) * sizeof *heap + (m + 1) * sizeof *N);
         if (!heap)
             return INFINITY;
         D = heap;
         E = heap + 2 * (M + 1);
+        F = E + 3 * m;
+        N = (size_t *)(void *)(F + m + 1);
     }
     for (j = 0; j <= M; j++)
-        seg_fn_eval(&f, ta + (tb - ta) * (double)j / (double)M, D + 2 * j, NULL, NULL);
-    if (tau) {
-        tau[0] = ta;
-        tau[m] = tb;
-    }
+        seg_fn_point(&f, ta + (tb - ta) * (double)j / (double)M, D + 2 * j);
+    tau[0] = ta;
+    tau[m] = tb;
     /* limit points -> segment: the nearest dense point, searched from the
      * previous point's (the correspondence is monotone), the window doubled
      * while the best lies on its edge */
@@ -1637,17 +1756,75 @@ static double check_edge(const double *q, int d, double ta, double tb, const dou
             break;
         }
         prev = bj;
-        t0 = ta + (tb - ta) * (double)bj / (double)M;
-        tlo = ta + (tb - ta) * (double)(bj ? bj - 1 : 0) / (double)M;
-        thi = ta + (tb - ta) * (double)(bj < M ? bj + 1 : M) / (double)M;
-        t0 = project(&f, v + 2 * i, t0, tlo, thi, &dist);
-        if (tau)
-            tau[i] = t0;
-        worst2 = dist * dist > worst2 ? dist * dist : worst2;
         sx = v[2 * i - 2] - 2 * v[2 * i] + v[2 * i + 2];
         sy = v[2 * i - 1] - 2 * v[2 * i + 1] + v[2 * i + 3];
         sx = sx * sx + sy * sy;
         sag = sx > sag ? sx : sag;
+        N[i] = bj;
+        if (bounded && (keep == 0 || i % keep != 0)) {
+            /* the nearer dense chord at bj, the point of it nearest to v_i */
+            size_t k2 = bj == 0 ? 1
+                        : bj == M || dist2(D + 2 * (bj - 1), v + 2 * i) <
+                                           dist2(D + 2 * (bj + 1), v + 2 * i)
+                            ? bj - 1
+                            : bj + 1;
+            double ex = D[2 * k2] - D[2 * bj], ey = D[2 * k2 + 1] - D[2 * bj + 1];
+            double el = ex * ex + ey * ey, c[2], sp;
+            sp = el > 0 ? ((v[2 * i] - D[2 * bj]) * ex + (v[2 * i + 1] - D[2 * bj + 1]) * ey) / el
+                        : 0;
+            sp = sp > 0 ? sp : 0;
+            sp = sp < 1 ? sp : 1;
+            t0 = ta + (tb - ta) * (double)bj / (double)M +
+                 sp * span * (k2 > bj ? 1.0 : -1.0);
+            seg_fn_point(&f, t0, c);
+            tau[i] = t0;
+            F[i] = sqrt(dist2(c, v + 2 * i));
+            worst2 = F[i] * F[i] > worst2 ? F[i] * F[i] : worst2;
+            nskip++;
+            continue;
+        }
+        t0 = ta + (tb - ta) * (double)bj / (double)M;
+        tlo = ta + (tb - ta) * (double)(bj ? bj - 1 : 0) / (double)M;
+        thi = ta + (tb - ta) * (double)(bj < M ? bj + 1 : M) / (double)M;
+        t0 = project(&f, v + 2 * i, t0, tlo, thi, &dist);
+        tau[i] = t0;
+        F[i] = dist;
+        worst2 = dist * dist > worst2 ? dist * dist : worst2;
+    }
+    if (bounded) {
+        /* the bound of the polyline's distance from the segment (above) */
+        double c[2], d2max = poly_d2_max(&f, ta, tb);
+        seg_fn_point(&f, ta, c);
+        F[0] = sqrt(dist2(c, v));
+        seg_fn_point(&f, tb, c);
+        F[m] = sqrt(dist2(c, v + 2 * m));
+        for (;;) {
+            double bound = feet_bound(tau, F, m, d2max, sag, worst2);
+            if (bound * PATH_BOUND_MARGIN <= need) {
+                free(heap);
+                return bound;
+            }
+            if (!nskip)
+                break;
+            /* Newton's feet for the points that went without, the largest
+             * distance measured again, and the bound tried once more */
+            worst2 = 0;
+            for (i = 1; i < m; i++) {
+                if (keep == 0 || i % keep != 0) {
+                    size_t bj = N[i];
+                    double t0 = ta + (tb - ta) * (double)bj / (double)M;
+                    double tlo = ta + (tb - ta) * (double)(bj ? bj - 1 : 0) / (double)M;
+                    double thi = ta + (tb - ta) * (double)(bj < M ? bj + 1 : M) / (double)M;
+                    tau[i] = project(&f, v + 2 * i, t0, tlo, thi, F + i);
+                }
+                worst2 = F[i] * F[i] > worst2 ? F[i] * F[i] : worst2;
+            }
+            nskip = 0;
+        }
+    }
+    if (need == INFINITY) {
+        free(heap);
+        return sqrt(worst2);
     }
     /* segment -> limit polyline, likewise; each chord's direction and
      * squared length once */
@@ -1818,7 +1995,7 @@ static const double *edge_points(const conica_curve *o, size_t a, size_t b, doub
 static conica_code smooth_piece(ctx *c, const piece *P, double *deviation)
 {
     int ok = 0, round, lev, L = 0, d;
-    size_t ns = 0, cap, i, k, ne, *idx = NULL, ninfl = 0, step = 1;
+    size_t ns = 0, cap, i, k, ne, *idx = NULL, ninfl = 0, step = 1, keep = 1;
     smp *S = NULL;
     double *T = NULL; /* parameters of the check output's points */
     const double *q;
@@ -1941,6 +2118,14 @@ static conica_code smooth_piece(ctx *c, const piece *P, double *deviation)
             break;
         }
         idx[ns] = out.n; /* closed: the last edge runs to the first point again */
+        /* the output levels, and so the check points whose parameters the
+         * output takes: every step-th (below), all, or none (the output
+         * comes from a subdivision of its own) */
+        lev = c->s.level_tolerance > 0
+                  ? levels_for(c->sxy, c->snxy, ns, P->closed, c->s.level_tolerance, 0,
+                               PATH_LEVELS_MAX)
+                  : c->s.levels;
+        keep = lev < L && ninfl == 0 ? (size_t)1 << (L - lev) : lev == L ? 1 : 0;
         worst = 0;
         for (i = 0; i < ne; i++) {
             size_t kk;
@@ -1954,7 +2139,8 @@ static conica_code smooth_piece(ctx *c, const piece *P, double *deviation)
             q = piece_q(c, P, kk, &d);
             /* tau[idx[i] + j]: parameters of the edge's points (its end
              * point's is overwritten by the next edge's start) */
-            e = check_edge(q, d, t0, t1, v, idx[i + 1] - idx[i], T + idx[i]);
+            e = check_edge(q, d, t0, t1, v, idx[i + 1] - idx[i], T + idx[i], keep,
+                           fmin(c->tol, fmax(*deviation, worst)));
             free(buf);
             if (!(e <= c->tol)) {
                 bad[i] = 1;
@@ -2015,11 +2201,6 @@ static conica_code smooth_piece(ctx *c, const piece *P, double *deviation)
     c->r->samples += ns;
     if (worst > *deviation)
         *deviation = worst;
-    /* the output levels */
-    lev = c->s.level_tolerance > 0
-              ? levels_for(c->sxy, c->snxy, ns, P->closed, c->s.level_tolerance, 0,
-                           PATH_LEVELS_MAX)
-              : c->s.levels;
     if (lev < L && ninfl == 0) {
         /* The scheme keeps every point of a level in the next one, so with
          * no inflection point inserted the level-lev points are every
@@ -2056,7 +2237,7 @@ static conica_code smooth_piece(ctx *c, const piece *P, double *deviation)
             break;
         }
         if (!T)
-            check_edge(q, d, t0, t1, v, m, tau);
+            check_edge(q, d, t0, t1, v, m, tau, 1, INFINITY);
         tau[m] = t1;
         for (j = step; j <= m; j += step) {
             size_t o = idx[i] + j;
@@ -2689,31 +2870,63 @@ static conica_code samples_subpath(ctx *c, const conica_path_subpath *sp, int sm
                 }
                 break;
             }
-            /* map output points to sample edges */
+            /* map output points to sample edges; the polyline sized once
+             * for the piece, and the first piece's points and normals taken
+             * over as the subdivision wrote them */
             from = first ? 0 : 1;
             rc = take(c, o.n - from);
-            {
-                size_t e = 0, last_i = 0;
-                for (k = 0; k < o.n && rc == CONICA_OK; k++) {
-                    size_t v = (start + e) % n;
+            if (rc == CONICA_OK) {
+                conica_path_polyline *l = c->L;
+                size_t e = 0, last_i = 0, at;
+                double inv = ldexp(1.0, -lev); /* 2^-lev: t = steps / 2^lev exactly */
+                int own = 0;
+                if (!l->xy && !l->nxy && from == 0 && o.nxy) {
+                    l->seg = malloc(o.n * sizeof *l->seg);
+                    l->t = malloc(o.n * sizeof *l->t);
+                    l->flags = malloc(o.n ? o.n : 1);
+                    if (l->seg && l->t && l->flags) {
+                        l->xy = o.xy;
+                        l->nxy = o.nxy;
+                        o.xy = o.nxy = NULL;
+                        c->lcap = o.n;
+                        own = 1;
+                    }
+                }
+                if (!own && !reserve(c, o.n - from))
+                    rc = fail_nomem(c);
+                /* ve: the sample the next vertex is, vcur: the last one's */
+                size_t ve = start % n, vcur = ve;
+                for (k = 0, at = l->n; k < o.n && rc == CONICA_OK; k++) {
+                    size_t v;
                     unsigned fl = 0;
                     double t = 0;
-                    if (e < cnt && o.xy[2 * k] == xy[2 * e] && o.xy[2 * k + 1] == xy[2 * e + 1]) {
+                    const double *pk = own ? l->xy + 2 * k : o.xy + 2 * k;
+                    if (e < cnt && pk[0] == xy[2 * e] && pk[1] == xy[2 * e + 1]) {
                         fl = CONICA_PATH_PT_VERTEX;
+                        v = vcur = ve;
+                        ve = ve + 1 == n ? 0 : ve + 1;
                         last_i = k;
                         e++;
                     } else {
-                        v = (start + e - 1) % n;
-                        t = (double)(k - last_i) / ldexp(1.0, lev);
+                        v = vcur;
+                        t = (double)(k - last_i) * inv;
                         t = t > 1 ? 1 : t;
                     }
                     if (fl && !piece_closed && (k == 0 || k + 1 == o.n) && nc)
                         fl |= CONICA_PATH_PT_CORNER;
                     if (k < from)
                         continue;
-                    if (!add_pt(c, o.xy + 2 * k, o.nxy + 2 * k, sp->first + v, t, fl))
-                        rc = fail_nomem(c);
+                    if (!own) {
+                        memcpy(l->xy + 2 * at, o.xy + 2 * k, 2 * sizeof *l->xy);
+                        memcpy(l->nxy + 2 * at, o.nxy + 2 * k, 2 * sizeof *l->nxy);
+                    }
+                    l->seg[at] = sp->first + v;
+                    l->t[at] = t;
+                    l->flags[at] = (unsigned char)fl;
+                    at++;
                 }
+                if (rc == CONICA_OK)
+                    l->n = at;
             }
             conica_curve_free(&o);
             first = 0;
