@@ -78,20 +78,24 @@
  * above by its two halves' Bernstein coefficients after a split at 1/2 (at
  * most 1.125 times its maximum) and below by its values at 1/3, 1/2, 2/3;
  * only when tol lies between the two is the exact cubic extremum (a
- * quadratic equation) computed. (c) The first trial from a new point
- * follows D ~ K h^2 (Theorem 1.16) with K extrapolated linearly from the
- * chord just taken (its mean D / h^2) and the curvature at the start of the
- * remainder (G_EXTRAP), so the step anticipates a rising curvature instead
- * of failing first; a step that would pass a knot is tried across it.
- * Trials per emitted point drop from 1.57 to 1.25 on sptest3 (bench_plot,
- * Table 2c).
+ * quadratic equation) computed. (c) The first trial from a new point is
+ * predicted from the remainder's own cubic (c3_step: the chord deviation
+ * of a polynomial cubic in closed form up to a 3% overestimate near an
+ * inflection, solved for 0.99 tol), so it mostly passes just under tol
+ * and is taken: about 1.01-1.03 certificates per point, and within
+ * 1.01x-1.02x of the greedy reference's points on single cubic pieces
+ * (bench_flatten); a step that would pass a knot is tried across it.
  *
- * general_march takes the same first step (start_k: the curvature at the
- * start of the remainder from its first three homogeneous control points,
- * for any degree, dimension and weights; also the first trial of a piece)
- * and ends a piece with two chords when the whole rest misses tol by a
- * small factor (G_HALVE): 2.16 -> 1.39 trials per point on sptest2
- * (p = 25). Neither changes the certificate. */
+ * general_march follows D ~ K h^2 (Theorem 1.16) with K extrapolated
+ * linearly from the chord just taken (its mean D / h^2) and the curvature
+ * at the start of the remainder (start_k, from its first three
+ * homogeneous control points, for any degree, dimension and weights; also
+ * the first trial of a piece; G_EXTRAP), so the step anticipates a rising
+ * curvature instead of failing first, and ends a piece with two chords
+ * when the whole rest misses tol by a small factor (G_HALVE): 2.16 -> 1.39
+ * trials per point on sptest2 (p = 25). Planar polynomial quadratics
+ * predict exactly instead (q2_step). None of this changes the
+ * certificate. */
 #include <float.h>
 #include <math.h>
 #include <stdlib.h>
@@ -126,22 +130,27 @@
 #define G_CLOSE_MAX_P 8
 #define G_CLOSE_NEXT 0.92
 #define G_CLOSE_GOOD 0.85
-/* c3_march's first trial from a new point aims at this fraction of tol:
- * its step model (G_EXTRAP) is good enough that aiming higher than
- * G_NEXT saves points without more failed trials (bench_flatten). */
-#define C3_NEXT 0.9
 /* Planar polynomial quadratics predict their next chord from the exact
  * deviation of the remainder's own parabola (q2_step) aiming at Q_AIM
  * tol_eff, so the rigorous trial that follows mostly passes close to tol:
  * it is taken from Q_GOOD tol on. Inside a knot interval the chords are
  * then within about 1% of the longest ones (D ~ h^2), the greedy
- * reference's, in about one certificate per point. (The same prediction
- * for cubics, by secant steps on the exact deviation of the remainder's
- * cubic, cut their points by 2-4% at about twice the CPU time per piece:
- * not taken, cubics are where cairo's speed is the yardstick.) */
+ * reference's, in about one certificate per point. Planar polynomial
+ * cubics do the same with c3_step and the same constants. */
 #define Q_AIM 0.99
 #define Q_GOOD 0.9
 #define Q_SHRINK 0.995
+/* c3_step: at most C3_ITER steps, ending when one changes the step by
+ * less than C3_ITER_STOP of it; C3_LAM_MAX (times the remainder) stands
+ * for "no failing step known"; the largest |v (1 - v) (al + be v)| over
+ * [0, 1] with an inflection inside (|2 al + be| < |be|) taken as
+ * C3_INFL0 |be| + C3_INFL1 |2 al + be| (exact at both ends of that range,
+ * at most 3% high between). */
+#define C3_ITER 8
+#define C3_ITER_STOP 0.01
+#define C3_LAM_MAX 4.0
+#define C3_INFL0 0.0481125224324688 /* 1 / (12 sqrt 3) */
+#define C3_INFL1 0.1000356257527164 /* 4 / 27 - C3_INFL0 */
 /* Trials per emitted point and relative bracket width that end the search. */
 #define G_MAX_TRIES 8
 #define G_BRACKET 0.03
@@ -1107,19 +1116,17 @@ static conica_code push_param(double **params, size_t *np, size_t *cap, double u
  * instead of two triangular algorithms). */
 
 #define C3 8 /* doubles of a planar cubic Bézier polygon */
-/* Step model for the next chord of a cubic: D(h) ~ K h^2 with K
+/* Step model of general_march for the next chord: D(h) ~ K h^2 with K
  * extrapolated linearly from the previous chord's mean K_p = D / h^2
  * (about the value at its middle) and the value at its end K_s, from the
- * quadratic model of the remainder R at its start: the chord of the
- * sub-arc [0, lam] deviates by about |3dR0 x 3d2R0| lam^2 / (4 |3dR0|)
- * (dR0 = R1 - R0, d2R0 = R2 - 2 R1 + R0; exact for a parabola).
+ * quadratic model of the remainder R at its start (start_k).
  * K = G_EXTRAP K_s + (1 - G_EXTRAP) K_p, at least K_s / 2. */
 #define G_EXTRAP 2.0
 
 /* First trial after a chord of parameter length step certified with dev:
  * with a curvature estimate Ks at the new start (use_k), the extrapolated
  * model above, kept within [step / 2, 2 step]; without one, D ~ h^2 from
- * the chord alone. Shared by both marches. */
+ * the chord alone. */
 static double next_step(int use_k, double Ks, double dev, double step, double tol, double next)
 {
     if (use_k) {
@@ -1142,6 +1149,7 @@ typedef struct c3m {
      * trial's halves Lb / Rb (pointers swap, no copies) */
     size_t mu;
     double ba, bb, ua, inv; /* inv = 1 / (bb - ua) */
+    double bend;            /* the piece's end */
     double B[C3];
     double buf[5][C3];
     double *R, *Lt, *Rt, *Lb, *Rb;
@@ -1367,7 +1375,7 @@ static conica_code c3_search(c3m *m, double *hs, double span_all, double min_ste
                 swap_ptr(&m->Lt, &m->Lb);
                 swap_ptr(&m->Rt, &m->Rb);
             }
-            if (x >= bb || dev >= G_GOOD * tol)
+            if (x >= bb || dev >= Q_GOOD * tol)
                 break;
         } else {
             have_fail = 1;
@@ -1386,8 +1394,8 @@ static conica_code c3_search(c3m *m, double *hs, double span_all, double min_ste
             f = f < 1.15 ? 1.15 : (f > 4.0 ? 4.0 : f);
             *hs = hp * f;
         } else {
-            double f = sqrt(G_TARGET * tol / dev);
-            f = f < 0.1 ? 0.1 : (f > 0.8 ? 0.8 : f);
+            double f = sqrt(Q_AIM * tol / dev);
+            f = f < 0.1 ? 0.1 : (f > Q_SHRINK ? Q_SHRINK : f);
             *hs = hf * f;
             if (*hs < min_step)
                 return conica__fail(st, CONICA_ERR_NUMERIC, 0, 0,
@@ -1398,6 +1406,83 @@ static conica_code c3_search(c3m *m, double *hs, double span_all, double min_ste
     *xo = best_x;
     *devo = best_dev;
     return CONICA_OK;
+}
+
+/* Step (parameter length) from the start of the remainder R of a planar
+ * polynomial cubic to the chord end where the deviation is about T. In
+ * power form R(s) = R0 + A s + B s^2 + C s^3 (A = 3 (R1 - R0),
+ * B = 3 (R2 - 2 R1 + R0), C = R3 - 3 R2 + 3 R1 - R0, s in [0, 1] over
+ * [ua, bb]) the arc minus the chord [0, lam] is s (s - lam) (B + C (s +
+ * lam)), so with s = lam v its distance across the chord's direction
+ * c = A + B lam + C lam^2 is lam^2 |v (1 - v) (al + be v)| / |c|, with
+ * al + be / 2 = w / 2, w = 2 kAB + 3 lam kAC + lam^2 kBC, be = lam kAC +
+ * lam^2 kBC (kXY = X x Y). Its largest value over v is w / 8 + be^2 /
+ * (32 w) up to O(be^4 / w^3) (Taylor at the middle, where the
+ * derivative is be / 4): the deviation is about
+ * lam^2 (4 w^2 + be^2) / (32 |w| |c|) (never below the true value: at
+ * most 1.06 times it; with an inflection inside, |w| < |be|, see
+ * C3_INFL0). The squared ratio rho = (D / T)^2 grows about as lam^4, so
+ * lam rho^(-1/4), in its Padé form lam (5 + 3 rho) / (3 + 5 rho) (one
+ * division, no root, a factor within [3/5, 5/3]), converges to D = T from
+ * the previous chord's length h0 (the same curvature ahead) or, without
+ * one, the small-step value sqrt(4 T |A| / |kAB|); a step leaving the
+ * bracket of known passing and failing lam bisects it (a sharp bend ahead,
+ * where D rises much faster than lam^2). Only steers the next trial (the
+ * certificate decides); returns at least the remainder's length when the
+ * whole rest of the piece is predicted to pass, twice it when the
+ * remainder is straight. */
+static double c3_step(c3m *m, double T, double h0)
+{
+    const double *R = m->R;
+    double ax = 3.0 * (R[2] - R[0]), ay = 3.0 * (R[3] - R[1]);
+    double bx = 3.0 * (R[4] - 2.0 * R[2] + R[0]), by = 3.0 * (R[5] - 2.0 * R[3] + R[1]);
+    double cx = R[6] - R[0] - 3.0 * (R[4] - R[2]), cy = R[7] - R[1] - 3.0 * (R[5] - R[3]);
+    double kab = ax * by - ay * bx, kac = ax * cy - ay * cx, kbc = bx * cy - by * cx;
+    double L = m->bb - m->ua, A2 = ax * ax + ay * ay;
+    m->flops += 40.0;
+    if (!(fabs(kab) + fabs(kac) > 0) || !(A2 > 0))
+        return 2.0 * L;
+    double lam = 1.0, t2 = T * T, lo = 0.0, hi = C3_LAM_MAX;
+    if (h0 > 0.0) { /* from the previous chord's length */
+        double l0 = h0 * m->inv;
+        lam = l0 < 1.0 ? l0 : 1.0;
+    } else if (kab != 0.0) { /* the small-step value */
+        double l0 = sqrt(4.0 * T * sqrt(A2) / fabs(kab));
+        lam = l0 < 1.0 ? l0 : 1.0;
+    }
+    for (int it = 0; it < C3_ITER; it++) {
+        double w = 2.0 * kab + lam * (3.0 * kac + lam * kbc), be = lam * (kac + lam * kbc);
+        double dx = ax + lam * (bx + lam * cx), dy = ay + lam * (by + lam * cy);
+        double Q = dx * dx + dy * dy, N, M;
+        if (fabs(w) >= fabs(be)) { /* the largest |v (1 - v) (al + be v)| is N / M */
+            N = 4.0 * w * w + be * be;
+            M = 32.0 * w;
+        } else { /* an inflection inside */
+            N = C3_INFL0 * fabs(be) + C3_INFL1 * fabs(w);
+            M = 1.0;
+        }
+        /* rho = (D / T)^2 = lam^4 N^2 / (T^2 |c|^2 M^2) ~ lam^4: lam rho^(-1/4)
+         * by its Padé form, within [3/5, 5/3] lam */
+        double u = lam * lam * N, num = u * u, ref = t2 * Q * M * M;
+        double f = (5.0 * ref + 3.0 * num) / (3.0 * ref + 5.0 * num), nl = lam * f;
+        m->flops += 45.0;
+        if (!(f > 0)) /* not a number: keep lam */
+            break;
+        if (lam >= 1.0 && num <= ref && m->bb >= m->bend) { /* the whole rest of the piece */
+            lam = nl;
+            break;
+        }
+        if (num < ref)
+            lo = lam;
+        else
+            hi = lam;
+        /* D may rise much faster than lam^2 (a sharp bend ahead): then the
+         * step leaves the bracket and bisects it instead */
+        lam = nl > lo && nl < hi ? nl : (hi < C3_LAM_MAX ? 0.5 * (lo + hi) : nl);
+        if (fabs(f - 1.0) < C3_ITER_STOP)
+            break;
+    }
+    return lam * L;
 }
 
 /* Load the Bézier form of the interval after the last chain element as
@@ -1578,9 +1663,11 @@ static conica_code c3_march(const conica_bspline *g, double tol, double tol_eff,
     m->Rb = m->buf[4];
     double a = g->knots[3], b = g->knots[g->n], span = b - a, pt[2];
     double hs = span, min_step = span * 1e-13;
+    m->bend = b;
     size_t splits = 0;
     conica_code rc = CONICA_OK;
     c3_enter(m, c3_next_span(m, 3), 0);
+    hs = c3_step(m, Q_AIM * tol_eff, 0.0);
     for (;;) {
         double x = b, dev = 0.0, xf = m->ua, df = 0.0, step;
         int found = 0, last = 0;
@@ -1641,17 +1728,7 @@ static conica_code c3_march(const conica_bspline *g, double tol, double tol_eff,
             rc = push_param(params, np, cap, x, st);
         if (rc != CONICA_OK || last)
             break;
-        double Ks = 0.0;
-        int use_k = m->ua == x && dev > 0; /* inside an interval: see G_EXTRAP */
-        if (use_k) {
-            const double *Q = m->R;
-            double ax = Q[2] - Q[0], ay = Q[3] - Q[1];
-            double bx = Q[4] - 2.0 * Q[2] + Q[0], by = Q[5] - 2.0 * Q[3] + Q[1];
-            double cr = fabs(ax * by - ay * bx), al = sqrt(ax * ax + ay * ay);
-            Ks = al > 0 ? 0.75 * cr / al * m->inv * m->inv : 0.0;
-            m->flops += 30.0;
-        }
-        hs = next_step(use_k, Ks, dev, step, tol, C3_NEXT);
+        hs = c3_step(m, Q_AIM * tol_eff, m->ua == x ? step : 0.0);
     }
     stats->flops += m->flops;
     return rc;
