@@ -136,7 +136,11 @@
  * it is taken from Q_GOOD tol on. Inside a knot interval the chords are
  * then within about 1% of the longest ones (D ~ h^2), the greedy
  * reference's, in about one certificate per point. Planar polynomial
- * cubics do the same with c3_step and the same constants. */
+ * cubics do the same with c3_step, and planar polynomial splines of
+ * degrees G_CLOSE_MIN_P..G_CLOSE_MAX_P with model_lam, the cubic model of
+ * the remainder at its start (their certificate, the signed-distance
+ * form's coefficients refined on halves, exceeds the true deviation by a
+ * few per cent, so their chords stay a little further from tol). */
 #define Q_AIM 0.99
 #define Q_GOOD 0.9
 #define Q_SHRINK 0.995
@@ -943,6 +947,7 @@ static double chain_cert(march *m, const double *last, size_t j)
     if (d == 2) {
         double cx = b[0] - a[0], cy = b[1] - a[1], c2 = cx * cx + cy * cy;
         double s[MAXP + 1], t[MAXP + 1], w[MAXP + 1], D = 0.0;
+        double cn = sqrt(c2), lim = m->tol_eff * cn;
         int inside = c2 > 0, exact = !rational && p <= 3;
         for (size_t k = 0; k <= j && inside; k++) {
             const double *P = k == 0 ? m->R : (k == j ? last : m->C + k * bz);
@@ -950,16 +955,28 @@ static double chain_cert(march *m, const double *last, size_t j)
             s[0] = s[p] = 0.0;
             t[0] = 0.0;
             t[p] = c2;
+            w[0] = rational ? P[2] : 1.0;
+            w[p] = rational ? P[pp * hh + 2] : 1.0;
             inside = signed_dists(m, P, k == 0 ? 1 : 0, k == j ? p - 1 : p, a, cx, cy, c2, exact,
                                   s, t, w, &smax) ||
                      (exact && proj_inside(t, p, c2));
             double e = exact ? bern_max(s, p) : smax;
+            if (inside && !exact && e > lim && e <= G_REFINE_RATIO * lim) {
+                /* near tol: the sub-arc's form on its two halves, as in
+                 * bez_cert (the coefficients alone over-estimate a bump of
+                 * degree p by up to p / (p - 1)) */
+                if (rational)
+                    for (int i = 0; i <= p; i++)
+                        s[i] *= w[i];
+                double e2 = scalar_halves(m, s, rational ? w : NULL, p);
+                e = e2 < e ? e2 : e;
+            }
             D = e > D ? e : D;
         }
         m->flops += 10.0 + (double)((j + 1) * pp) * (rational ? 12.0 : 10.0) +
                     (!rational && p <= 3 ? 30.0 * (double)(j + 1) : 0.0);
         if (inside)
-            return D / sqrt(c2);
+            return D / cn;
     }
     chord c;
     chord_init(&c, a, b, d);
@@ -1005,10 +1022,10 @@ static int chain_grow(march *m, size_t nc)
  * one, ending at *xo in chain interval *jo, passed; that interval's
  * split halves are then in m->Lb / m->Rb (m->Lb its whole polygon when
  * *xo is its end). *nco gets the number of intervals loaded. */
-static conica_code cross_search(march *m, double dev0, double b_end, double span_all,
-                                const conica_plot_settings *set, conica_plot_stats *stats,
-                                int *found, double *xo, double *devo, size_t *jo, size_t *nco,
-                                conica_status *st)
+static conica_code cross_search(march *m, double dev0, double hs0, double b_end,
+                                double span_all, const conica_plot_settings *set,
+                                conica_plot_stats *stats, int *found, double *xo, double *devo,
+                                size_t *jo, size_t *nco, conica_status *st)
 {
     double ua = m->ua, bb = m->bb, tol = m->tol;
     size_t bz = (size_t)(m->p + 1) * (size_t)m->h;
@@ -1017,7 +1034,7 @@ static conica_code cross_search(march *m, double dev0, double b_end, double span
     int have_fail = 0, grows = 0, tries = 0;
     double f = dev0 > 0 ? sqrt(G_TARGET * tol / dev0) : 4.0;
     f = f < 1.15 ? 1.15 : (f > 4.0 ? 4.0 : f);
-    double hs = (bb - ua) * f;
+    double hs = hs0 > bb - ua ? hs0 : (bb - ua) * f;
     *found = 0;
     for (;;) {
         double x = ua + hs;
@@ -1408,11 +1425,13 @@ static conica_code c3_search(c3m *m, double *hs, double span_all, double min_ste
     return CONICA_OK;
 }
 
-/* Step (parameter length) from the start of the remainder R of a planar
- * polynomial cubic to the chord end where the deviation is about T. In
- * power form R(s) = R0 + A s + B s^2 + C s^3 (A = 3 (R1 - R0),
- * B = 3 (R2 - 2 R1 + R0), C = R3 - 3 R2 + 3 R1 - R0, s in [0, 1] over
- * [ua, bb]) the arc minus the chord [0, lam] is s (s - lam) (B + C (s +
+/* Step (in units of R's parameter) from the start of the planar
+ * polynomial Bézier remainder R of degree p to the chord end where the
+ * deviation is about T, from the cubic model of R at its start (R itself
+ * when p = 3; p >= 4 drops O(lam^4) terms; C = 0 for p = 2). In
+ * power form R(s) = R0 + A s + B s^2 + C s^3 (for p = 3: A = 3 (R1 - R0),
+ * B = 3 (R2 - 2 R1 + R0), C = R3 - 3 R2 + 3 R1 - R0; s in [0, 1] over
+ * the remainder) the arc minus the chord [0, lam] is s (s - lam) (B + C (s +
  * lam)), so with s = lam v its distance across the chord's direction
  * c = A + B lam + C lam^2 is lam^2 |v (1 - v) (al + be v)| / |c|, with
  * al + be / 2 = w / 2, w = 2 kAB + 3 lam kAC + lam^2 kBC, be = lam kAC +
@@ -1424,32 +1443,32 @@ static conica_code c3_search(c3m *m, double *hs, double span_all, double min_ste
  * C3_INFL0). The squared ratio rho = (D / T)^2 grows about as lam^4, so
  * lam rho^(-1/4), in its Padé form lam (5 + 3 rho) / (3 + 5 rho) (one
  * division, no root, a factor within [3/5, 5/3]), converges to D = T from
- * the previous chord's length h0 (the same curvature ahead) or, without
- * one, the small-step value sqrt(4 T |A| / |kAB|); a step leaving the
+ * lam (the previous chord's length: the same curvature ahead) or, when
+ * lam <= 0, the small-step value sqrt(4 T |A| / |kAB|); a step leaving the
  * bracket of known passing and failing lam bisects it (a sharp bend ahead,
  * where D rises much faster than lam^2). Only steers the next trial (the
- * certificate decides); returns at least the remainder's length when the
- * whole rest of the piece is predicted to pass, twice it when the
- * remainder is straight. */
-static double c3_step(c3m *m, double T, double h0)
+ * certificate decides); returns at least 1 when `last` (R ends the piece)
+ * and the whole rest is predicted to pass, 2 when R is straight. */
+static double model_lam(const double *R, int p, double T, double lam, int last, double *flops)
 {
-    const double *R = m->R;
-    double ax = 3.0 * (R[2] - R[0]), ay = 3.0 * (R[3] - R[1]);
-    double bx = 3.0 * (R[4] - 2.0 * R[2] + R[0]), by = 3.0 * (R[5] - 2.0 * R[3] + R[1]);
-    double cx = R[6] - R[0] - 3.0 * (R[4] - R[2]), cy = R[7] - R[1] - 3.0 * (R[5] - R[3]);
-    double kab = ax * by - ay * bx, kac = ax * cy - ay * cx, kbc = bx * cy - by * cx;
-    double L = m->bb - m->ua, A2 = ax * ax + ay * ay;
-    m->flops += 40.0;
-    if (!(fabs(kab) + fabs(kac) > 0) || !(A2 > 0))
-        return 2.0 * L;
-    double lam = 1.0, t2 = T * T, lo = 0.0, hi = C3_LAM_MAX;
-    if (h0 > 0.0) { /* from the previous chord's length */
-        double l0 = h0 * m->inv;
-        lam = l0 < 1.0 ? l0 : 1.0;
-    } else if (kab != 0.0) { /* the small-step value */
-        double l0 = sqrt(4.0 * T * sqrt(A2) / fabs(kab));
-        lam = l0 < 1.0 ? l0 : 1.0;
+    /* the Taylor cubic at the start: A = p D1, B = C(p,2) D2, C = C(p,3) D3
+     * (forward differences of the polygon; the remainder itself for p = 3) */
+    double c1 = (double)p, c2 = 0.5 * c1 * (double)(p - 1), c3 = c2 * (double)(p - 2) / 3.0;
+    double ax = c1 * (R[2] - R[0]), ay = c1 * (R[3] - R[1]);
+    double bx = c2 * (R[4] - 2.0 * R[2] + R[0]), by = c2 * (R[5] - 2.0 * R[3] + R[1]);
+    double cx = 0.0, cy = 0.0;
+    if (p >= 3) {
+        cx = c3 * (R[6] - R[0] - 3.0 * (R[4] - R[2]));
+        cy = c3 * (R[7] - R[1] - 3.0 * (R[5] - R[3]));
     }
+    double kab = ax * by - ay * bx, kac = ax * cy - ay * cx, kbc = bx * cy - by * cx;
+    double A2 = ax * ax + ay * ay, t2 = T * T, lo = 0.0, hi = C3_LAM_MAX;
+    *flops += 40.0;
+    if (!(fabs(kab) + fabs(kac) > 0) || !(A2 > 0))
+        return 2.0;
+    if (!(lam > 0.0) && kab != 0.0) /* the small-step value */
+        lam = sqrt(4.0 * T * sqrt(A2) / fabs(kab));
+    lam = lam > 0.0 && lam < 1.0 ? lam : 1.0;
     for (int it = 0; it < C3_ITER; it++) {
         double w = 2.0 * kab + lam * (3.0 * kac + lam * kbc), be = lam * (kac + lam * kbc);
         double dx = ax + lam * (bx + lam * cx), dy = ay + lam * (by + lam * cy);
@@ -1465,10 +1484,10 @@ static double c3_step(c3m *m, double T, double h0)
          * by its Padé form, within [3/5, 5/3] lam */
         double u = lam * lam * N, num = u * u, ref = t2 * Q * M * M;
         double f = (5.0 * ref + 3.0 * num) / (3.0 * ref + 5.0 * num), nl = lam * f;
-        m->flops += 45.0;
+        *flops += 45.0;
         if (!(f > 0)) /* not a number: keep lam */
             break;
-        if (lam >= 1.0 && num <= ref && m->bb >= m->bend) { /* the whole rest of the piece */
+        if (lam >= 1.0 && num <= ref && last) { /* the whole rest of the piece */
             lam = nl;
             break;
         }
@@ -1482,7 +1501,15 @@ static double c3_step(c3m *m, double T, double h0)
         if (fabs(f - 1.0) < C3_ITER_STOP)
             break;
     }
-    return lam * L;
+    return lam;
+}
+
+/* c3_march's next trial: model_lam on the remainder from the previous
+ * chord's length h0 (0: none) in parameter length. */
+static double c3_step(c3m *m, double T, double h0)
+{
+    double L = m->bb - m->ua;
+    return model_lam(m->R, 3, T, h0 * m->inv, m->bb >= m->bend, &m->flops) * L;
 }
 
 /* Load the Bézier form of the interval after the last chain element as
@@ -1578,7 +1605,7 @@ static conica_code c3_cross(c3m *m, double dev0, double hs0, double b_end, doubl
             } else {
                 memcpy(m->Lb, m->C[j], sizeof m->B);
             }
-            if (x >= b_end || dev >= G_GOOD * tol)
+            if (x >= b_end || dev >= Q_GOOD * tol)
                 break;
         } else {
             have_fail = 1;
@@ -1728,7 +1755,7 @@ static conica_code c3_march(const conica_bspline *g, double tol, double tol_eff,
             rc = push_param(params, np, cap, x, st);
         if (rc != CONICA_OK || last)
             break;
-        hs = c3_step(m, Q_AIM * tol_eff, m->ua == x ? step : 0.0);
+        hs = c3_step(m, Q_AIM * tol_eff, step);
     }
     stats->flops += m->flops;
     return rc;
@@ -1848,9 +1875,10 @@ static conica_code general_march(const conica_bspline *g, double tol, double tol
     m->tol_eff = tol_eff;
     int close = m->p <= G_CLOSE_MAX_P && m->p >= G_CLOSE_MIN_P;
     int q2 = m->p == 2 && m->d == 2 && m->h == 2; /* see q2_step */
-    m->good = q2 ? Q_GOOD : (close ? G_CLOSE_GOOD : G_GOOD);
-    m->shrink_aim = q2 ? Q_AIM : G_TARGET;
-    m->shrink_max = q2 ? Q_SHRINK : 0.8;
+    int pm = close && m->d == 2 && m->h == 2;     /* see Q_AIM */
+    m->good = q2 ? Q_GOOD : (pm ? Q_GOOD : (close ? G_CLOSE_GOOD : G_GOOD));
+    m->shrink_aim = q2 ? Q_AIM : (pm ? Q_AIM : G_TARGET);
+    m->shrink_max = q2 || pm ? Q_SHRINK : 0.8;
     m->next = close ? G_CLOSE_NEXT : G_NEXT;
     conica_code rc = CONICA_OK;
     double hs = b - a; /* first guess: the whole piece */
@@ -1862,6 +1890,8 @@ static conica_code general_march(const conica_bspline *g, double tol, double tol
         hs = sqrt(m->next * tol / K0);
     if (q2)
         hs = q2_step(m, Q_AIM * tol_eff);
+    if (pm)
+        hs = model_lam(m->R, m->p, Q_AIM * tol_eff, 0.0, m->bb >= b, &m->flops) * (m->bb - m->ua);
     for (;;) {
         double x = b, dev = 0.0;
         int halved = 0;
@@ -1886,7 +1916,13 @@ static conica_code general_march(const conica_bspline *g, double tol, double tol
             size_t nc = 0, j = 0, bz = (p + 1) * h;
             double x2 = x, dev2 = dev;
             if (dev < G_CROSS * tol) { /* try a longer chord across the knot */
-                rc = cross_search(m, dev, b, b - a, set, stats, &found, &x2, &dev2, &j, &nc, st);
+                /* the first trial: the remainder's cubic model continued
+                 * past the knot (a C^(p-1) join) when planar polynomial */
+                double hs0 = pm ? model_lam(m->R, m->p, Q_AIM * tol_eff, 1.0, 0, &m->flops) *
+                                      (m->bb - m->ua)
+                                : 0.0;
+                rc = cross_search(m, dev, hs0, b, b - a, set, stats, &found, &x2, &dev2, &j, &nc,
+                                  st);
                 if (rc != CONICA_OK)
                     goto done;
             }
@@ -1927,8 +1963,14 @@ static conica_code general_march(const conica_bspline *g, double tol, double tol
         /* predict, see G_EXTRAP and start_k (a polynomial parabola has one
          * K per interval: the chord-only rule is exact there) */
         int use_k = m->ua == x && dev > 0 && (m->p > 2 || m->h > m->d);
-        hs = q2 ? q2_step(m, Q_AIM * tol_eff)
-                : next_step(use_k, use_k ? start_k(m) : 0.0, dev, step, tol, m->next);
+        if (pm) {
+            double L = m->bb - m->ua;
+            hs = model_lam(m->R, m->p, Q_AIM * tol_eff, m->ua == x ? step / L : 0.0, m->bb >= b,
+                           &m->flops) * L;
+        } else {
+            hs = q2 ? q2_step(m, Q_AIM * tol_eff)
+                    : next_step(use_k, use_k ? start_k(m) : 0.0, dev, step, tol, m->next);
+        }
     }
 done:
     stats->flops += m->flops;
