@@ -384,6 +384,22 @@ static void enter_interval(march *m, size_t mu, const double *form)
  * constant at each call site below, so the inner loops unroll. */
 static inline void casteljau(const double *P, int p, int H, double lam, double *L, double *Rr)
 {
+    if (p == 3 && H == 2) { /* the planar cubic written out: the same operations */
+        for (int c = 0; c < 2; c++) {
+            double p0 = P[c], p1 = P[2 + c], p2 = P[4 + c], p3 = P[6 + c];
+            double a = p0 + lam * (p1 - p0), b = p1 + lam * (p2 - p1), e = p2 + lam * (p3 - p2);
+            double f = a + lam * (b - a), g = b + lam * (e - b), q = f + lam * (g - f);
+            L[c] = p0;
+            L[2 + c] = a;
+            L[4 + c] = f;
+            L[6 + c] = q;
+            Rr[c] = q;
+            Rr[2 + c] = g;
+            Rr[4 + c] = e;
+            Rr[6 + c] = p3;
+        }
+        return;
+    }
     size_t hh = (size_t)H, pp = (size_t)p;
     for (size_t c = 0; c < hh; c++) {
         L[c] = P[c];
@@ -1449,7 +1465,8 @@ static conica_code c3_search(c3m *m, double *hs, double span_all, double min_ste
  * where D rises much faster than lam^2). Only steers the next trial (the
  * certificate decides); returns at least 1 when `last` (R ends the piece)
  * and the whole rest is predicted to pass, 2 when R is straight. */
-static double model_lam(const double *R, int p, double T, double lam, int last, double *flops)
+static inline double model_lam(const double *R, int p, double T, double lam, int last,
+                               double *flops)
 {
     /* the Taylor cubic at the start: A = p D1, B = C(p,2) D2, C = C(p,3) D3
      * (forward differences of the polygon; the remainder itself for p = 3) */
@@ -1986,6 +2003,34 @@ conica_code conica__guaranteed_piece(const conica_bspline *g, double tol,
                                      conica__out *o, double **params, size_t *np,
                                      conica_plot_stats *stats, conica_status *st)
 {
+    double ek[8], ec[8];
+    conica_bspline e;
+    if (g->degree == 2 && g->dim == 2 && !g->w && g->n == 3) {
+        /* One planar polynomial quadratic Bézier piece (SVG's Q, TrueType
+         * outlines) raised to degree 3: the same curve and parametrisation,
+         * so c3_march takes it (no allocation; its cubic model is exact
+         * for a parabola). The raised inner points are one rounding of a
+         * convex combination away from exact, far inside the margin of
+         * degree 3 below (G_ULPS); the end points are the input's. */
+        const double *q = g->ctrl;
+        for (int i = 0; i < 4; i++) {
+            ek[i] = g->knots[0];
+            ek[4 + i] = g->knots[3];
+        }
+        for (int c = 0; c < 2; c++) {
+            ec[c] = q[c];
+            ec[2 + c] = q[c] + (2.0 / 3.0) * (q[2 + c] - q[c]);
+            ec[4 + c] = q[4 + c] + (2.0 / 3.0) * (q[2 + c] - q[4 + c]);
+            ec[6 + c] = q[4 + c];
+        }
+        e.degree = 3;
+        e.dim = 2;
+        e.n = 4;
+        e.knots = ek;
+        e.ctrl = ec;
+        e.w = NULL;
+        g = &e;
+    }
     size_t p = (size_t)g->degree, d = (size_t)g->dim;
     double a = g->knots[p];
     /* rounding margin from the magnitude of the coordinates */
