@@ -219,8 +219,8 @@ typedef struct march {
     double buf[6][BZ];
     double *B, *R, *Lt, *Rt, *Lb, *Rb;
     double tol, tol_eff;
-    /* G_GOOD and G_NEXT, or their G_CLOSE_ values */
-    double good, next;
+    /* G_GOOD and G_NEXT, or their G_CLOSE_ values; model_lam's target */
+    double good, next, aim;
     /* a failed first trial shrinks to D = shrink_aim tol by D ~ h^2, by a
      * factor of at most shrink_max (G_TARGET and 0.8; Q_AIM and Q_SHRINK
      * after q2_step's exact prediction, which fails only just) */
@@ -1892,10 +1892,13 @@ static conica_code general_march(const conica_bspline *g, double tol, double tol
     m->tol_eff = tol_eff;
     int close = m->p <= G_CLOSE_MAX_P && m->p >= G_CLOSE_MIN_P;
     int q2 = m->p == 2 && m->d == 2 && m->h == 2; /* see q2_step */
-    int pm = close && m->d == 2 && m->h == 2;     /* see Q_AIM */
-    m->good = q2 ? Q_GOOD : (pm ? Q_GOOD : (close ? G_CLOSE_GOOD : G_GOOD));
-    m->shrink_aim = q2 ? Q_AIM : (pm ? Q_AIM : G_TARGET);
-    m->shrink_max = q2 || pm ? Q_SHRINK : 0.8;
+    /* planar polynomial degree >= 4: model_lam predicts, aiming at Q_AIM
+     * (degrees up to G_CLOSE_MAX_P, see Q_AIM) or G_NEXT */
+    int pm = m->p >= G_CLOSE_MIN_P && m->d == 2 && m->h == 2, pq = pm && close;
+    m->aim = pq ? Q_AIM : G_NEXT;
+    m->good = q2 || pq ? Q_GOOD : (close ? G_CLOSE_GOOD : G_GOOD);
+    m->shrink_aim = q2 || pq ? Q_AIM : G_TARGET;
+    m->shrink_max = q2 || pq ? Q_SHRINK : 0.8;
     m->next = close ? G_CLOSE_NEXT : G_NEXT;
     conica_code rc = CONICA_OK;
     double hs = b - a; /* first guess: the whole piece */
@@ -1908,7 +1911,7 @@ static conica_code general_march(const conica_bspline *g, double tol, double tol
     if (q2)
         hs = q2_step(m, Q_AIM * tol_eff);
     if (pm)
-        hs = model_lam(m->R, m->p, Q_AIM * tol_eff, 0.0, m->bb >= b, &m->flops) * (m->bb - m->ua);
+        hs = model_lam(m->R, m->p, m->aim * tol_eff, 0.0, m->bb >= b, &m->flops) * (m->bb - m->ua);
     for (;;) {
         double x = b, dev = 0.0;
         int halved = 0;
@@ -1935,7 +1938,7 @@ static conica_code general_march(const conica_bspline *g, double tol, double tol
             if (dev < G_CROSS * tol) { /* try a longer chord across the knot */
                 /* the first trial: the remainder's cubic model continued
                  * past the knot (a C^(p-1) join) when planar polynomial */
-                double hs0 = pm ? model_lam(m->R, m->p, Q_AIM * tol_eff, 1.0, 0, &m->flops) *
+                double hs0 = pm ? model_lam(m->R, m->p, m->aim * tol_eff, 1.0, 0, &m->flops) *
                                       (m->bb - m->ua)
                                 : 0.0;
                 rc = cross_search(m, dev, hs0, b, b - a, set, stats, &found, &x2, &dev2, &j, &nc,
@@ -1982,7 +1985,7 @@ static conica_code general_march(const conica_bspline *g, double tol, double tol
         int use_k = m->ua == x && dev > 0 && (m->p > 2 || m->h > m->d);
         if (pm) {
             double L = m->bb - m->ua;
-            hs = model_lam(m->R, m->p, Q_AIM * tol_eff, m->ua == x ? step / L : 0.0, m->bb >= b,
+            hs = model_lam(m->R, m->p, m->aim * tol_eff, m->ua == x ? step / L : 0.0, m->bb >= b,
                            &m->flops) * L;
         } else {
             hs = q2 ? q2_step(m, Q_AIM * tol_eff)
