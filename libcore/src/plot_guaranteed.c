@@ -86,16 +86,17 @@
  * 1.01x-1.02x of the greedy reference's points on single cubic pieces
  * (bench_flatten); a step that would pass a knot is tried across it.
  *
- * general_march follows D ~ K h^2 (Theorem 1.16) with K extrapolated
- * linearly from the chord just taken (its mean D / h^2) and the curvature
- * at the start of the remainder (start_k, from its first three
- * homogeneous control points, for any degree, dimension and weights; also
- * the first trial of a piece; G_EXTRAP), so the step anticipates a rising
- * curvature instead of failing first, and ends a piece with two chords
- * when the whole rest misses tol by a small factor (G_HALVE): 2.16 -> 1.39
- * trials per point on sptest2 (p = 25). Planar polynomial quadratics
- * predict exactly instead (q2_step). None of this changes the
- * certificate. */
+ * general_march predicts the first trial of planar polynomial splines
+ * from the remainder's parabola (q2_step, exact, p = 2) or its Taylor
+ * cubic at the start (model_lam, c3_step's model, p >= 4: 1.39 -> 1.05
+ * trials per point on sptest2, p = 25); any other spline (dimension 3,
+ * weights) follows D ~ K h^2 (Theorem 1.16) with K extrapolated linearly
+ * from the chord just taken (its mean D / h^2) and the curvature at the
+ * start of the remainder (start_k, from its first three homogeneous
+ * control points; also the first trial of a piece; G_EXTRAP), so the
+ * step anticipates a rising curvature instead of failing first. A piece
+ * ends with two chords when the whole rest misses tol by a small factor
+ * (G_HALVE). None of this changes the certificate. */
 #include <float.h>
 #include <math.h>
 #include <stdlib.h>
@@ -118,14 +119,14 @@
 /* A certified chord with D >= G_GOOD * tol is taken without searching on. */
 #define G_GOOD 0.6
 /* The general march of degrees G_CLOSE_MIN_P..G_CLOSE_MAX_P aims closer
- * (first trial at G_CLOSE_NEXT tol, search on below G_CLOSE_GOOD tol): on
- * the random B-splines of degrees 4-7 of bench_flatten this brings the
- * points closer to the greedy reference of the true deviation, for more
- * trials per point (sptest1, p = 5: 2.0 -> 3.0 per point, Table 2c).
- * Quadratics (also the rational ones of circular arcs, whose chords
- * conica/path.h's fit modes offset) and cubics (the Bézier paths of SVG
- * and OpenSCAD, where cairo's speed is the yardstick) and high degrees
- * (sptest2, where uniform de Boor is) keep the faster constants. */
+ * (first trial at G_CLOSE_NEXT tol, search on below G_CLOSE_GOOD tol; the
+ * planar polynomial ones at Q_AIM and Q_GOOD with model_lam): on the
+ * random B-splines of degrees 4-7 of bench_flatten this brings the points
+ * closer to the greedy reference of the true deviation. Rational
+ * quadratics (circular arcs, whose chords conica/path.h's fit modes
+ * offset) and high degrees (sptest2, where uniform de Boor is the
+ * yardstick: model_lam aims at G_NEXT there) keep the faster
+ * constants. */
 #define G_CLOSE_MIN_P 4
 #define G_CLOSE_MAX_P 8
 #define G_CLOSE_NEXT 0.92
@@ -136,11 +137,12 @@
  * it is taken from Q_GOOD tol on. Inside a knot interval the chords are
  * then within about 1% of the longest ones (D ~ h^2), the greedy
  * reference's, in about one certificate per point. Planar polynomial
- * cubics do the same with c3_step, and planar polynomial splines of
- * degrees G_CLOSE_MIN_P..G_CLOSE_MAX_P with model_lam, the cubic model of
- * the remainder at its start (their certificate, the signed-distance
- * form's coefficients refined on halves, exceeds the true deviation by a
- * few per cent, so their chords stay a little further from tol). */
+ * cubics (and single quadratic pieces, raised to cubics) do the same with
+ * c3_step, and planar polynomial splines of degrees
+ * G_CLOSE_MIN_P..G_CLOSE_MAX_P with model_lam, the cubic model of the
+ * remainder at its start (their certificate, the signed-distance form's
+ * coefficients refined on halves, exceeds the true deviation by a few per
+ * cent, so their chords stay a little further from tol). */
 #define Q_AIM 0.99
 #define Q_GOOD 0.9
 #define Q_SHRINK 0.995
