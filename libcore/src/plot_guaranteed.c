@@ -78,20 +78,25 @@
  * above by its two halves' Bernstein coefficients after a split at 1/2 (at
  * most 1.125 times its maximum) and below by its values at 1/3, 1/2, 2/3;
  * only when tol lies between the two is the exact cubic extremum (a
- * quadratic equation) computed. (c) The first trial from a new point
- * follows D ~ K h^2 (Theorem 1.16) with K extrapolated linearly from the
- * chord just taken (its mean D / h^2) and the curvature at the start of the
- * remainder (G_EXTRAP), so the step anticipates a rising curvature instead
- * of failing first; a step that would pass a knot is tried across it.
- * Trials per emitted point drop from 1.57 to 1.25 on sptest3 (bench_plot,
- * Table 2c).
+ * quadratic equation) computed. (c) The first trial from a new point is
+ * predicted from the remainder's own cubic (c3_step: the chord deviation
+ * of a polynomial cubic in closed form up to a 3% overestimate near an
+ * inflection, solved for 0.99 tol), so it mostly passes just under tol
+ * and is taken: about 1.01-1.03 certificates per point, and within
+ * 1.01x-1.02x of the greedy reference's points on single cubic pieces
+ * (bench_flatten); a step that would pass a knot is tried across it.
  *
- * general_march takes the same first step (start_k: the curvature at the
- * start of the remainder from its first three homogeneous control points,
- * for any degree, dimension and weights; also the first trial of a piece)
- * and ends a piece with two chords when the whole rest misses tol by a
- * small factor (G_HALVE): 2.16 -> 1.39 trials per point on sptest2
- * (p = 25). Neither changes the certificate. */
+ * general_march predicts the first trial of planar polynomial splines
+ * from the remainder's parabola (q2_step, exact, p = 2) or its Taylor
+ * cubic at the start (model_lam, c3_step's model, p >= 4: 1.39 -> 1.05
+ * trials per point on sptest2, p = 25); any other spline (dimension 3,
+ * weights) follows D ~ K h^2 (Theorem 1.16) with K extrapolated linearly
+ * from the chord just taken (its mean D / h^2) and the curvature at the
+ * start of the remainder (start_k, from its first three homogeneous
+ * control points; also the first trial of a piece; G_EXTRAP), so the
+ * step anticipates a rising curvature instead of failing first. A piece
+ * ends with two chords when the whole rest misses tol by a small factor
+ * (G_HALVE). None of this changes the certificate. */
 #include <float.h>
 #include <math.h>
 #include <stdlib.h>
@@ -114,34 +119,44 @@
 /* A certified chord with D >= G_GOOD * tol is taken without searching on. */
 #define G_GOOD 0.6
 /* The general march of degrees G_CLOSE_MIN_P..G_CLOSE_MAX_P aims closer
- * (first trial at G_CLOSE_NEXT tol, search on below G_CLOSE_GOOD tol): on
- * the random B-splines of degrees 4-7 of bench_flatten this brings the
- * points closer to the greedy reference of the true deviation, for more
- * trials per point (sptest1, p = 5: 2.0 -> 3.0 per point, Table 2c).
- * Quadratics (also the rational ones of circular arcs, whose chords
- * conica/path.h's fit modes offset) and cubics (the Bézier paths of SVG
- * and OpenSCAD, where cairo's speed is the yardstick) and high degrees
- * (sptest2, where uniform de Boor is) keep the faster constants. */
+ * (first trial at G_CLOSE_NEXT tol, search on below G_CLOSE_GOOD tol; the
+ * planar polynomial ones at Q_AIM and Q_GOOD with model_lam): on the
+ * random B-splines of degrees 4-7 of bench_flatten this brings the points
+ * closer to the greedy reference of the true deviation. Rational
+ * quadratics (circular arcs, whose chords conica/path.h's fit modes
+ * offset) and high degrees (sptest2, where uniform de Boor is the
+ * yardstick: model_lam aims at G_NEXT there) keep the faster
+ * constants. */
 #define G_CLOSE_MIN_P 4
 #define G_CLOSE_MAX_P 8
 #define G_CLOSE_NEXT 0.92
 #define G_CLOSE_GOOD 0.85
-/* c3_march's first trial from a new point aims at this fraction of tol:
- * its step model (G_EXTRAP) is good enough that aiming higher than
- * G_NEXT saves points without more failed trials (bench_flatten). */
-#define C3_NEXT 0.9
 /* Planar polynomial quadratics predict their next chord from the exact
  * deviation of the remainder's own parabola (q2_step) aiming at Q_AIM
  * tol_eff, so the rigorous trial that follows mostly passes close to tol:
  * it is taken from Q_GOOD tol on. Inside a knot interval the chords are
  * then within about 1% of the longest ones (D ~ h^2), the greedy
- * reference's, in about one certificate per point. (The same prediction
- * for cubics, by secant steps on the exact deviation of the remainder's
- * cubic, cut their points by 2-4% at about twice the CPU time per piece:
- * not taken, cubics are where cairo's speed is the yardstick.) */
+ * reference's, in about one certificate per point. Planar polynomial
+ * cubics (and single quadratic pieces, raised to cubics) do the same with
+ * c3_step, and planar polynomial splines of degrees
+ * G_CLOSE_MIN_P..G_CLOSE_MAX_P with model_lam, the cubic model of the
+ * remainder at its start (their certificate, the signed-distance form's
+ * coefficients refined on halves, exceeds the true deviation by a few per
+ * cent, so their chords stay a little further from tol). */
 #define Q_AIM 0.99
 #define Q_GOOD 0.9
 #define Q_SHRINK 0.995
+/* c3_step: at most C3_ITER steps, ending when one changes the step by
+ * less than C3_ITER_STOP of it; C3_LAM_MAX (times the remainder) stands
+ * for "no failing step known"; the largest |v (1 - v) (al + be v)| over
+ * [0, 1] with an inflection inside (|2 al + be| < |be|) taken as
+ * C3_INFL0 |be| + C3_INFL1 |2 al + be| (exact at both ends of that range,
+ * at most 3% high between). */
+#define C3_ITER 8
+#define C3_ITER_STOP 0.01
+#define C3_LAM_MAX 4.0
+#define C3_INFL0 0.0481125224324688 /* 1 / (12 sqrt 3) */
+#define C3_INFL1 0.1000356257527164 /* 4 / 27 - C3_INFL0 */
 /* Trials per emitted point and relative bracket width that end the search. */
 #define G_MAX_TRIES 8
 #define G_BRACKET 0.03
@@ -206,8 +221,8 @@ typedef struct march {
     double buf[6][BZ];
     double *B, *R, *Lt, *Rt, *Lb, *Rb;
     double tol, tol_eff;
-    /* G_GOOD and G_NEXT, or their G_CLOSE_ values */
-    double good, next;
+    /* G_GOOD and G_NEXT, or their G_CLOSE_ values; model_lam's target */
+    double good, next, aim;
     /* a failed first trial shrinks to D = shrink_aim tol by D ~ h^2, by a
      * factor of at most shrink_max (G_TARGET and 0.8; Q_AIM and Q_SHRINK
      * after q2_step's exact prediction, which fails only just) */
@@ -371,6 +386,22 @@ static void enter_interval(march *m, size_t mu, const double *form)
  * constant at each call site below, so the inner loops unroll. */
 static inline void casteljau(const double *P, int p, int H, double lam, double *L, double *Rr)
 {
+    if (p == 3 && H == 2) { /* the planar cubic written out: the same operations */
+        for (int c = 0; c < 2; c++) {
+            double p0 = P[c], p1 = P[2 + c], p2 = P[4 + c], p3 = P[6 + c];
+            double a = p0 + lam * (p1 - p0), b = p1 + lam * (p2 - p1), e = p2 + lam * (p3 - p2);
+            double f = a + lam * (b - a), g = b + lam * (e - b), q = f + lam * (g - f);
+            L[c] = p0;
+            L[2 + c] = a;
+            L[4 + c] = f;
+            L[6 + c] = q;
+            Rr[c] = q;
+            Rr[2 + c] = g;
+            Rr[4 + c] = e;
+            Rr[6 + c] = p3;
+        }
+        return;
+    }
     size_t hh = (size_t)H, pp = (size_t)p;
     for (size_t c = 0; c < hh; c++) {
         L[c] = P[c];
@@ -934,6 +965,7 @@ static double chain_cert(march *m, const double *last, size_t j)
     if (d == 2) {
         double cx = b[0] - a[0], cy = b[1] - a[1], c2 = cx * cx + cy * cy;
         double s[MAXP + 1], t[MAXP + 1], w[MAXP + 1], D = 0.0;
+        double cn = sqrt(c2), lim = m->tol_eff * cn;
         int inside = c2 > 0, exact = !rational && p <= 3;
         for (size_t k = 0; k <= j && inside; k++) {
             const double *P = k == 0 ? m->R : (k == j ? last : m->C + k * bz);
@@ -941,16 +973,28 @@ static double chain_cert(march *m, const double *last, size_t j)
             s[0] = s[p] = 0.0;
             t[0] = 0.0;
             t[p] = c2;
+            w[0] = rational ? P[2] : 1.0;
+            w[p] = rational ? P[pp * hh + 2] : 1.0;
             inside = signed_dists(m, P, k == 0 ? 1 : 0, k == j ? p - 1 : p, a, cx, cy, c2, exact,
                                   s, t, w, &smax) ||
                      (exact && proj_inside(t, p, c2));
             double e = exact ? bern_max(s, p) : smax;
+            if (inside && !exact && e > lim && e <= G_REFINE_RATIO * lim) {
+                /* near tol: the sub-arc's form on its two halves, as in
+                 * bez_cert (the coefficients alone over-estimate a bump of
+                 * degree p by up to p / (p - 1)) */
+                if (rational)
+                    for (int i = 0; i <= p; i++)
+                        s[i] *= w[i];
+                double e2 = scalar_halves(m, s, rational ? w : NULL, p);
+                e = e2 < e ? e2 : e;
+            }
             D = e > D ? e : D;
         }
         m->flops += 10.0 + (double)((j + 1) * pp) * (rational ? 12.0 : 10.0) +
                     (!rational && p <= 3 ? 30.0 * (double)(j + 1) : 0.0);
         if (inside)
-            return D / sqrt(c2);
+            return D / cn;
     }
     chord c;
     chord_init(&c, a, b, d);
@@ -996,10 +1040,10 @@ static int chain_grow(march *m, size_t nc)
  * one, ending at *xo in chain interval *jo, passed; that interval's
  * split halves are then in m->Lb / m->Rb (m->Lb its whole polygon when
  * *xo is its end). *nco gets the number of intervals loaded. */
-static conica_code cross_search(march *m, double dev0, double b_end, double span_all,
-                                const conica_plot_settings *set, conica_plot_stats *stats,
-                                int *found, double *xo, double *devo, size_t *jo, size_t *nco,
-                                conica_status *st)
+static conica_code cross_search(march *m, double dev0, double hs0, double b_end,
+                                double span_all, const conica_plot_settings *set,
+                                conica_plot_stats *stats, int *found, double *xo, double *devo,
+                                size_t *jo, size_t *nco, conica_status *st)
 {
     double ua = m->ua, bb = m->bb, tol = m->tol;
     size_t bz = (size_t)(m->p + 1) * (size_t)m->h;
@@ -1008,7 +1052,7 @@ static conica_code cross_search(march *m, double dev0, double b_end, double span
     int have_fail = 0, grows = 0, tries = 0;
     double f = dev0 > 0 ? sqrt(G_TARGET * tol / dev0) : 4.0;
     f = f < 1.15 ? 1.15 : (f > 4.0 ? 4.0 : f);
-    double hs = (bb - ua) * f;
+    double hs = hs0 > bb - ua ? hs0 : (bb - ua) * f;
     *found = 0;
     for (;;) {
         double x = ua + hs;
@@ -1107,19 +1151,17 @@ static conica_code push_param(double **params, size_t *np, size_t *cap, double u
  * instead of two triangular algorithms). */
 
 #define C3 8 /* doubles of a planar cubic Bézier polygon */
-/* Step model for the next chord of a cubic: D(h) ~ K h^2 with K
+/* Step model of general_march for the next chord: D(h) ~ K h^2 with K
  * extrapolated linearly from the previous chord's mean K_p = D / h^2
  * (about the value at its middle) and the value at its end K_s, from the
- * quadratic model of the remainder R at its start: the chord of the
- * sub-arc [0, lam] deviates by about |3dR0 x 3d2R0| lam^2 / (4 |3dR0|)
- * (dR0 = R1 - R0, d2R0 = R2 - 2 R1 + R0; exact for a parabola).
+ * quadratic model of the remainder R at its start (start_k).
  * K = G_EXTRAP K_s + (1 - G_EXTRAP) K_p, at least K_s / 2. */
 #define G_EXTRAP 2.0
 
 /* First trial after a chord of parameter length step certified with dev:
  * with a curvature estimate Ks at the new start (use_k), the extrapolated
  * model above, kept within [step / 2, 2 step]; without one, D ~ h^2 from
- * the chord alone. Shared by both marches. */
+ * the chord alone. */
 static double next_step(int use_k, double Ks, double dev, double step, double tol, double next)
 {
     if (use_k) {
@@ -1142,6 +1184,7 @@ typedef struct c3m {
      * trial's halves Lb / Rb (pointers swap, no copies) */
     size_t mu;
     double ba, bb, ua, inv; /* inv = 1 / (bb - ua) */
+    double bend;            /* the piece's end */
     double B[C3];
     double buf[5][C3];
     double *R, *Lt, *Rt, *Lb, *Rb;
@@ -1367,7 +1410,7 @@ static conica_code c3_search(c3m *m, double *hs, double span_all, double min_ste
                 swap_ptr(&m->Lt, &m->Lb);
                 swap_ptr(&m->Rt, &m->Rb);
             }
-            if (x >= bb || dev >= G_GOOD * tol)
+            if (x >= bb || dev >= Q_GOOD * tol)
                 break;
         } else {
             have_fail = 1;
@@ -1386,8 +1429,8 @@ static conica_code c3_search(c3m *m, double *hs, double span_all, double min_ste
             f = f < 1.15 ? 1.15 : (f > 4.0 ? 4.0 : f);
             *hs = hp * f;
         } else {
-            double f = sqrt(G_TARGET * tol / dev);
-            f = f < 0.1 ? 0.1 : (f > 0.8 ? 0.8 : f);
+            double f = sqrt(Q_AIM * tol / dev);
+            f = f < 0.1 ? 0.1 : (f > Q_SHRINK ? Q_SHRINK : f);
             *hs = hf * f;
             if (*hs < min_step)
                 return conica__fail(st, CONICA_ERR_NUMERIC, 0, 0,
@@ -1398,6 +1441,94 @@ static conica_code c3_search(c3m *m, double *hs, double span_all, double min_ste
     *xo = best_x;
     *devo = best_dev;
     return CONICA_OK;
+}
+
+/* Step (in units of R's parameter) from the start of the planar
+ * polynomial Bézier remainder R of degree p to the chord end where the
+ * deviation is about T, from the cubic model of R at its start (R itself
+ * when p = 3; p >= 4 drops O(lam^4) terms; C = 0 for p = 2). In
+ * power form R(s) = R0 + A s + B s^2 + C s^3 (for p = 3: A = 3 (R1 - R0),
+ * B = 3 (R2 - 2 R1 + R0), C = R3 - 3 R2 + 3 R1 - R0; s in [0, 1] over
+ * the remainder) the arc minus the chord [0, lam] is s (s - lam) (B + C (s +
+ * lam)), so with s = lam v its distance across the chord's direction
+ * c = A + B lam + C lam^2 is lam^2 |v (1 - v) (al + be v)| / |c|, with
+ * al + be / 2 = w / 2, w = 2 kAB + 3 lam kAC + lam^2 kBC, be = lam kAC +
+ * lam^2 kBC (kXY = X x Y). Its largest value over v is w / 8 + be^2 /
+ * (32 w) up to O(be^4 / w^3) (Taylor at the middle, where the
+ * derivative is be / 4): the deviation is about
+ * lam^2 (4 w^2 + be^2) / (32 |w| |c|) (never below the true value: at
+ * most 1.06 times it; with an inflection inside, |w| < |be|, see
+ * C3_INFL0). The squared ratio rho = (D / T)^2 grows about as lam^4, so
+ * lam rho^(-1/4), in its Padé form lam (5 + 3 rho) / (3 + 5 rho) (one
+ * division, no root, a factor within [3/5, 5/3]), converges to D = T from
+ * lam (the previous chord's length: the same curvature ahead) or, when
+ * lam <= 0, the small-step value sqrt(4 T |A| / |kAB|); a step leaving the
+ * bracket of known passing and failing lam bisects it (a sharp bend ahead,
+ * where D rises much faster than lam^2). Only steers the next trial (the
+ * certificate decides); returns at least 1 when `last` (R ends the piece)
+ * and the whole rest is predicted to pass, 2 when R is straight. */
+static inline double model_lam(const double *R, int p, double T, double lam, int last,
+                               double *flops)
+{
+    /* the Taylor cubic at the start: A = p D1, B = C(p,2) D2, C = C(p,3) D3
+     * (forward differences of the polygon; the remainder itself for p = 3) */
+    double c1 = (double)p, c2 = 0.5 * c1 * (double)(p - 1), c3 = c2 * (double)(p - 2) / 3.0;
+    double ax = c1 * (R[2] - R[0]), ay = c1 * (R[3] - R[1]);
+    double bx = c2 * (R[4] - 2.0 * R[2] + R[0]), by = c2 * (R[5] - 2.0 * R[3] + R[1]);
+    double cx = 0.0, cy = 0.0;
+    if (p >= 3) {
+        cx = c3 * (R[6] - R[0] - 3.0 * (R[4] - R[2]));
+        cy = c3 * (R[7] - R[1] - 3.0 * (R[5] - R[3]));
+    }
+    double kab = ax * by - ay * bx, kac = ax * cy - ay * cx, kbc = bx * cy - by * cx;
+    double A2 = ax * ax + ay * ay, t2 = T * T, lo = 0.0, hi = C3_LAM_MAX;
+    *flops += 40.0;
+    if (!(fabs(kab) + fabs(kac) > 0) || !(A2 > 0))
+        return 2.0;
+    if (!(lam > 0.0) && kab != 0.0) /* the small-step value */
+        lam = sqrt(4.0 * T * sqrt(A2) / fabs(kab));
+    lam = lam > 0.0 && lam < 1.0 ? lam : 1.0;
+    for (int it = 0; it < C3_ITER; it++) {
+        double w = 2.0 * kab + lam * (3.0 * kac + lam * kbc), be = lam * (kac + lam * kbc);
+        double dx = ax + lam * (bx + lam * cx), dy = ay + lam * (by + lam * cy);
+        double Q = dx * dx + dy * dy, N, M;
+        if (fabs(w) >= fabs(be)) { /* the largest |v (1 - v) (al + be v)| is N / M */
+            N = 4.0 * w * w + be * be;
+            M = 32.0 * w;
+        } else { /* an inflection inside */
+            N = C3_INFL0 * fabs(be) + C3_INFL1 * fabs(w);
+            M = 1.0;
+        }
+        /* rho = (D / T)^2 = lam^4 N^2 / (T^2 |c|^2 M^2) ~ lam^4: lam rho^(-1/4)
+         * by its Padé form, within [3/5, 5/3] lam */
+        double u = lam * lam * N, num = u * u, ref = t2 * Q * M * M;
+        double f = (5.0 * ref + 3.0 * num) / (3.0 * ref + 5.0 * num), nl = lam * f;
+        *flops += 45.0;
+        if (!(f > 0)) /* not a number: keep lam */
+            break;
+        if (lam >= 1.0 && num <= ref && last) { /* the whole rest of the piece */
+            lam = nl;
+            break;
+        }
+        if (num < ref)
+            lo = lam;
+        else
+            hi = lam;
+        /* D may rise much faster than lam^2 (a sharp bend ahead): then the
+         * step leaves the bracket and bisects it instead */
+        lam = nl > lo && nl < hi ? nl : (hi < C3_LAM_MAX ? 0.5 * (lo + hi) : nl);
+        if (fabs(f - 1.0) < C3_ITER_STOP)
+            break;
+    }
+    return lam;
+}
+
+/* c3_march's next trial: model_lam on the remainder from the previous
+ * chord's length h0 (0: none) in parameter length. */
+static double c3_step(c3m *m, double T, double h0)
+{
+    double L = m->bb - m->ua;
+    return model_lam(m->R, 3, T, h0 * m->inv, m->bb >= m->bend, &m->flops) * L;
 }
 
 /* Load the Bézier form of the interval after the last chain element as
@@ -1493,7 +1624,7 @@ static conica_code c3_cross(c3m *m, double dev0, double hs0, double b_end, doubl
             } else {
                 memcpy(m->Lb, m->C[j], sizeof m->B);
             }
-            if (x >= b_end || dev >= G_GOOD * tol)
+            if (x >= b_end || dev >= Q_GOOD * tol)
                 break;
         } else {
             have_fail = 1;
@@ -1578,9 +1709,11 @@ static conica_code c3_march(const conica_bspline *g, double tol, double tol_eff,
     m->Rb = m->buf[4];
     double a = g->knots[3], b = g->knots[g->n], span = b - a, pt[2];
     double hs = span, min_step = span * 1e-13;
+    m->bend = b;
     size_t splits = 0;
     conica_code rc = CONICA_OK;
     c3_enter(m, c3_next_span(m, 3), 0);
+    hs = c3_step(m, Q_AIM * tol_eff, 0.0);
     for (;;) {
         double x = b, dev = 0.0, xf = m->ua, df = 0.0, step;
         int found = 0, last = 0;
@@ -1641,17 +1774,7 @@ static conica_code c3_march(const conica_bspline *g, double tol, double tol_eff,
             rc = push_param(params, np, cap, x, st);
         if (rc != CONICA_OK || last)
             break;
-        double Ks = 0.0;
-        int use_k = m->ua == x && dev > 0; /* inside an interval: see G_EXTRAP */
-        if (use_k) {
-            const double *Q = m->R;
-            double ax = Q[2] - Q[0], ay = Q[3] - Q[1];
-            double bx = Q[4] - 2.0 * Q[2] + Q[0], by = Q[5] - 2.0 * Q[3] + Q[1];
-            double cr = fabs(ax * by - ay * bx), al = sqrt(ax * ax + ay * ay);
-            Ks = al > 0 ? 0.75 * cr / al * m->inv * m->inv : 0.0;
-            m->flops += 30.0;
-        }
-        hs = next_step(use_k, Ks, dev, step, tol, C3_NEXT);
+        hs = c3_step(m, Q_AIM * tol_eff, step);
     }
     stats->flops += m->flops;
     return rc;
@@ -1771,9 +1894,13 @@ static conica_code general_march(const conica_bspline *g, double tol, double tol
     m->tol_eff = tol_eff;
     int close = m->p <= G_CLOSE_MAX_P && m->p >= G_CLOSE_MIN_P;
     int q2 = m->p == 2 && m->d == 2 && m->h == 2; /* see q2_step */
-    m->good = q2 ? Q_GOOD : (close ? G_CLOSE_GOOD : G_GOOD);
-    m->shrink_aim = q2 ? Q_AIM : G_TARGET;
-    m->shrink_max = q2 ? Q_SHRINK : 0.8;
+    /* planar polynomial degree >= 4: model_lam predicts, aiming at Q_AIM
+     * (degrees up to G_CLOSE_MAX_P, see Q_AIM) or G_NEXT */
+    int pm = m->p >= G_CLOSE_MIN_P && m->d == 2 && m->h == 2, pq = pm && close;
+    m->aim = pq ? Q_AIM : G_NEXT;
+    m->good = q2 || pq ? Q_GOOD : (close ? G_CLOSE_GOOD : G_GOOD);
+    m->shrink_aim = q2 || pq ? Q_AIM : G_TARGET;
+    m->shrink_max = q2 || pq ? Q_SHRINK : 0.8;
     m->next = close ? G_CLOSE_NEXT : G_NEXT;
     conica_code rc = CONICA_OK;
     double hs = b - a; /* first guess: the whole piece */
@@ -1785,6 +1912,8 @@ static conica_code general_march(const conica_bspline *g, double tol, double tol
         hs = sqrt(m->next * tol / K0);
     if (q2)
         hs = q2_step(m, Q_AIM * tol_eff);
+    if (pm)
+        hs = model_lam(m->R, m->p, m->aim * tol_eff, 0.0, m->bb >= b, &m->flops) * (m->bb - m->ua);
     for (;;) {
         double x = b, dev = 0.0;
         int halved = 0;
@@ -1809,7 +1938,13 @@ static conica_code general_march(const conica_bspline *g, double tol, double tol
             size_t nc = 0, j = 0, bz = (p + 1) * h;
             double x2 = x, dev2 = dev;
             if (dev < G_CROSS * tol) { /* try a longer chord across the knot */
-                rc = cross_search(m, dev, b, b - a, set, stats, &found, &x2, &dev2, &j, &nc, st);
+                /* the first trial: the remainder's cubic model continued
+                 * past the knot (a C^(p-1) join) when planar polynomial */
+                double hs0 = pm ? model_lam(m->R, m->p, m->aim * tol_eff, 1.0, 0, &m->flops) *
+                                      (m->bb - m->ua)
+                                : 0.0;
+                rc = cross_search(m, dev, hs0, b, b - a, set, stats, &found, &x2, &dev2, &j, &nc,
+                                  st);
                 if (rc != CONICA_OK)
                     goto done;
             }
@@ -1850,8 +1985,14 @@ static conica_code general_march(const conica_bspline *g, double tol, double tol
         /* predict, see G_EXTRAP and start_k (a polynomial parabola has one
          * K per interval: the chord-only rule is exact there) */
         int use_k = m->ua == x && dev > 0 && (m->p > 2 || m->h > m->d);
-        hs = q2 ? q2_step(m, Q_AIM * tol_eff)
-                : next_step(use_k, use_k ? start_k(m) : 0.0, dev, step, tol, m->next);
+        if (pm) {
+            double L = m->bb - m->ua;
+            hs = model_lam(m->R, m->p, m->aim * tol_eff, m->ua == x ? step / L : 0.0, m->bb >= b,
+                           &m->flops) * L;
+        } else {
+            hs = q2 ? q2_step(m, Q_AIM * tol_eff)
+                    : next_step(use_k, use_k ? start_k(m) : 0.0, dev, step, tol, m->next);
+        }
     }
 done:
     stats->flops += m->flops;
@@ -1867,6 +2008,34 @@ conica_code conica__guaranteed_piece(const conica_bspline *g, double tol,
                                      conica__out *o, double **params, size_t *np,
                                      conica_plot_stats *stats, conica_status *st)
 {
+    double ek[8], ec[8];
+    conica_bspline e;
+    if (g->degree == 2 && g->dim == 2 && !g->w && g->n == 3) {
+        /* One planar polynomial quadratic Bézier piece (SVG's Q, TrueType
+         * outlines) raised to degree 3: the same curve and parametrisation,
+         * so c3_march takes it (no allocation; its cubic model is exact
+         * for a parabola). The raised inner points are one rounding of a
+         * convex combination away from exact, far inside the margin of
+         * degree 3 below (G_ULPS); the end points are the input's. */
+        const double *q = g->ctrl;
+        for (int i = 0; i < 4; i++) {
+            ek[i] = g->knots[0];
+            ek[4 + i] = g->knots[3];
+        }
+        for (int c = 0; c < 2; c++) {
+            ec[c] = q[c];
+            ec[2 + c] = q[c] + (2.0 / 3.0) * (q[2 + c] - q[c]);
+            ec[4 + c] = q[4 + c] + (2.0 / 3.0) * (q[2 + c] - q[4 + c]);
+            ec[6 + c] = q[4 + c];
+        }
+        e.degree = 3;
+        e.dim = 2;
+        e.n = 4;
+        e.knots = ek;
+        e.ctrl = ec;
+        e.w = NULL;
+        g = &e;
+    }
     size_t p = (size_t)g->degree, d = (size_t)g->dim;
     double a = g->knots[p];
     /* rounding margin from the magnitude of the coordinates */
