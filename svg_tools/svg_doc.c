@@ -468,8 +468,10 @@ out:
     return verdict;
 }
 
-conica_code conica_svg_doc_load(const char *buf, size_t len, const conica_svg_limits *lim,
-                                conica_svg_doc **out, conica_status *st)
+/* conica_svg_doc_load(); with `take` (== buf) the document keeps buf
+ * itself instead of a copy once the load succeeded. */
+static conica_code doc_load(const char *buf, size_t len, const conica_svg_limits *lim,
+                            conica_svg_doc **out, char *take, conica_status *st)
 {
     conica_svg_limits def = conica_svg_limits_defaults();
     xmlParserCtxtPtr ctxt;
@@ -599,13 +601,13 @@ conica_code conica_svg_doc_load(const char *buf, size_t len, const conica_svg_li
         return conica__fail(st, CONICA_ERR_NOMEM, 0, 0, "out of memory");
     }
     doc->xml = xml;
-    doc->src = malloc(len ? len : 1);
+    doc->src = take ? take : malloc(len ? len : 1);
     if (!doc->src) {
         xmlFreeDoc(xml);
         free(doc);
         return conica__fail(st, CONICA_ERR_NOMEM, 0, 0, "out of memory");
     }
-    if (len)
+    if (len && !take)
         memcpy(doc->src, buf, len);
     doc->srclen = len;
     i = 0;
@@ -626,6 +628,18 @@ conica_code conica_svg_doc_load(const char *buf, size_t len, const conica_svg_li
     }
     *out = doc;
     return CONICA_OK;
+}
+
+conica_code conica_svg_doc_load(const char *buf, size_t len, const conica_svg_limits *lim,
+                                conica_svg_doc **out, conica_status *st)
+{
+    return doc_load(buf, len, lim, out, NULL, st);
+}
+
+conica_code conica_svg_doc_load_owned(char *buf, size_t len, const conica_svg_limits *lim,
+                                      conica_svg_doc **out, conica_status *st)
+{
+    return doc_load(buf, len, lim, out, buf, st);
 }
 
 void conica_svg_doc_free(conica_svg_doc *doc)
