@@ -198,6 +198,22 @@ CONICA_API conica_code conica_svg_doc_load(const char *buf, size_t len,
                                            const conica_svg_limits *lim, conica_svg_doc **out,
                                            conica_status *st);
 
+/**
+ * @brief conica_svg_doc_load() that keeps buf itself instead of a copy (a
+ *        large document is not held twice).
+ * @param[in]  buf  document bytes from malloc(); on success the document
+ *                  owns them (conica_svg_doc_free() frees them, the caller
+ *                  must not), on failure they stay the caller's
+ * @param[in]  len  length
+ * @param[in]  lim  caps, or NULL for defaults
+ * @param[out] out  receives the document
+ * @param[out] st   as for conica_svg_doc_load()
+ * @return as conica_svg_doc_load()
+ */
+CONICA_API conica_code conica_svg_doc_load_owned(char *buf, size_t len,
+                                                 const conica_svg_limits *lim,
+                                                 conica_svg_doc **out, conica_status *st);
+
 /** @brief Release a document. Accepts NULL. */
 CONICA_API void conica_svg_doc_free(conica_svg_doc *doc);
 

@@ -468,8 +468,10 @@ out:
     return verdict;
 }
 
-conica_code conica_svg_doc_load(const char *buf, size_t len, const conica_svg_limits *lim,
-                                conica_svg_doc **out, conica_status *st)
+/* conica_svg_doc_load(); with `take` (== buf) the document keeps buf
+ * itself instead of a copy once the load succeeded. */
+static conica_code doc_load(const char *buf, size_t len, const conica_svg_limits *lim,
+                            conica_svg_doc **out, char *take, conica_status *st)
 {
     conica_svg_limits def = conica_svg_limits_defaults();
     xmlParserCtxtPtr ctxt;
@@ -599,13 +601,13 @@ conica_code conica_svg_doc_load(const char *buf, size_t len, const conica_svg_li
         return conica__fail(st, CONICA_ERR_NOMEM, 0, 0, "out of memory");
     }
     doc->xml = xml;
-    doc->src = malloc(len ? len : 1);
+    doc->src = take ? take : malloc(len ? len : 1);
     if (!doc->src) {
         xmlFreeDoc(xml);
         free(doc);
         return conica__fail(st, CONICA_ERR_NOMEM, 0, 0, "out of memory");
     }
-    if (len)
+    if (len && !take)
         memcpy(doc->src, buf, len);
     doc->srclen = len;
     i = 0;
@@ -626,6 +628,18 @@ conica_code conica_svg_doc_load(const char *buf, size_t len, const conica_svg_li
     }
     *out = doc;
     return CONICA_OK;
+}
+
+conica_code conica_svg_doc_load(const char *buf, size_t len, const conica_svg_limits *lim,
+                                conica_svg_doc **out, conica_status *st)
+{
+    return doc_load(buf, len, lim, out, NULL, st);
+}
+
+conica_code conica_svg_doc_load_owned(char *buf, size_t len, const conica_svg_limits *lim,
+                                      conica_svg_doc **out, conica_status *st)
+{
+    return doc_load(buf, len, lim, out, buf, st);
 }
 
 void conica_svg_doc_free(conica_svg_doc *doc)
@@ -1710,8 +1724,14 @@ static int element_path(const conica_svg_settings *s, xmlNodePtr n, int kind, co
     }
 }
 
+/* Called by collect() after each element's polylines (shapes->elements[idx]
+ * and its subpaths), e.g. to write them out and free them at once. */
+typedef conica_code (*element_done)(void *ctx, conica_svg_shapes *shapes, size_t idx,
+                                    const item *it, conica_status *st);
+
 /* Walk the selected elements, turning each into polylines in *shapes and
- * remembering the node in *items (parallel to shapes->elements). With
+ * remembering the node in *items (parallel to shapes->elements); `done`
+ * (may be NULL) is called after each element with `done_ctx`. With
  * `timing`, stats->io_seconds gets the walk and the path-data parsing and
  * stats->geometry_seconds the segments-to-polylines step (corners,
  * normals, subdivision or plotting), read from the CPU clock twice per
@@ -1719,7 +1739,7 @@ static int element_path(const conica_svg_settings *s, xmlNodePtr n, int kind, co
  * too slow to read per subpath or per curve. */
 static conica_code collect(const conica_svg_doc *doc, const conica_svg_settings *s,
                            conica_svg_shapes *shapes, item **items, conica_svg_stats *stats,
-                           int timing, conica_status *st)
+                           int timing, element_done done, void *done_ctx, conica_status *st)
 {
     xmlNodePtr root = xmlDocGetRootElement(doc->xml), n = root;
     size_t budget = s->limits.max_points, cap = 0, depth = 1;
@@ -1796,6 +1816,8 @@ static conica_code collect(const conica_svg_doc *doc, const conica_svg_settings 
                     el->nsubpaths = shapes->nsubpaths - first;
                     stats->elements++;
                     stats->subpaths += el->nsubpaths;
+                    if (rc == CONICA_OK && done)
+                        rc = done(done_ctx, shapes, idx, &(*items)[idx], st);
                 }
             }
         }
@@ -1861,7 +1883,7 @@ conica_code conica_svg_extract(const conica_svg_doc *doc, const conica_svg_setti
     memset(&stats, 0, sizeof stats);
     rc = conica_svg_doc_viewport(doc, &sh.viewport, st);
     if (rc == CONICA_OK)
-        rc = collect(doc, s, &sh, &items, &stats, 0, st);
+        rc = collect(doc, s, &sh, &items, &stats, 0, NULL, NULL, st);
     free(items);
     if (rc != CONICA_OK) {
         conica_svg_shapes_free(&sh);
@@ -1913,14 +1935,75 @@ static xmlNodePtr text_node(xmlDocPtr doc, char *text)
     return t;
 }
 
+/* What conica_svg_process() builds before the document changes: one text
+ * node (the new value) per element, and the attributes it lacks. */
+typedef struct pending {
+    conica_svg_doc *doc;
+    const conica_svg_settings *s;
+    xmlNodePtr *texts;
+    xmlAttrPtr *fresh;
+    size_t cap;
+} pending;
+
+/* collect()'s hook: write element idx's polylines as its new value and
+ * free them, so that the polylines of a large document never all exist at
+ * once beside their text (peak memory, and pages touched once less). */
+static conica_code format_element(void *ctx, conica_svg_shapes *sh, size_t idx, const item *it,
+                                  conica_status *st)
+{
+    pending *pd = ctx;
+    const conica_svg_element *el = &sh->elements[idx];
+    conica_svg_subpath *sp = sh->subpaths + el->first_subpath;
+    const char *name = it->kind == 0 || it->kind == 3 ? "d" : "points";
+    conica_code rc = CONICA_OK;
+    char *text = NULL;
+    size_t len, k;
+    if (idx >= pd->cap) {
+        size_t nc = pd->cap ? 2 * pd->cap : 16;
+        xmlNodePtr *tt = realloc(pd->texts, nc * sizeof *tt);
+        xmlAttrPtr *tf;
+        if (tt)
+            pd->texts = tt;
+        tf = tt ? realloc(pd->fresh, nc * sizeof *tf) : NULL;
+        if (!tt || !tf)
+            return conica__fail(st, CONICA_ERR_NOMEM, 0, 0, "out of memory");
+        pd->fresh = tf;
+        memset(pd->texts + pd->cap, 0, (nc - pd->cap) * sizeof *tt);
+        memset(pd->fresh + pd->cap, 0, (nc - pd->cap) * sizeof *tf);
+        pd->cap = nc;
+    }
+    if (it->kind == 1 || it->kind == 2) {
+        text = format_points(sp, el->nsubpaths, pd->s->precision);
+        if (!text)
+            rc = conica__fail(st, CONICA_ERR_NOMEM, 0, 0, "out of memory");
+    } else {
+        rc = conica_svg_format_path(sp, el->nsubpaths, pd->s->precision, &text, &len, st);
+    }
+    /* the polylines are written: let them go now (peak memory) */
+    for (k = 0; k < el->nsubpaths; k++) {
+        free(sp[k].xy);
+        sp[k].xy = NULL;
+    }
+    if (rc != CONICA_OK)
+        return rc;
+    pd->texts[idx] = text_node(pd->doc->xml, text);
+    if (!pd->texts[idx])
+        return conica__fail(st, CONICA_ERR_NOMEM, 0, 0, "out of memory");
+    if (it->kind == 3 || !own_attr(it->node, name)) {
+        pd->fresh[idx] = xmlNewDocProp(pd->doc->xml, BAD_CAST name, NULL);
+        if (!pd->fresh[idx])
+            return conica__fail(st, CONICA_ERR_NOMEM, 0, 0, "out of memory");
+    }
+    return CONICA_OK;
+}
+
 conica_code conica_svg_process(conica_svg_doc *doc, const conica_svg_settings *s,
                                conica_svg_stats *stats, conica_status *st)
 {
     conica_svg_shapes sh;
     conica_svg_stats local;
     item *items = NULL;
-    xmlNodePtr *texts = NULL; /* the new attribute values, one text node per element */
-    xmlAttrPtr *fresh = NULL; /* new attributes (a shape's d, a missing d/points) */
+    pending pd;
     conica_code rc;
     size_t i, k;
     double t0;
@@ -1930,50 +2013,17 @@ conica_code conica_svg_process(conica_svg_doc *doc, const conica_svg_settings *s
         return rc;
     conica_svg_shapes_init(&sh);
     memset(&local, 0, sizeof local);
-    rc = collect(doc, s, &sh, &items, &local, stats != NULL, st);
-    t0 = stats ? conica_svg__now() : 0.0;
-    /* Everything that allocates comes first: the document changes only when
+    memset(&pd, 0, sizeof pd);
+    pd.doc = doc;
+    pd.s = s;
+    /* Everything that allocates comes first (the new values are written as
+     * each element's polylines are made): the document changes only when
      * all of it succeeded. */
-    if (rc == CONICA_OK && sh.nelements) {
-        texts = calloc(sh.nelements, sizeof *texts);
-        fresh = calloc(sh.nelements, sizeof *fresh);
-        if (!texts || !fresh)
-            rc = conica__fail(st, CONICA_ERR_NOMEM, 0, 0, "out of memory");
-    }
-    for (i = 0; rc == CONICA_OK && i < sh.nelements; i++) {
-        const conica_svg_element *el = &sh.elements[i];
-        conica_svg_subpath *sp = sh.subpaths + el->first_subpath;
-        const char *name = items[i].kind == 0 || items[i].kind == 3 ? "d" : "points";
-        char *text = NULL;
-        size_t len;
-        if (items[i].kind == 1 || items[i].kind == 2) {
-            text = format_points(sp, el->nsubpaths, s->precision);
-            if (!text)
-                rc = conica__fail(st, CONICA_ERR_NOMEM, 0, 0, "out of memory");
-        } else {
-            rc = conica_svg_format_path(sp, el->nsubpaths, s->precision, &text, &len, st);
-        }
-        /* the polylines are written: let them go now (peak memory) */
-        for (k = 0; k < el->nsubpaths; k++) {
-            free(sp[k].xy);
-            sp[k].xy = NULL;
-        }
-        if (rc != CONICA_OK)
-            break;
-        texts[i] = text_node(doc->xml, text);
-        if (!texts[i]) {
-            rc = conica__fail(st, CONICA_ERR_NOMEM, 0, 0, "out of memory");
-            break;
-        }
-        if (items[i].kind == 3 || !own_attr(items[i].node, name)) {
-            fresh[i] = xmlNewDocProp(doc->xml, BAD_CAST name, NULL);
-            if (!fresh[i]) {
-                rc = conica__fail(st, CONICA_ERR_NOMEM, 0, 0, "out of memory");
-                break;
-            }
-        }
-    }
+    rc = collect(doc, s, &sh, &items, &local, stats != NULL, format_element, &pd, st);
+    t0 = stats ? conica_svg__now() : 0.0;
     if (rc == CONICA_OK) {
+        xmlNodePtr *texts = pd.texts;
+        xmlAttrPtr *fresh = pd.fresh;
         for (i = 0; i < sh.nelements; i++) {
             xmlNodePtr n = items[i].node;
             xmlAttrPtr a;
@@ -2006,13 +2056,13 @@ conica_code conica_svg_process(conica_svg_doc *doc, const conica_svg_settings *s
     }
     if (stats)
         local.io_seconds += conica_svg__now() - t0;
-    for (i = 0; texts && i < sh.nelements; i++)
-        xmlFreeNode(texts[i]);
-    for (i = 0; fresh && i < sh.nelements; i++)
-        if (fresh[i])
-            xmlFreeProp(fresh[i]);
-    free(texts);
-    free(fresh);
+    for (i = 0; i < pd.cap; i++) {
+        xmlFreeNode(pd.texts[i]);
+        if (pd.fresh[i])
+            xmlFreeProp(pd.fresh[i]);
+    }
+    free(pd.texts);
+    free(pd.fresh);
     free(items);
     conica_svg_shapes_free(&sh);
     if (rc == CONICA_OK && stats)

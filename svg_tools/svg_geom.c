@@ -67,9 +67,12 @@ double conica_svg__text_precision(const char *text, size_t len)
     return seen ? 0.5 * pow(10.0, -(double)best) : 0.0;
 }
 
-/* Growable point list of one output subpath. */
-static conica_code push_subpath(conica_svg_shapes *out, size_t element, int closed,
-                                const double *xy, size_t n, conica_status *st)
+/* Append one output subpath, taking over *xy (2n coordinates, malloc'd;
+ * *xy is set to NULL once taken): the polylines of a large document are
+ * most of its memory, and a copy of each would touch as many fresh pages
+ * again. On failure *xy stays the caller's. */
+static conica_code push_subpath(conica_svg_shapes *out, size_t element, int closed, double **xy,
+                                size_t n, conica_status *st)
 {
     conica_svg_subpath *sp;
     if ((out->nsubpaths & (out->nsubpaths - 1)) == 0) { /* grow at powers of two */
@@ -85,10 +88,11 @@ static conica_code push_subpath(conica_svg_shapes *out, size_t element, int clos
     sp->n = n;
     sp->xy = NULL;
     if (n) {
-        sp->xy = malloc(2 * n * sizeof *sp->xy);
-        if (!sp->xy)
-            return conica__fail(st, CONICA_ERR_NOMEM, 0, 0, "out of memory");
-        memcpy(sp->xy, xy, 2 * n * sizeof *xy);
+        /* the producer's array may have room to spare: give it back (a
+         * shrinking realloc stays in place) */
+        double *t = realloc(*xy, 2 * n * sizeof **xy);
+        sp->xy = t ? t : *xy;
+        *xy = NULL;
     }
     out->nsubpaths++;
     return CONICA_OK;
@@ -305,7 +309,7 @@ conica_code conica_svg__path_polylines(const conica_svg_path *p, const conica_sv
                                   what, s->limits.max_points);
             else {
                 *budget -= n;
-                rc = push_subpath(out, element, sp->closed, xy, n, st);
+                rc = push_subpath(out, element, sp->closed, &xy, n, st);
             }
             free(xy);
         }
@@ -322,9 +326,9 @@ conica_code conica_svg__path_polylines(const conica_svg_path *p, const conica_sv
         rc = conica__fail(st, rc, 0, 0, "%s: %s", what, why);
     }
     for (i = 0; i < r.n && rc == CONICA_OK; i++) {
-        const conica_path_polyline *l = &r.lines[i];
+        conica_path_polyline *l = &r.lines[i]; /* its xy taken over: the result frees the rest */
         *budget -= l->n <= *budget ? l->n : *budget;
-        rc = push_subpath(out, element, l->closed, l->xy, l->n, st);
+        rc = push_subpath(out, element, l->closed, &l->xy, l->n, st);
     }
     conica_path_result_free(&r);
     conica_path_free(&cp);

@@ -165,10 +165,12 @@ static int smooth_file(void *ctx, const char *in, const char *out_path)
     if (cli_read_file(PROG, in, set.limits.max_bytes, &buf, &len))
         goto done;
     t0 = now();
-    if (conica_svg_doc_load(buf, len, &set.limits, &doc, &st) != CONICA_OK) {
+    /* the document keeps buf (the byte-true save needs it): no second copy */
+    if (conica_svg_doc_load_owned(buf, len, &set.limits, &doc, &st) != CONICA_OK) {
         fail_status(wc.name, &st);
         goto done;
     }
+    buf = NULL;
     t_io += now() - t0;
     /* the CPU clock is a system call: read it only when asked to report */
     if (conica_svg_process(doc, &set, ro->want_stats ? &stats : NULL, &st) != CONICA_OK) {
