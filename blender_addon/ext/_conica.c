@@ -897,6 +897,24 @@ static int cx_plane_refused(cx_state *S, int tiny, int nonplanar, const cx_plane
     return 0;
 }
 
+/* precision= of subdivide() and curve(): None leaves *out as it is, a
+ * finite number >= 0 is stored; else raise and return 0. */
+static int cx_read_precision(cx_state *S, PyObject *o, double *out)
+{
+    double v;
+    if (o == Py_None)
+        return 1;
+    v = PyFloat_AsDouble(o);
+    if (v == -1.0 && PyErr_Occurred())
+        return 0;
+    if (!isfinite(v) || v < 0) {
+        cx_raisef(S->arg_error, "precision must be None or a finite number >= 0");
+        return 0;
+    }
+    *out = v;
+    return 1;
+}
+
 static PyObject *cx_subdivide(PyObject *self, PyObject *args, PyObject *kw)
 {
     static char *kwlist[] = {"points", "normals", "dim", "closed", "levels", "precise",
@@ -919,13 +937,8 @@ static PyObject *cx_subdivide(PyObject *self, PyObject *args, PyObject *kw)
                                      &max_points, &want_normals, &oprec))
         return NULL;
     double precision = -1.0; /* None: from the points' storage, below */
-    if (oprec != Py_None) {
-        precision = PyFloat_AsDouble(oprec);
-        if (precision == -1.0 && PyErr_Occurred())
-            return NULL;
-        if (!isfinite(precision) || precision < 0)
-            return cx_raisef(S->arg_error, "precision must be None or a finite number >= 0");
-    }
+    if (!cx_read_precision(S, oprec, &precision))
+        return NULL;
     char typecode;
     if (!cx_typecode(S, otype, &typecode))
         return NULL;
@@ -2032,13 +2045,8 @@ static PyObject *cx_curve(PyObject *self, PyObject *args, PyObject *kw)
         (!(tolerance > 0) && !(isfinite(fidelity) && fidelity > 0)))
         return cx_raisef(S->arg_error, "fidelity must be a positive finite fraction (or give "
                          "a positive absolute tolerance)");
-    if (oprec != Py_None) {
-        precision = PyFloat_AsDouble(oprec);
-        if (precision == -1.0 && PyErr_Occurred())
-            return NULL;
-        if (!isfinite(precision) || precision < 0)
-            return cx_raisef(S->arg_error, "precision must be None or a finite number >= 0");
-    }
+    if (!cx_read_precision(S, oprec, &precision))
+        return NULL;
     if (!isfinite(plane_tol) || plane_tol < 0 || !isfinite(abs_tol) || abs_tol < 0)
         return cx_raisef(S->arg_error, "plane_tol and abs_tol must be finite and >= 0");
     if ((kind == CX_BEZIER) != (ohl != Py_None) || (kind == CX_BEZIER) != (ohr != Py_None))
