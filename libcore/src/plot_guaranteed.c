@@ -1856,6 +1856,14 @@ static double q2_step(march *m, double T)
 /* The march of conica__guaranteed_piece for any other spline (degree,
  * dimension, weights); the first point is already out. *maxdev gets the
  * largest certified bound. */
+/* general_march's model_lam trial (planar polynomial, degree >= 4): the
+ * step in parameter length from the remainder's start, lam0 in units of
+ * the remainder as for model_lam. */
+static double march_model_step(march *m, double tol_eff, double lam0, int last)
+{
+    return model_lam(m->R, m->p, m->aim * tol_eff, lam0, last, &m->flops) * (m->bb - m->ua);
+}
+
 static conica_code general_march(const conica_bspline *g, double tol, double tol_eff,
                                  const conica_plot_settings *set, conica__out *o,
                                  double **params, size_t *np, size_t *cap,
@@ -1913,7 +1921,7 @@ static conica_code general_march(const conica_bspline *g, double tol, double tol
     if (q2)
         hs = q2_step(m, Q_AIM * tol_eff);
     if (pm)
-        hs = model_lam(m->R, m->p, m->aim * tol_eff, 0.0, m->bb >= b, &m->flops) * (m->bb - m->ua);
+        hs = march_model_step(m, tol_eff, 0.0, m->bb >= b);
     for (;;) {
         double x = b, dev = 0.0;
         int halved = 0;
@@ -1940,9 +1948,7 @@ static conica_code general_march(const conica_bspline *g, double tol, double tol
             if (dev < G_CROSS * tol) { /* try a longer chord across the knot */
                 /* the first trial: the remainder's cubic model continued
                  * past the knot (a C^(p-1) join) when planar polynomial */
-                double hs0 = pm ? model_lam(m->R, m->p, m->aim * tol_eff, 1.0, 0, &m->flops) *
-                                      (m->bb - m->ua)
-                                : 0.0;
+                double hs0 = pm ? march_model_step(m, tol_eff, 1.0, 0) : 0.0;
                 rc = cross_search(m, dev, hs0, b, b - a, set, stats, &found, &x2, &dev2, &j, &nc,
                                   st);
                 if (rc != CONICA_OK)
@@ -1986,9 +1992,8 @@ static conica_code general_march(const conica_bspline *g, double tol, double tol
          * K per interval: the chord-only rule is exact there) */
         int use_k = m->ua == x && dev > 0 && (m->p > 2 || m->h > m->d);
         if (pm) {
-            double L = m->bb - m->ua;
-            hs = model_lam(m->R, m->p, m->aim * tol_eff, m->ua == x ? step / L : 0.0, m->bb >= b,
-                           &m->flops) * L;
+            hs = march_model_step(m, tol_eff, m->ua == x ? step / (m->bb - m->ua) : 0.0,
+                                  m->bb >= b);
         } else {
             hs = q2 ? q2_step(m, Q_AIM * tol_eff)
                     : next_step(use_k, use_k ? start_k(m) : 0.0, dev, step, tol, m->next);
