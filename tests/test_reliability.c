@@ -170,6 +170,111 @@ TEST_CASE("subdivision: points near DBL_MAX give an error or finite points", "[r
     conica_curve_free(&out);
 }
 
+/* Plot a fuzz_plot finding with the guaranteed plotter and the settings
+ * the fuzzer chose; the result is an error or finite points. */
+static void plot_finding(int degree, const double *knots, size_t nk, const double *ctrl,
+                         size_t n, double abs_tol, unsigned prephase)
+{
+    conica_bspline s;
+    conica_polyline pl;
+    conica_status st;
+    conica_bspline_init(&s);
+    conica_polyline_init(&pl);
+    REQUIRE_EQ(conica_bspline_set(degree, 2, knots, nk, ctrl, n, NULL, &s, &st), CONICA_OK);
+    conica_plot_settings set = conica_plot_defaults();
+    set.method = CONICA_PLOT_GUARANTEED;
+    set.output = CONICA_OUTPUT_CONTROL_POLYGON;
+    set.abs_tolerance = abs_tol;
+    set.pixel_tolerance = 3;
+    set.prephase_knots = prephase;
+    set.max_points = (size_t)1 << 13;
+    set.max_knots = (size_t)1 << 12;
+    set.max_iterations = (size_t)1 << 16;
+    conica_code rc = conica_plot(&s, &set, &pl, NULL, &st);
+    CAPTURE_I((int)rc);
+    size_t bad = 0;
+    if (rc == CONICA_OK)
+        for (size_t i = 0; i < 2 * pl.n; i++)
+            bad += isfinite(pl.xy[i]) ? 0u : 1u;
+    CHECK_EQ_U(bad, 0);
+    conica_polyline_free(&pl);
+    conica_bspline_free(&s);
+}
+
+TEST_CASE("plot: a chord search at a full chain never runs past its last element",
+          "[reliability][fuzz]")
+{
+    /* fuzz_plot (regressions/plot/c3-chain-end-0cf4c149, chain-end-e939bc40): the cubic and general
+     * chord searches snapped a trial end to the piece's end although the
+     * chain of BÃ©zier forms, full or at the knots' end, stopped short of
+     * it; the search for the trial's element then ran past the chain
+     * (SIGSEGV in c3_cross, pointer overflow in cross_search). */
+    const double k3[] = {0, 0, 0, 0, 1, 2, 3, 4, 4.0000000000945874, 4.0000000001891749,
+                         4.0000000002837623, 4.0000000002837623, 4.0000000002837623,
+                         4.0000000002837623};
+    const double c3[] = {1.8917489796876907e-10, 1.7976931348623157e+308,
+                         2.8376234695315361e-10, 1.7976931348623157e+308,
+                         3.7834979593753815e-10, 17,
+                         4.7293724492192268e-10, 17.000000000094587,
+                         5.6752469390630722e-10, 17.000000000189175,
+                         6.6211214289069176e-10, 17.000000000283762,
+                         7.5669959187507629e-10, 17.00000000037835,
+                         0, 0, 0, 0, 0, 0};
+    plot_finding(3, k3, 14, c3, 10, 0, 0);
+    const double k2[] = {0, 0, 0, 1.625, 3.25, 4.875, 6.5, 6.5000000000727596,
+                         6.5000000000727596, 6.5625000000727596, 6.5625000000727596,
+                         8.3750000000727596, 8.3750000000727596, 8.3750000000727596,
+                         9.3750000000727596, 11.00000000007276, 11.00000000007276,
+                         11.00000000007276};
+    const double c2[] = {0, 0, 4.9406564584124654e-324, 4.9406564584124654e-324,
+                         4.9406564584124654e-324, 4.9406564584124654e-324,
+                         4.9406564584124654e-324, 4.9406564584124654e-324,
+                         4.9406564584124654e-324, 4.9406564584124654e-324,
+                         4.9406564584124654e-324, 4.9406564584124654e-324,
+                         4.9406564584124654e-324, 7.2759576141834259e-11,
+                         7.2759576141834259e-11, 1.4551915228366852e-10,
+                         1.4551915228366852e-10, 2.1827872842550278e-10,
+                         2.1827872842550278e-10, 2.9103830456733704e-10,
+                         12, 3.637978807091713e-10, 12, 7.2759576141834259e-11,
+                         12.00000000007276, 7.0031092036515474e-11, 0, 0, 0, 0};
+    plot_finding(2, k2, 18, c2, 15, 2.3283064365386963e-10, 7);
+}
+
+TEST_CASE("svg: coordinates near 1e176 end the flattener's chord search at the run's end",
+          "[reliability][fuzz]")
+{
+    /* fuzz_svg_path (regressions/svg_path/flatten-1e176-d22ec294): a chord from
+     * the run's end point to itself measured inf, so the greedy chord
+     * search went on past the end of its list (pointer overflow, read past
+     * the parameters). */
+    static const char d[] =
+        "M20 0H13 4 T5 63.4,83.4 300,35 316.5,82.3 366.6,83.4 326.6,113.7 3400000"
+        "000000000000000000000000000000000000000000000000000000000000000000000000"
+        "000000000000000000000000000000000000000000000000000000000000000000000000"
+        "00000000000000000325984829,3 0 0 10,13309,161.6 273.4,113.7 233000000000"
+        "000000000000000000000000000000000000000000000000000000000000000000000000"
+        "000000000000000000000000000000000000000000000000000000000000000000000000"
+        "00000000000000325984829,3 1.1,161.6 30063.4,83.4 300,35 316.5,82.3 366.6"
+        ",83.4 326.6,113.7 341.1,161.6 300,133 258.13.0 0 15 0 0 1 13.4 300,35 31"
+        "6.5,82.3 366.6,83.4 326.6,113.7 341.1,161.6 30063.4,83.4 300,35 316.5,82"
+        ".3 3V20A15\000" "\000" "\000" "n 15 0 0 1 20; 5Z";
+    conica_svg_path p;
+    conica_svg_shapes sh;
+    conica_status st;
+    conica_svg_path_init(&p);
+    conica_svg_shapes_init(&sh);
+    REQUIRE_EQ(conica_svg_path_parse(d, sizeof d - 1, 4096, &p, &st), CONICA_OK);
+    conica_svg_settings set = conica_svg_defaults();
+    set.levels = 2; /* smoothing: its curves are flattened first */
+    set.limits.max_points = 1u << 15;
+    conica_code rc = conica_svg_path_polylines(&p, &set, &sh, &st);
+    CAPTURE_I((int)rc);
+    CHECK((rc == CONICA_OK || rc == CONICA_ERR_NONFINITE || rc == CONICA_ERR_LIMIT ||
+           rc == CONICA_ERR_NUMERIC));
+    conica_svg_shapes_free(&sh);
+    conica_svg_path_free(&p);
+}
+
 /* Last: a crash here (SIGSEGV before the fix) must not hide the cases above. */
 TEST_CASE("plot deviation: a polyline reaching infinity does not index the grid with NaN",
           "[reliability][fuzz]")

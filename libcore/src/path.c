@@ -1410,7 +1410,12 @@ static conica_code flatten_run(ctx *c, const size_t *segs, size_t m, const doubl
             for (f = 0; f < nfz; f++) /* the next vertex that must be */
                 if (fz[f] > u0 && fz[f] < stop)
                     stop = fz[f];
-            while (U[last] > stop)
+            /* the end is already chosen when the last chord went to it
+             * point by point (coordinates near 1e176 make even the chord
+             * from a point to itself measure inf) */
+            if (i0 + 1 >= n)
+                break;
+            while (last > i0 + 1 && U[last] > stop)
                 last--;
             dv = run_dev(&R, u0, U[last], p0, X + 2 * last, thr);
             if (dv <= thr) { /* the rest, up to the next forced vertex, in one chord */

@@ -1068,6 +1068,11 @@ static conica_code cross_search(march *m, double dev0, double hs0, double b_end,
             x = end;
         if (!(x < b_end) || b_end - x < G_SNAP * span_all)
             x = b_end;
+        /* Snapping to b_end must not carry x past a chain that could not
+         * grow (full, or the knots end first): the span search below
+         * relies on x <= end. */
+        if (x > end)
+            x = end;
         if (x <= best_x)
             break;
         conica_code rc = too_many(set, stats, st);
@@ -1592,6 +1597,11 @@ static conica_code c3_cross(c3m *m, double dev0, double hs0, double b_end, doubl
             x = end;
         if (!(x < b_end) || b_end - x < G_SNAP * span_all)
             x = b_end;
+        /* Snapping to b_end must not carry x past a chain that could not
+         * grow (full, or the knots end first): the span search below
+         * relies on x <= end. */
+        if (x > end)
+            x = end;
         if (x <= best_x || (have_fail && x >= fail_x))
             break;
         conica_code rc = too_many(set, stats, st);
