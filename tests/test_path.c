@@ -831,3 +831,77 @@ TEST_CASE("random drawn paths: never farther from the drawn curve than the toler
         conica_path_free(&p);
     }
 }
+
+TEST_CASE("random rational quadratics: never farther from the drawn curve than the tolerance",
+          "[path][random][conic]")
+{
+    /* the distance of a rational quadratic from a chord is taken at the
+     * roots of its derivative's numerator (rat2_range in path.c), not
+     * sampled: an independent dense check of both directions */
+    unsigned long long seed = 0xD1B54A32D192ED03ull;
+    int trial;
+    for (trial = 0; trial < 24; trial++) {
+        conica_path p;
+        conica_path_result r;
+        conica_path_settings s = conica_path_defaults();
+        ts_seg segs[8];
+        ts_contour c;
+        ts_poly poly;
+        ts_hausdorff h;
+        int nseg = 2 + (int)(rnd(&seed) * 5), i, smooth = trial % 2;
+        double start[2] = {rnd(&seed) * 10, rnd(&seed) * 10}, cur[2];
+        INFO("trial %d (%s)", trial, smooth ? "smooth" : "flatten");
+        conica_path_init(&p);
+        conica_path_result_init(&r);
+        REQUIRE(conica_path_move_to(&p, start[0], start[1], 0, NULL) == CONICA_OK);
+        cur[0] = start[0];
+        cur[1] = start[1];
+        for (i = 0; i < nseg; i++) {
+            int last = i + 1 == nseg;
+            double q[4], w[3];
+            w[0] = w[2] = 1.0;
+            w[1] = 0.2 + rnd(&seed) * 4.8; /* ellipse-like to hyperbola-like */
+            q[0] = rnd(&seed) * 10;
+            q[1] = rnd(&seed) * 10;
+            q[2] = last ? start[0] : rnd(&seed) * 10;
+            q[3] = last ? start[1] : rnd(&seed) * 10;
+            memset(&segs[i], 0, sizeof segs[i]);
+            segs[i].degree = 2;
+            segs[i].w = w[1];
+            segs[i].p[0][0] = cur[0];
+            segs[i].p[0][1] = cur[1];
+            segs[i].p[1][0] = q[0];
+            segs[i].p[1][1] = q[1];
+            segs[i].p[2][0] = q[2];
+            segs[i].p[2][1] = q[3];
+            REQUIRE(conica_path_bezier_to(&p, 2, q, w, (size_t)i, NULL) == CONICA_OK);
+            cur[0] = q[2];
+            cur[1] = q[3];
+        }
+        REQUIRE(conica_path_close(&p, NULL) == CONICA_OK);
+        s.levels = 7;
+        REQUIRE((smooth ? conica_path_smooth(&p, &s, &r, NULL)
+                        : conica_path_flatten(&p, &s, &r, NULL)) == CONICA_OK);
+        REQUIRE_EQ_U(r.n, 1);
+        c.n = (size_t)nseg;
+        c.seg = segs;
+        c.closed = 1;
+        poly.xy = r.lines[0].xy;
+        poly.n = r.lines[0].n;
+        poly.closed = 1;
+        {
+            ts_sampling ds = ts_sampling_defaults();
+            ds.per_seg = 1024;
+            REQUIRE(ts_hausdorff_measure(&c, 1, &poly, 1, &ds, &h) == TS_OK);
+        }
+        CAPTURE_D(r.lines[0].tolerance);
+        CAPTURE_D(h.poly_to_curve);
+        CAPTURE_D(h.curve_to_poly);
+        CHECK_LE(h.poly_to_curve, r.lines[0].tolerance * (1 + 1e-9));
+        CHECK_LE(h.curve_to_poly, r.lines[0].tolerance * (smooth ? 1.1 : 1 + 1e-9));
+        if (!smooth) /* the chords use the tolerance, not a sampled part of it */
+            CHECK_GE(h.curve_to_poly, 0.5 * r.lines[0].tolerance);
+        conica_path_result_free(&r);
+        conica_path_free(&p);
+    }
+}

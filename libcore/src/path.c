@@ -988,10 +988,82 @@ static int poly23(const double *q, int d)
            (d < 3 || q[11] == 1.0);
 }
 
+/* (C(t) - a) . dir at t, from C evaluated in full (bez_eval). */
+static double along_at(const double *q, int d, double t, const double a[2], const double dir[2])
+{
+    double pt[2];
+    bez_eval(q, d, t, pt, NULL, NULL);
+    return (pt[0] - a[0]) * dir[0] + (pt[1] - a[1]) * dir[1];
+}
+
+/* Largest and smallest (C(t) - a) . dir of a rational quadratic q (an
+ * arc's conic piece) on [ta, tb], exactly, and where; 0 when the
+ * coefficients overflow (the caller samples instead). With
+ * g_k = (Q_k - a) . dir the value is N / W, N = sum B_k w_k g_k and
+ * W = sum B_k w_k in power form A0 + A1 t + A2 t^2 and B0 + B1 t + B2 t^2;
+ * the numerator of its derivative, N' W - N W', is the quadratic
+ * (A1 B0 - A0 B1) + 2 (A2 B0 - A0 B2) t + (A2 B1 - A1 B2) t^2 (the cubic
+ * terms cancel), so the extremes are at the ends or at its roots. */
+static int rat2_range(const double *q, double ta, double tb, const double a[2],
+                      const double dir[2], double *vmax, double *tmax, double *vmin,
+                      double *tmin)
+{
+    double n[3], w[3], r[2], A0, A1, A2, B0, B1, B2, c0, c1, c2;
+    int k, nr = 0;
+    for (k = 0; k < 3; k++) {
+        w[k] = q[3 * k + 2];
+        n[k] = w[k] * ((q[3 * k] - a[0]) * dir[0] + (q[3 * k + 1] - a[1]) * dir[1]);
+    }
+    A0 = n[0];
+    A1 = 2.0 * (n[1] - n[0]);
+    A2 = n[0] - 2.0 * n[1] + n[2];
+    B0 = w[0];
+    B1 = 2.0 * (w[1] - w[0]);
+    B2 = w[0] - 2.0 * w[1] + w[2];
+    c0 = A1 * B0 - A0 * B1;
+    c1 = 2.0 * (A2 * B0 - A0 * B2);
+    c2 = A2 * B1 - A1 * B2;
+    if (!isfinite(c0) || !isfinite(c1) || !isfinite(c2))
+        return 0;
+    if (c2 != 0.0) {
+        double disc = c1 * c1 - 4.0 * c2 * c0;
+        if (!isfinite(disc))
+            return 0;
+        if (disc >= 0.0) { /* the stable pair of roots */
+            double h = -0.5 * (c1 + copysign(sqrt(disc), c1));
+            if (h != 0.0) {
+                r[nr++] = h / c2;
+                r[nr++] = c0 / h;
+            } else {
+                r[nr++] = 0.0; /* c1 = c0 = 0: a double root at 0 */
+            }
+        }
+    } else if (c1 != 0.0) {
+        r[nr++] = -c0 / c1;
+    }
+    *vmax = *vmin = along_at(q, 2, ta, a, dir);
+    *tmax = *tmin = ta;
+    for (k = -1; k < nr; k++) {
+        double t = k < 0 ? tb : r[k], v;
+        if (k >= 0 && !(t > ta && t < tb))
+            continue;
+        v = along_at(q, 2, t, a, dir);
+        if (v > *vmax) {
+            *vmax = v;
+            *tmax = t;
+        }
+        if (v < *vmin) {
+            *vmin = v;
+            *tmin = t;
+        }
+    }
+    return 1;
+}
+
 /* Largest and smallest (C(t) - a) . dir of the Bézier q (degree d) on
- * [ta, tb] and where: exact for polynomial quadratics and cubics (returns
- * 1), else the best of PATH_FIT_SAMPLES + 1 samples (returns 0; a golden
- * section refines them). */
+ * [ta, tb] and where: exact for polynomial quadratics and cubics and for
+ * rational quadratics (returns 1), else the best of PATH_FIT_SAMPLES + 1
+ * samples (returns 0; a golden section refines them). */
 static int seg_range(const double *q, int d, double ta, double tb, const double a[2],
                      const double dir[2], double *vmax, double *tmax, double *vmin, double *tmin)
 {
@@ -1000,6 +1072,8 @@ static int seg_range(const double *q, int d, double ta, double tb, const double 
         poly_range(q, d, ta, tb, a, dir, vmax, tmax, vmin, tmin);
         return 1;
     }
+    if (d == 2 && rat2_range(q, ta, tb, a, dir, vmax, tmax, vmin, tmin))
+        return 1;
     *vmax = -INFINITY;
     *vmin = INFINITY;
     *tmax = *tmin = ta;
@@ -1402,7 +1476,7 @@ static conica_code flatten_run(ctx *c, const size_t *segs, size_t m, const doubl
      * points overwrite the list in place (each is at or past its slot). */
     {
         double u0 = U[0], p0[2] = {X[0], X[1]};
-        size_t i0 = 0, nk = 1;
+        size_t i0 = 0, nk = 1, lastc = 0;
         while (n > 1) {
             size_t best = i0, step = 1, lo, hi, last = n - 1, f;
             double dv, ulo, uhi, u1, p1[2], stop = U[n - 1];
@@ -1415,8 +1489,14 @@ static conica_code flatten_run(ctx *c, const size_t *segs, size_t m, const doubl
              * from a point to itself measure inf) */
             if (i0 + 1 >= n)
                 break;
-            while (last > i0 + 1 && U[last] > stop)
-                last--;
+            /* the last dense point at or before stop: stop never
+             * decreases (u0 only grows, the list past i0 is as built), so
+             * the search goes on from the previous one instead of from the
+             * list's end (quadratic in the points of a long run) */
+            lastc = lastc > i0 + 1 ? lastc : i0 + 1;
+            while (lastc + 1 < n && U[lastc + 1] <= stop)
+                lastc++;
+            last = lastc;
             dv = run_dev(&R, u0, U[last], p0, X + 2 * last, thr);
             if (dv <= thr) { /* the rest, up to the next forced vertex, in one chord */
                 worst = dv > worst ? dv : worst;
