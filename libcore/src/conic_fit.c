@@ -28,6 +28,11 @@
 /* A pivot of R below this many rounding units of the largest counts as
  * that size (inverse iteration's usual shift off an exact singularity). */
 #define CONICA__INVIT_PIVOT_ULPS 1
+/* Downdated column norms (householder_r) are accurate to about
+ * DBL_EPSILON / sqrt(DBL_EPSILON) relative; candidates within this
+ * relative distance of the largest are compared by their exact norms, so
+ * the pivot order is the one exact norms give. */
+#define CONICA__QR_TIE 1e-6
 
 void conica__svdws_init(conica__svdws *ws)
 {
@@ -78,9 +83,14 @@ void conica__svdws_free(conica__svdws *ws)
  * column-major a (m >= n) in place: R in the upper triangle (reflectors not
  * kept), column k of R is column perm[k] of a. The pivoting makes R graded
  * (|r_kk| non-increasing), so that the triangular solves of the inverse
- * iteration stay accurate under the weights' 1e5 : 1 scaling. Column norms
- * are recomputed at every step (n <= 16: cheaper than safe downdating) and
- * scaled, so entries near the overflow threshold square safely. */
+ * iteration stay accurate under the weights' 1e5 : 1 scaling. Norms are
+ * scaled, so entries near the overflow threshold square safely. The
+ * candidates' norms are downdated after each step (the norm of rows k+1..
+ * of column j is that of rows k.. less the new r_kj), and recomputed where
+ * the downdate has cancelled more than half the digits, as LAPACK's dlaqp2
+ * does. Near ties (CONICA__QR_TIE) and the pivot column's own norm, which
+ * the reflection uses, are computed afresh, so R is what recomputing every
+ * norm at every step gave. */
 static double col_norm(const double *x, int lo, int hi)
 {
     double scale = 0, ss = 0;
@@ -98,31 +108,54 @@ static double col_norm(const double *x, int lo, int hi)
 
 static void householder_r(double *a, int m, int n, int *perm)
 {
+    /* a downdate keeping less than this share of the last computed norm
+     * squared is recomputed (dlaqp2's tol3z, sqrt of the rounding unit) */
+    const double redo = sqrt(DBL_EPSILON);
+    double cn[CONICA__FIT_MAX_COLS], cn0[CONICA__FIT_MAX_COLS];
     int i, j, k;
-    for (j = 0; j < n; j++)
+    for (j = 0; j < n; j++) {
         perm[j] = j;
+        cn[j] = cn0[j] = col_norm(a + (size_t)j * (size_t)m, 0, m);
+    }
     for (k = 0; k < n; k++) {
         double *ak, norm = -1, alpha, beta;
         int best = k;
-        for (j = k; j < n; j++) {
-            double c = col_norm(a + (size_t)j * (size_t)m, k, m);
-            if (c > norm) {
-                norm = c;
+        for (j = k; j < n; j++)
+            if (cn[j] > norm) {
+                norm = cn[j];
                 best = j;
             }
-        }
+        for (j = k; j < n; j++) /* a near tie: choose by the exact norms */
+            if (j != best && cn[j] >= norm * (1 - CONICA__QR_TIE)) {
+                norm = -1;
+                for (j = k; j < n; j++) {
+                    cn[j] = cn0[j] = col_norm(a + (size_t)j * (size_t)m, k, m);
+                    if (cn[j] > norm) {
+                        norm = cn[j];
+                        best = j;
+                    }
+                }
+                break;
+            }
         if (best != k) {
-            double *x = a + (size_t)k * (size_t)m, *y = a + (size_t)best * (size_t)m;
+            double *x = a + (size_t)k * (size_t)m, *y = a + (size_t)best * (size_t)m, u;
             int t = perm[k];
             perm[k] = perm[best];
             perm[best] = t;
             for (i = 0; i < m; i++) {
-                double u = x[i];
+                u = x[i];
                 x[i] = y[i];
                 y[i] = u;
             }
+            u = cn[k];
+            cn[k] = cn[best];
+            cn[best] = u;
+            u = cn0[k];
+            cn0[k] = cn0[best];
+            cn0[best] = u;
         }
         ak = a + (size_t)k * (size_t)m;
+        norm = col_norm(ak, k, m);
         if (!(norm > 0))
             continue;
         alpha = ak[k] >= 0 ? -norm : norm;
@@ -136,6 +169,16 @@ static void householder_r(double *a, int m, int n, int *perm)
             s *= beta;
             for (i = k; i < m; i++)
                 aj[i] -= s * ak[i];
+            if (cn[j] > 0 && isfinite(cn[j])) { /* rows k+1.. of column j */
+                double r = fabs(aj[k]) / cn[j], keep = 1 - r * r, q = cn[j] / cn0[j];
+                keep = keep > 0 ? keep : 0;
+                if (keep * q * q <= redo) {
+                    cn[j] = col_norm(aj, k + 1, m);
+                    cn0[j] = cn[j];
+                } else {
+                    cn[j] *= sqrt(keep);
+                }
+            }
         }
         ak[k] = alpha;
     }
