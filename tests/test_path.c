@@ -760,6 +760,49 @@ static double rnd(unsigned long long *s)
     return (double)(*s >> 11) / 9007199254740992.0;
 }
 
+/* Smooth (or flatten) the closed path p drawn as segs[0..nseg) and check
+ * both directions against it with the dense Hausdorff checker; returns the
+ * curve-to-polyline distance over the tolerance. */
+static double check_closed_random(conica_path *p, ts_seg *segs, int nseg, int smooth)
+{
+    conica_path_result r;
+    conica_path_settings s = conica_path_defaults();
+    ts_contour c;
+    ts_poly poly;
+    ts_hausdorff h;
+    double ratio = 0;
+    conica_path_result_init(&r);
+    s.levels = 7; /* the polyline close to the limit curve */
+    REQUIRE((smooth ? conica_path_smooth(p, &s, &r, NULL) : conica_path_flatten(p, &s, &r, NULL)) ==
+            CONICA_OK);
+    REQUIRE_EQ_U(r.n, 1);
+    c.n = (size_t)nseg;
+    c.seg = segs;
+    c.closed = 1;
+    poly.xy = r.lines[0].xy;
+    poly.n = r.lines[0].n;
+    poly.closed = 1;
+    {
+        /* random cubics loop and nearly cusp: the checker's dense
+         * sampling must be fine enough not to miss the nearest part */
+        ts_sampling ds = ts_sampling_defaults();
+        ds.per_seg = 1024;
+        REQUIRE(ts_hausdorff_measure(&c, 1, &poly, 1, &ds, &h) == TS_OK);
+    }
+    CAPTURE_D(r.lines[0].tolerance);
+    CAPTURE_D(h.poly_to_curve);
+    CAPTURE_D(h.curve_to_poly);
+    /* every written point lies on the limit curve: within T of the
+     * drawn one; the level-7 chords add at most a little */
+    INFO("worst polyline place: edge %zu u %g (of %zu), nearest seg %zu t %g", h.poly_worst.edge,
+         h.poly_worst.u, poly.n, h.poly_nearest.seg, h.poly_nearest.t);
+    CHECK_LE(h.poly_to_curve, r.lines[0].tolerance * (1 + 1e-9));
+    CHECK_LE(h.curve_to_poly, r.lines[0].tolerance * (smooth ? 1.1 : 1 + 1e-9));
+    ratio = h.curve_to_poly / r.lines[0].tolerance;
+    conica_path_result_free(&r);
+    return ratio;
+}
+
 TEST_CASE("random drawn paths: never farther from the drawn curve than the tolerance",
           "[path][random]")
 {
@@ -767,17 +810,11 @@ TEST_CASE("random drawn paths: never farther from the drawn curve than the toler
     int trial;
     for (trial = 0; trial < 24; trial++) {
         conica_path p;
-        conica_path_result r;
-        conica_path_settings s = conica_path_defaults();
         ts_seg segs[8];
-        ts_contour c;
-        ts_poly poly;
-        ts_hausdorff h;
         int nseg = 2 + (int)(rnd(&seed) * 5), i, k, smooth = trial % 2;
         double start[2] = {rnd(&seed) * 10, rnd(&seed) * 10}, cur[2];
         INFO("trial %d (%s)", trial, smooth ? "smooth" : "flatten");
         conica_path_init(&p);
-        conica_path_result_init(&r);
         REQUIRE(conica_path_move_to(&p, start[0], start[1], 0, NULL) == CONICA_OK);
         cur[0] = start[0];
         cur[1] = start[1];
@@ -801,33 +838,7 @@ TEST_CASE("random drawn paths: never farther from the drawn curve than the toler
             cur[1] = q[2 * d - 1];
         }
         REQUIRE(conica_path_close(&p, NULL) == CONICA_OK);
-        s.levels = 7; /* the polyline close to the limit curve */
-        REQUIRE((smooth ? conica_path_smooth(&p, &s, &r, NULL)
-                        : conica_path_flatten(&p, &s, &r, NULL)) == CONICA_OK);
-        REQUIRE_EQ_U(r.n, 1);
-        c.n = (size_t)nseg;
-        c.seg = segs;
-        c.closed = 1;
-        poly.xy = r.lines[0].xy;
-        poly.n = r.lines[0].n;
-        poly.closed = 1;
-        {
-            /* random cubics loop and nearly cusp: the checker's dense
-             * sampling must be fine enough not to miss the nearest part */
-            ts_sampling ds = ts_sampling_defaults();
-            ds.per_seg = 1024;
-            REQUIRE(ts_hausdorff_measure(&c, 1, &poly, 1, &ds, &h) == TS_OK);
-        }
-        CAPTURE_D(r.lines[0].tolerance);
-        CAPTURE_D(h.poly_to_curve);
-        CAPTURE_D(h.curve_to_poly);
-        /* every written point lies on the limit curve: within T of the
-         * drawn one; the level-7 chords add at most a little */
-        INFO("worst polyline place: edge %zu u %g (of %zu), nearest seg %zu t %g", h.poly_worst.edge,
-             h.poly_worst.u, poly.n, h.poly_nearest.seg, h.poly_nearest.t);
-        CHECK_LE(h.poly_to_curve, r.lines[0].tolerance * (1 + 1e-9));
-        CHECK_LE(h.curve_to_poly, r.lines[0].tolerance * (smooth ? 1.1 : 1 + 1e-9));
-        conica_path_result_free(&r);
+        (void)check_closed_random(&p, segs, nseg, smooth);
         conica_path_free(&p);
     }
 }
@@ -842,17 +853,11 @@ TEST_CASE("random rational quadratics: never farther from the drawn curve than t
     int trial;
     for (trial = 0; trial < 24; trial++) {
         conica_path p;
-        conica_path_result r;
-        conica_path_settings s = conica_path_defaults();
         ts_seg segs[8];
-        ts_contour c;
-        ts_poly poly;
-        ts_hausdorff h;
         int nseg = 2 + (int)(rnd(&seed) * 5), i, smooth = trial % 2;
-        double start[2] = {rnd(&seed) * 10, rnd(&seed) * 10}, cur[2];
+        double start[2] = {rnd(&seed) * 10, rnd(&seed) * 10}, cur[2], ratio;
         INFO("trial %d (%s)", trial, smooth ? "smooth" : "flatten");
         conica_path_init(&p);
-        conica_path_result_init(&r);
         REQUIRE(conica_path_move_to(&p, start[0], start[1], 0, NULL) == CONICA_OK);
         cur[0] = start[0];
         cur[1] = start[1];
@@ -879,29 +884,9 @@ TEST_CASE("random rational quadratics: never farther from the drawn curve than t
             cur[1] = q[3];
         }
         REQUIRE(conica_path_close(&p, NULL) == CONICA_OK);
-        s.levels = 7;
-        REQUIRE((smooth ? conica_path_smooth(&p, &s, &r, NULL)
-                        : conica_path_flatten(&p, &s, &r, NULL)) == CONICA_OK);
-        REQUIRE_EQ_U(r.n, 1);
-        c.n = (size_t)nseg;
-        c.seg = segs;
-        c.closed = 1;
-        poly.xy = r.lines[0].xy;
-        poly.n = r.lines[0].n;
-        poly.closed = 1;
-        {
-            ts_sampling ds = ts_sampling_defaults();
-            ds.per_seg = 1024;
-            REQUIRE(ts_hausdorff_measure(&c, 1, &poly, 1, &ds, &h) == TS_OK);
-        }
-        CAPTURE_D(r.lines[0].tolerance);
-        CAPTURE_D(h.poly_to_curve);
-        CAPTURE_D(h.curve_to_poly);
-        CHECK_LE(h.poly_to_curve, r.lines[0].tolerance * (1 + 1e-9));
-        CHECK_LE(h.curve_to_poly, r.lines[0].tolerance * (smooth ? 1.1 : 1 + 1e-9));
+        ratio = check_closed_random(&p, segs, nseg, smooth);
         if (!smooth) /* the chords use the tolerance, not a sampled part of it */
-            CHECK_GE(h.curve_to_poly, 0.5 * r.lines[0].tolerance);
-        conica_path_result_free(&r);
+            CHECK_GE(ratio, 0.5);
         conica_path_free(&p);
     }
 }
