@@ -275,6 +275,41 @@ TEST_CASE("svg: coordinates near 1e176 end the flattener's chord search at the r
     conica_svg_path_free(&p);
 }
 
+TEST_CASE("svg: an arc at 1e44 gets no inflections from rounding noise", "[reliability][fuzz]")
+{
+    /* fuzz_svgsmooth (regressions/svgsmooth/inflection-noise-1e44-159290ea):
+     * the turning of an arc piece sampled at coordinates near 1e44 changed
+     * sign with rounding, up to 21 "inflections" per segment, and the
+     * smoothing's sample list (sized for 7 per segment) overflowed. A
+     * conic arc never inflects; the list is sized by the real bound. */
+    static const char doc_text[] =
+        "<?x-deml version=\"deml version=\"1.0\" encoding=\"UTF-8\"?>\n<!--"
+        " A mountingert ckab, 80 x 50 mm-->\n<svg xmlnw=\"http://www.w2"
+        ".org/2000(/svg\" width=\"80mm\" height=\"50mm\" viewBox=\"0 0 80 5"
+        "0\">\n  <path id=\"bracket\" fill=\"#4a7ab5\" fill-rule=\"evenodd\"\n"
+        "        d=\"M 6,50 A 6,6 0 0 1 0,3333333333333333333333333333"
+        "33333333333333333s33333333333333333333333333333333333333333-"
+        "333333333333333333333333333333333-3333,20\n       3 0 0 1 50,"
+        "43 H 30 A  \r \r\r       \r   3,3 0 0 1 30,07 Z\"/>\n</svg>\n \r ";
+    for (int levels = 0; levels <= 4; levels++) {
+        conica_svg_doc *doc = NULL;
+        conica_svg_shapes sh;
+        conica_status st;
+        conica_svg_settings set = conica_svg_defaults();
+        REQUIRE_EQ(conica_svg_doc_load(doc_text, sizeof doc_text - 1, NULL, &doc, &st), CONICA_OK);
+        set.levels = levels;
+        set.limits.max_points = 1u << 15;
+        conica_svg_shapes_init(&sh);
+        conica_code rc = conica_svg_extract(doc, &set, &sh, &st);
+        CAPTURE_I(levels);
+        CAPTURE_I((int)rc);
+        CHECK((rc == CONICA_OK || rc == CONICA_ERR_NONFINITE || rc == CONICA_ERR_LIMIT ||
+               rc == CONICA_ERR_NUMERIC));
+        conica_svg_shapes_free(&sh);
+        conica_svg_doc_free(doc);
+    }
+}
+
 /* Last: a crash here (SIGSEGV before the fix) must not hide the cases above. */
 TEST_CASE("plot deviation: a polyline reaching infinity does not index the grid with NaN",
           "[reliability][fuzz]")

@@ -700,8 +700,11 @@ static size_t find_inflections(const double *q, int d, double *out, size_t cap)
 {
     size_t n = 0, i;
     double prev, tp = 0.0;
-    if (d < 3 && q[2] == q[5] && q[5] == q[8])
-        return 0; /* a polynomial quadratic (a parabola) turns one way */
+    if (d < 3)
+        return 0; /* a line, or a quadratic with positive weights (a conic
+                   * arc: a parabola, an ellipse's or a hyperbola's) turns
+                   * one way; sampling its turning at coordinates near 1e44
+                   * found rounding noise instead */
     if (d == 3 && q[2] == 1.0 && q[5] == 1.0 && q[8] == 1.0 && q[11] == 1.0 &&
         cubic_turns_one_way(q))
         return 0;
@@ -2091,7 +2094,9 @@ static conica_code smooth_piece(ctx *c, const piece *P, double *deviation)
 
     conica_curve_init(&out);
     conica_curve_init(&fin);
-    cap = 8 * P->m + 16;
+    /* each segment's start and at most 3 CONICA_PATH_MAX_DEGREE
+     * inflections (find_inflections' cap), and the end */
+    cap = (1 + 3 * CONICA_PATH_MAX_DEGREE) * P->m + 16;
     S = malloc(cap * sizeof *S);
     if (!S)
         return fail_nomem(c);
