@@ -119,24 +119,24 @@ static void householder_r(double *a, int m, int n, int *perm)
     }
     for (k = 0; k < n; k++) {
         double *ak, norm = -1, alpha, beta;
-        int best = k;
+        int best = k, tie = 0;
         for (j = k; j < n; j++)
             if (cn[j] > norm) {
                 norm = cn[j];
                 best = j;
             }
-        for (j = k; j < n; j++) /* a near tie: choose by the exact norms */
-            if (j != best && cn[j] >= norm * (1 - CONICA__QR_TIE)) {
-                norm = -1;
-                for (j = k; j < n; j++) {
-                    cn[j] = cn0[j] = col_norm(a + (size_t)j * (size_t)m, k, m);
-                    if (cn[j] > norm) {
-                        norm = cn[j];
-                        best = j;
-                    }
+        for (j = k; j < n && !tie; j++)
+            tie = j != best && cn[j] >= norm * (1 - CONICA__QR_TIE);
+        if (tie) { /* a near tie: choose by the exact norms */
+            norm = -1;
+            for (j = k; j < n; j++) {
+                cn[j] = cn0[j] = col_norm(a + (size_t)j * (size_t)m, k, m);
+                if (cn[j] > norm) {
+                    norm = cn[j];
+                    best = j;
                 }
-                break;
             }
+        }
         if (best != k) {
             double *x = a + (size_t)k * (size_t)m, *y = a + (size_t)best * (size_t)m, u;
             int t = perm[k];

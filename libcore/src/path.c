@@ -1081,9 +1081,7 @@ static int seg_range(const double *q, int d, double ta, double tb, const double 
     *vmin = INFINITY;
     *tmax = *tmin = ta;
     for (k = 0; k <= PATH_FIT_SAMPLES; k++) {
-        double t = ta + (tb - ta) * k / PATH_FIT_SAMPLES, v, pt[2];
-        bez_eval(q, d, t, pt, NULL, NULL);
-        v = (pt[0] - a[0]) * dir[0] + (pt[1] - a[1]) * dir[1];
+        double t = ta + (tb - ta) * k / PATH_FIT_SAMPLES, v = along_at(q, d, t, a, dir);
         if (v > *vmax) {
             *vmax = v;
             *tmax = t;
@@ -1104,12 +1102,9 @@ static void golden_max(const double *q, int d, double lo, double hi, const doubl
                        const double dir[2], int iters, double stop, double *best, double *bt)
 {
     const double g = 0.6180339887498949;
-    double m1 = hi - g * (hi - lo), m2 = lo + g * (hi - lo), v1, v2, pt[2];
+    double m1 = hi - g * (hi - lo), m2 = lo + g * (hi - lo);
+    double v1 = along_at(q, d, m1, a, dir), v2 = along_at(q, d, m2, a, dir);
     int it;
-    bez_eval(q, d, m1, pt, NULL, NULL);
-    v1 = (pt[0] - a[0]) * dir[0] + (pt[1] - a[1]) * dir[1];
-    bez_eval(q, d, m2, pt, NULL, NULL);
-    v2 = (pt[0] - a[0]) * dir[0] + (pt[1] - a[1]) * dir[1];
     for (it = 0; it < iters && *best <= stop; it++) {
         if (fmax(v1, v2) > *best) {
             *best = fmax(v1, v2);
@@ -1120,15 +1115,13 @@ static void golden_max(const double *q, int d, double lo, double hi, const doubl
             m2 = m1;
             v2 = v1;
             m1 = hi - g * (hi - lo);
-            bez_eval(q, d, m1, pt, NULL, NULL);
-            v1 = (pt[0] - a[0]) * dir[0] + (pt[1] - a[1]) * dir[1];
+            v1 = along_at(q, d, m1, a, dir);
         } else {
             lo = m1;
             m1 = m2;
             v1 = v2;
             m2 = lo + g * (hi - lo);
-            bez_eval(q, d, m2, pt, NULL, NULL);
-            v2 = (pt[0] - a[0]) * dir[0] + (pt[1] - a[1]) * dir[1];
+            v2 = along_at(q, d, m2, a, dir);
         }
     }
     if (fmax(v1, v2) > *best) {
@@ -1479,9 +1472,9 @@ static conica_code flatten_run(ctx *c, const size_t *segs, size_t m, const doubl
      * points overwrite the list in place (each is at or past its slot). */
     {
         double u0 = U[0], p0[2] = {X[0], X[1]};
-        size_t i0 = 0, nk = 1, lastc = 0;
+        size_t i0 = 0, nk = 1, last = 0;
         while (n > 1) {
-            size_t best = i0, step = 1, lo, hi, last = n - 1, f;
+            size_t best = i0, step = 1, lo, hi, f;
             double dv, ulo, uhi, u1, p1[2], stop = U[n - 1];
             int it;
             for (f = 0; f < nfz; f++) /* the next vertex that must be */
@@ -1496,10 +1489,9 @@ static conica_code flatten_run(ctx *c, const size_t *segs, size_t m, const doubl
              * decreases (u0 only grows, the list past i0 is as built), so
              * the search goes on from the previous one instead of from the
              * list's end (quadratic in the points of a long run) */
-            lastc = lastc > i0 + 1 ? lastc : i0 + 1;
-            while (lastc + 1 < n && U[lastc + 1] <= stop)
-                lastc++;
-            last = lastc;
+            last = last > i0 + 1 ? last : i0 + 1;
+            while (last + 1 < n && U[last + 1] <= stop)
+                last++;
             dv = run_dev(&R, u0, U[last], p0, X + 2 * last, thr);
             if (dv <= thr) { /* the rest, up to the next forced vertex, in one chord */
                 worst = dv > worst ? dv : worst;

@@ -1034,6 +1034,20 @@ static int chain_grow(march *m, size_t nc)
     return 1;
 }
 
+/* A cross search's trial chord end x, snapped to the chain's end `end`
+ * and to the piece's end b_end when within `snap` of them (NaN goes to
+ * the end), never past `end`: a chain that could not grow (full, or the
+ * knots end first) can stop short of b_end, and the search for the
+ * trial's chain element relies on x <= end. */
+static double cross_trial_end(double x, double end, double b_end, double snap)
+{
+    if (!(x < end) || end - x < snap)
+        x = end;
+    if (!(x < b_end) || b_end - x < snap)
+        x = b_end;
+    return x > end ? end : x;
+}
+
 /* The chord from m->ua to the interval's end bb is certified with dev0:
  * try longer chords across the knot into the following intervals
  * (loaded into the chain as the trials reach them). *found tells whether
@@ -1064,15 +1078,7 @@ static conica_code cross_search(march *m, double dev0, double hs0, double b_end,
         if (nc == 0)
             break;
         double end = m->T[m->cmu[nc] + 1];
-        if (!(x < end) || end - x < G_SNAP * span_all)
-            x = end;
-        if (!(x < b_end) || b_end - x < G_SNAP * span_all)
-            x = b_end;
-        /* Snapping to b_end must not carry x past a chain that could not
-         * grow (full, or the knots end first): the span search below
-         * relies on x <= end. */
-        if (x > end)
-            x = end;
+        x = cross_trial_end(x, end, b_end, G_SNAP * span_all);
         if (x <= best_x)
             break;
         conica_code rc = too_many(set, stats, st);
@@ -1593,15 +1599,7 @@ static conica_code c3_cross(c3m *m, double dev0, double hs0, double b_end, doubl
         if (m->nc == 0)
             break;
         double end = m->T[m->cmu[m->nc] + 1];
-        if (!(x < end) || end - x < G_SNAP * span_all)
-            x = end;
-        if (!(x < b_end) || b_end - x < G_SNAP * span_all)
-            x = b_end;
-        /* Snapping to b_end must not carry x past a chain that could not
-         * grow (full, or the knots end first): the span search below
-         * relies on x <= end. */
-        if (x > end)
-            x = end;
+        x = cross_trial_end(x, end, b_end, G_SNAP * span_all);
         if (x <= best_x || (have_fail && x >= fail_x))
             break;
         conica_code rc = too_many(set, stats, st);
@@ -1863,9 +1861,6 @@ static double q2_step(march *m, double T)
     return lam * L;
 }
 
-/* The march of conica__guaranteed_piece for any other spline (degree,
- * dimension, weights); the first point is already out. *maxdev gets the
- * largest certified bound. */
 /* general_march's model_lam trial (planar polynomial, degree >= 4): the
  * step in parameter length from the remainder's start, lam0 in units of
  * the remainder as for model_lam. */
@@ -1873,6 +1868,10 @@ static double march_model_step(march *m, double tol_eff, double lam0, int last)
 {
     return model_lam(m->R, m->p, m->aim * tol_eff, lam0, last, &m->flops) * (m->bb - m->ua);
 }
+
+/* The march of conica__guaranteed_piece for any other spline (degree,
+ * dimension, weights); the first point is already out. *maxdev gets the
+ * largest certified bound. */
 
 static conica_code general_march(const conica_bspline *g, double tol, double tol_eff,
                                  const conica_plot_settings *set, conica__out *o,
