@@ -106,7 +106,7 @@ conica_code conica_scad_round(const conica_scad_profile *p, double h, conica_sca
             return conica__fail(st, CONICA_ERR_NOMEM, 0, 0, "out of memory");
         }
         for (size_t i = 0; i < 2 * k->n; i++) {
-            double v = k->xy[i], r, e;
+            double v = k->xy[i], r = v, e; /* v as it is if no digits do */
             int d = fewest_digits(v, h, 17, &r);
             /* digits down to the grid: a small number gets no more
              * decimals than the largest (0.195443844 from 80 - 79.804556156

@@ -723,7 +723,7 @@ static conica_code adaptive_piece(const conica_bspline *g, const conica_plot_set
             continue;
         }
         size_t mu;
-        double move;
+        double move = 0.0; /* set by insert_capped on success (-O3 cannot see it) */
         rc = insert_capped(&w, z, knots_left, set, stats, &move, &mu, st);
         if (rc != CONICA_OK)
             goto done;
