@@ -132,21 +132,14 @@ conica_code conica__out_piece(conica__out *o, conica_status *st)
     return CONICA_OK;
 }
 
-conica_code conica__out_push(conica__out *o, const double *pt, double t, conica_status *st)
+conica_code conica__out_grow(conica__out *o, const double *pt, double t, conica_status *st)
 {
     if (o->pl.n >= o->max_points)
         return conica__fail(st, CONICA_ERR_LIMIT, 0, 0,
                             "plot needs more than %zu points (max_points / --max-points)",
                             o->max_points);
     size_t d = (size_t)o->pl.dim;
-    if (o->fixed) {
-        memcpy(o->pl.xy + o->pl.n * d, pt, d * sizeof *pt);
-        if (o->pl.t)
-            o->pl.t[o->pl.n] = t;
-        o->pl.n++;
-        return CONICA_OK;
-    }
-    if (o->pl.n == o->pl.cap) {
+    if (!o->fixed && o->pl.n == o->pl.cap) {
         size_t nc = o->pl.cap ? 2 * o->pl.cap : 256;
         if (nc > o->max_points)
             nc = o->max_points;
@@ -161,7 +154,8 @@ conica_code conica__out_push(conica__out *o, const double *pt, double t, conica_
         o->pl.cap = nc;
     }
     memcpy(o->pl.xy + o->pl.n * d, pt, d * sizeof *pt);
-    o->pl.t[o->pl.n] = t;
+    if (o->pl.t)
+        o->pl.t[o->pl.n] = t;
     o->pl.n++;
     return CONICA_OK;
 }

@@ -1161,6 +1161,10 @@ static conica_code push_param(double **params, size_t *np, size_t *cap, double u
  * interval's Bézier form comes from blossoming (6 convex combinations
  * instead of two triangular algorithms). */
 
+/* Coordinates below which a polynomial cubic's de Casteljau points cannot
+ * overflow (conica_plot_bezier). */
+#define CONICA__FINITE_SCALE 1e300
+
 #define C3 8 /* doubles of a planar cubic Bézier polygon */
 /* Step model of general_march for the next chord: D(h) ~ K h^2 with K
  * extrapolated linearly from the previous chord's mean K_p = D / h^2
@@ -2117,6 +2121,7 @@ conica_code conica_plot_bezier(int degree, const double *ctrl, const double *w, 
         return conica__fail(st, CONICA_ERR_LIMIT, 0, 0, "room for %zu points, 2 at least needed",
                             cap);
     size_t np = (size_t)degree + 1;
+    double scale = 0.0;
     for (size_t i = 0; i < np; i++) {
         knots[i] = 0.0;
         knots[np + i] = 1.0;
@@ -2124,6 +2129,8 @@ conica_code conica_plot_bezier(int degree, const double *ctrl, const double *w, 
         c[2 * i + 1] = ctrl[2 * i + 1];
         if (!isfinite(c[2 * i]) || !isfinite(c[2 * i + 1]))
             return conica__fail(st, CONICA_ERR_ARG, 0, i, "control point %zu is not finite", i);
+        scale = fabs(c[2 * i]) > scale ? fabs(c[2 * i]) : scale;
+        scale = fabs(c[2 * i + 1]) > scale ? fabs(c[2 * i + 1]) : scale;
         if (w) {
             wc[i] = w[i];
             if (!(wc[i] > 0) || !isfinite(wc[i]))
@@ -2146,8 +2153,13 @@ conica_code conica_plot_bezier(int degree, const double *ctrl, const double *w, 
     conica_code rc = conica__guaranteed_piece(&g, tol, &set, 0, &o, NULL, NULL, &stats, st);
     if (rc != CONICA_OK)
         return rc;
-    for (size_t i = 0; i < 2 * o.pl.n; i++)
-        if (!isfinite(xy[i])) /* as conica_plot: never a NaN or Inf as a result */
+    /* As conica_plot: never a NaN or Inf as a result. A polynomial piece of
+     * degree <= 3 with coordinates below CONICA__FINITE_SCALE cannot give
+     * one: its points are de Casteljau's convex combinations a + t (b - a),
+     * t in [0, 1], of finite points (|b - a| <= 2 scale, no overflow). */
+    int sure = !w && degree <= 3 && scale < CONICA__FINITE_SCALE;
+    for (size_t i = 0; !sure && i < 2 * o.pl.n; i++)
+        if (!isfinite(xy[i]))
             return conica__fail(st, CONICA_ERR_NUMERIC, 0, i / 2,
                                 "point %zu of the plot is not finite: the piece cannot be "
                                 "evaluated in double there",

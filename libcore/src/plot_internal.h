@@ -37,8 +37,24 @@ void conica__out_init(conica__out *o, int dim, size_t max_points);
 /* Start a new output piece unless `joined` (then the next point, equal to
  * the last one, is skipped by the caller via conica__out_push_join). */
 conica_code conica__out_piece(conica__out *o, conica_status *st);
-/* Append a point; t is its parameter on the curve, NAN when it has none. */
-conica_code conica__out_push(conica__out *o, const double *pt, double t, conica_status *st);
+/* Append a point; t is its parameter on the curve, NAN when it has none.
+ * Inline for the common case (room left; 15 calls per cubic piece of
+ * conica_plot_bezier at T = 0.1, where the call was 6% of the time);
+ * growing the arrays and the max_points error are conica__out_grow's. */
+conica_code conica__out_grow(conica__out *o, const double *pt, double t, conica_status *st);
+static inline conica_code conica__out_push(conica__out *o, const double *pt, double t,
+                                           conica_status *st)
+{
+    size_t n = o->pl.n, d = (size_t)o->pl.dim;
+    if (n >= o->max_points || (!o->fixed && n == o->pl.cap))
+        return conica__out_grow(o, pt, t, st);
+    for (size_t i = 0; i < d; i++)
+        o->pl.xy[n * d + i] = pt[i];
+    if (o->pl.t)
+        o->pl.t[n] = t;
+    o->pl.n = n + 1;
+    return CONICA_OK;
+}
 
 /* Point of s at t in plot coordinates: (t, f(t)) for a function. */
 void conica__plot_point(const conica_bspline *s, double t, double *out);
