@@ -1136,8 +1136,8 @@ static conica_code cross_search(march *m, double dev0, double hs0, double b_end,
     return CONICA_OK;
 }
 
-static conica_code push_param(double **params, size_t *np, size_t *cap, double u,
-                              conica_status *st)
+static CONICA__HOT_INLINE conica_code push_param(double **params, size_t *np, size_t *cap,
+                                                 double u, conica_status *st)
 {
     if (!params)
         return CONICA_OK;
@@ -1482,8 +1482,8 @@ static conica_code c3_search(c3m *m, double *hs, double span_all, double min_ste
  * where D rises much faster than lam^2). Only steers the next trial (the
  * certificate decides); returns at least 1 when `last` (R ends the piece)
  * and the whole rest is predicted to pass, 2 when R is straight. */
-static inline double model_lam(const double *R, int p, double T, double lam, int last,
-                               double *flops)
+static CONICA__HOT_INLINE double model_lam(const double *R, int p, double T, double lam,
+                                          int last, double *flops)
 {
     /* the Taylor cubic at the start: A = p D1, B = C(p,2) D2, C = C(p,3) D3
      * (forward differences of the polygon; the remainder itself for p = 3) */
@@ -1540,7 +1540,7 @@ static inline double model_lam(const double *R, int p, double T, double lam, int
 
 /* c3_march's next trial: model_lam on the remainder from the previous
  * chord's length h0 (0: none) in parameter length. */
-static double c3_step(c3m *m, double T, double h0)
+static CONICA__HOT_INLINE double c3_step(c3m *m, double T, double h0)
 {
     double L = m->bb - m->ua;
     return model_lam(m->R, 3, T, h0 * m->inv, m->bb >= m->bend, &m->flops) * L;
