@@ -1636,7 +1636,8 @@ static seg_fn seg_fn_of(const double *q, int d)
 
 /* The point and both derivatives (the polynomial cubic, SVG's common case,
  * unrolled in place: bern3* are bez_eval_poly3's own formulas). */
-static inline void seg_fn_eval(const seg_fn *f, double t, double c[2], double d1[2], double d2[2])
+static CONICA__HOT_INLINE void seg_fn_eval(const seg_fn *f, double t, double c[2], double d1[2],
+                                           double d2[2])
 {
     if (f->cubic) {
         double u = 1.0 - t;
@@ -1654,7 +1655,7 @@ static inline void seg_fn_eval(const seg_fn *f, double t, double c[2], double d1
 }
 
 /* The point alone. */
-static inline void seg_fn_point(const seg_fn *f, double t, double c[2])
+static CONICA__HOT_INLINE void seg_fn_point(const seg_fn *f, double t, double c[2])
 {
     if (f->cubic) {
         double u = 1.0 - t;
@@ -1713,7 +1714,7 @@ static double project(const seg_fn *f, const double x[2], double t0, double lo, 
     return best;
 }
 
-static double dist2(const double *a, const double *b)
+static CONICA__HOT_INLINE double dist2(const double *a, const double *b)
 {
     double dx = a[0] - b[0], dy = a[1] - b[1];
     return dx * dx + dy * dy;

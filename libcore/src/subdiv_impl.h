@@ -120,7 +120,7 @@ static REAL SFX(diffprod)(REAL a, REAL b, REAL c, REAL d)
  * (ablation): textbook formula, no FMA.
  * Returns 1 and *t, or 0 when there is no real root.
  */
-static int SFX(nearest_root)(REAL a, REAL b, REAL c, int kind, REAL *t)
+static CONICA__HOT_INLINE int SFX(nearest_root)(REAL a, REAL b, REAL c, int kind, REAL *t)
 {
     REAL disc, r, den, t1, t2;
 
@@ -196,7 +196,8 @@ static size_t SFX(next)(const SFX(job) *j, size_t i)
 }
 
 /* Point q in the rotated frame of SFX(frame) (edge from (-1,0) to (1,0)). */
-static void SFX(to_frame)(const SFX(job) *j, const SFX(frame) *f, size_t q, REAL *x, REAL *y)
+static CONICA__HOT_INLINE void SFX(to_frame)(const SFX(job) *j, const SFX(frame) *f, size_t q,
+                                             REAL *x, REAL *y)
 {
     REAL wx = (j->xy[2 * q] - f->mx) * f->sc, wy = (j->xy[2 * q + 1] - f->my) * f->sc;
     *x = FMA(wx, f->hsx, wy * f->hsy) * f->ihh;
