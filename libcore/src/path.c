@@ -64,10 +64,15 @@
 #define PATH_MAX_SEG_SAMPLES 4096
 /* Check levels: at least PATH_CHECK_MIN_LEVEL, at most PATH_CHECK_MAX_LEVEL,
  * deep enough that the limit polyline's chords bulge by at most
- * PATH_CHECK_SAG of the tolerance. */
+ * PATH_CHECK_SAG of the tolerance. Output at fewer levels is checked at
+ * its own level first (smooth_piece: PATH_CHECK_NEXT_BULGE). */
 #define PATH_CHECK_MIN_LEVEL 4
 #define PATH_CHECK_MAX_LEVEL 9
 #define PATH_CHECK_SAG 0.05
+/* A check at fewer levels than PATH_CHECK_MIN_LEVEL (smooth_piece) keeps
+ * this many times its last level's measured bulge off the tolerance:
+ * twice the quarter the next level adds. */
+#define PATH_CHECK_NEXT_BULGE 0.5
 /* Newton steps when projecting a point onto a segment, and the step (a
  * fraction of the search interval) after which it has settled. */
 #define PATH_NEWTON_STEPS 6
@@ -1959,12 +1964,10 @@ static double check_edge(const double *q, int d, double ta, double tb, const dou
 
 /* Levels at which the limit polyline's chords of sample edges (chord len,
  * turn angle) bulge by at most `limit`: chord * turn / (8 * 4^L). */
-static int levels_for(const double *xy, const double *nxy, size_t n, int closed, double limit,
-                      int lo, int hi)
+static double sag0(const double *xy, const double *nxy, size_t n, int closed)
 {
     double worst = 0;
     size_t i, ne = closed ? n : n - 1;
-    int L;
     for (i = 0; i < ne; i++) {
         size_t k = (i + 1) % n;
         double len = hypot(xy[2 * k] - xy[2 * i], xy[2 * k + 1] - xy[2 * i + 1]);
@@ -1972,9 +1975,57 @@ static int levels_for(const double *xy, const double *nxy, size_t n, int closed,
         double b = len * fmax(turn, 1e-3) / 8.0;
         worst = b > worst ? b : worst;
     }
-    for (L = lo; L < hi && worst / ldexp(1.0, 2 * L) > limit; L++)
+    return worst;
+}
+
+/* The estimate sag0() / 4^L of the level-L chords' bulge. */
+static double sag_at(double s0, int L)
+{
+    return s0 / ldexp(1.0, 2 * L);
+}
+
+/* The fewest levels in [lo, hi] whose chords bulge by at most `limit`
+ * (by sag_at: each level halves the edges and their turning, which
+ * quarters a chord's bulge). */
+static int level_for_sag(double s0, double limit, int lo, int hi)
+{
+    int L;
+    for (L = lo; L < hi && sag_at(s0, L) > limit; L++)
         ;
     return L;
+}
+
+static int levels_for(const double *xy, const double *nxy, size_t n, int closed, double limit,
+                      int lo, int hi)
+{
+    return level_for_sag(sag0(xy, nxy, n, closed), limit, lo, hi);
+}
+
+/* The largest distance of an odd point of the edges' sub-polylines (the
+ * last subdivision level's new points) from the chord of its two
+ * neighbours, over sample edges idx[i]..idx[i + 1] of `per` points each
+ * (closed: the last runs back to point 0); -1 when an edge has another
+ * count (an inflection point inserted). */
+static double last_level_bulge(const conica_curve *o, const size_t *idx, size_t ne, size_t per)
+{
+    double worst = 0;
+    size_t i, j;
+    for (i = 0; i < ne; i++) {
+        if (idx[i + 1] - idx[i] != per)
+            return -1.0;
+        for (j = 1; j < per; j += 2) {
+            size_t a = idx[i] + j - 1, m = a + 1, b = a + 2 < o->n ? a + 2 : 0;
+            double ex = o->xy[2 * b] - o->xy[2 * a], ey = o->xy[2 * b + 1] - o->xy[2 * a + 1];
+            double px = o->xy[2 * m] - o->xy[2 * a], py = o->xy[2 * m + 1] - o->xy[2 * a + 1];
+            double el = ex * ex + ey * ey, sp = el > 0 ? (px * ex + py * ey) / el : 0, dx, dy;
+            sp = sp < 0 ? 0 : sp > 1 ? 1 : sp;
+            dx = px - sp * ex;
+            dy = py - sp * ey;
+            dx = sqrt(dx * dx + dy * dy);
+            worst = dx > worst ? dx : worst;
+        }
+    }
+    return worst;
 }
 
 /* Subdivide an open or closed point-normal polygon. */
@@ -2075,12 +2126,12 @@ static const double *edge_points(const conica_curve *o, size_t a, size_t b, doub
 /* Append a piece smoothed (its first point is there already). */
 static conica_code smooth_piece(ctx *c, const piece *P, double *deviation)
 {
-    int ok = 0, round, lev, L = 0, d;
+    int ok = 0, round, lev, L = 0, d, low = 0, low_failed = 0;
     size_t ns = 0, cap, i, k, ne, *idx = NULL, ninfl = 0, step = 1, keep = 1;
     smp *S = NULL;
     double *T = NULL; /* parameters of the check output's points */
     const double *q;
-    double worst = 0;
+    double worst = 0, s0, strict;
     conica_curve out, fin;
     conica_code rc = CONICA_OK;
     unsigned char *bad = NULL;
@@ -2184,8 +2235,28 @@ static conica_code smooth_piece(ctx *c, const piece *P, double *deviation)
             c->sxy[2 * i + 1] = pt[1];
             normal_of(tg, c->snxy + 2 * i);
         }
-        L = levels_for(c->sxy, c->snxy, ns, P->closed, PATH_CHECK_SAG * c->tol,
-                       PATH_CHECK_MIN_LEVEL, PATH_CHECK_MAX_LEVEL);
+        /* the output levels, and so the check points whose parameters the
+         * output takes: every step-th (below), all, or none (the output
+         * comes from a subdivision of its own) */
+        lev = c->s.level_tolerance > 0
+                  ? levels_for(c->sxy, c->snxy, ns, P->closed, c->s.level_tolerance, 0,
+                               PATH_LEVELS_MAX)
+                  : c->s.levels;
+        s0 = sag0(c->sxy, c->snxy, ns, P->closed);
+        L = level_for_sag(s0, PATH_CHECK_SAG * c->tol, PATH_CHECK_MIN_LEVEL,
+                          PATH_CHECK_MAX_LEVEL);
+        strict = c->tol;
+        low = 0;
+        if (lev >= 1 && lev < L && !low_failed &&
+            level_for_sag(s0, PATH_CHECK_SAG * c->tol, lev, L) == lev) {
+            /* Fewer levels written than the check's floor L, and the
+             * written level's chords already within PATH_CHECK_SAG of the
+             * tolerance by the estimate: the written level is checked
+             * first (below), so that its subdivision is both the check and
+             * the output. */
+            L = lev;
+            low = 1;
+        }
         conica_curve_free(&out);
         rc = run_subdiv(c, c->sxy, c->snxy, ns, P->closed, L, 0.0, &out, &ninfl);
         if (rc == CONICA_ERR_LIMIT || rc == CONICA_ERR_NOMEM)
@@ -2201,13 +2272,23 @@ static conica_code smooth_piece(ctx *c, const piece *P, double *deviation)
             break;
         }
         idx[ns] = out.n; /* closed: the last edge runs to the first point again */
-        /* the output levels, and so the check points whose parameters the
-         * output takes: every step-th (below), all, or none (the output
-         * comes from a subdivision of its own) */
-        lev = c->s.level_tolerance > 0
-                  ? levels_for(c->sxy, c->snxy, ns, P->closed, c->s.level_tolerance, 0,
-                               PATH_LEVELS_MAX)
-                  : c->s.levels;
+        if (low) {
+            /* A pass at the written level must be a pass at the floor
+             * level: the floor's polyline lies within the next level's
+             * bulge of this one, about a quarter of this level's own bulge
+             * over the level before, measured here (the largest distance
+             * of a last-level point from its parent chord). Twice that
+             * quarter comes off the tolerance; an edge short of it sends
+             * the round back to the floor level, whose verdicts are then
+             * the ones taken. */
+            double b = last_level_bulge(&out, idx, ne, (size_t)1 << L);
+            if (b < 0) { /* this round again at the floor level */
+                low_failed = 1;
+                round--;
+                continue;
+            }
+            strict = c->tol - PATH_CHECK_NEXT_BULGE * b;
+        }
         keep = lev < L && ninfl == 0 ? (size_t)1 << (L - lev) : lev == L ? 1 : 0;
         worst = 0;
         for (i = 0; i < ne; i++) {
@@ -2223,9 +2304,11 @@ static conica_code smooth_piece(ctx *c, const piece *P, double *deviation)
             /* tau[idx[i] + j]: parameters of the edge's points (its end
              * point's is overwritten by the next edge's start) */
             e = check_edge(q, d, t0, t1, v, idx[i + 1] - idx[i], T + idx[i], keep,
-                           fmin(c->tol, fmax(*deviation, worst)));
+                           fmin(strict, fmax(*deviation, worst)));
             free(buf);
-            if (!(e <= c->tol)) {
+            if (!(e <= strict)) {
+                if (low)
+                    break;
                 bad[i] = 1;
                 nbad++;
             }
@@ -2233,6 +2316,12 @@ static conica_code smooth_piece(ctx *c, const piece *P, double *deviation)
         }
         if (rc != CONICA_OK)
             break;
+        if (low && i < ne) { /* this round again at the floor level */
+            low_failed = 1;
+            round--;
+            continue;
+        }
+        low_failed = 0;
         if (!nbad) {
             ok = 1;
             break;
