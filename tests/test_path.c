@@ -890,3 +890,128 @@ TEST_CASE("random rational quadratics: never farther from the drawn curve than t
         conica_path_free(&p);
     }
 }
+
+/* Is every point of a (in order, bit for bit) a point of b, both starting
+ * at the same point? The output of fewer levels from the same samples is a
+ * subsequence of the deeper one (the scheme keeps each level's points in
+ * the next). */
+static int subsequence(const conica_path_polyline *a, const conica_path_polyline *b)
+{
+    size_t i, j = 0;
+    if (a->n == 0 || b->n == 0 || a->xy[0] != b->xy[0] || a->xy[1] != b->xy[1])
+        return 0;
+    for (i = 0; i < a->n; i++) {
+        while (j < b->n && (b->xy[2 * j] != a->xy[2 * i] || b->xy[2 * j + 1] != a->xy[2 * i + 1]))
+            j++;
+        if (j == b->n)
+            return 0;
+        j++;
+    }
+    return 1;
+}
+
+/* Smooth p at `levels` into r. */
+static void smooth_at(const conica_path *p, int levels, conica_path_result *r)
+{
+    conica_path_settings s = conica_path_defaults();
+    s.levels = levels;
+    REQUIRE(conica_path_smooth(p, &s, r, NULL) == CONICA_OK);
+}
+
+TEST_CASE("fewer levels than the check's floor: the floor's verdicts, its samples",
+          "[path][levels]")
+{
+    /* Output at 3 levels is checked at level 3 first, against the
+     * tolerance less the next level's bulge; it must choose the samples the
+     * check at the floor level 4 chooses, so its polyline is every second
+     * point of the 4-level one (and of the 2- and 1-level ones in turn).
+     * The blob subpath is the one where a margin from the samples' bulge
+     * estimate let level 3 pass an edge that level 4 failed (the estimate
+     * was 2.5x short there; bench_svg's 1000 x 20 document). */
+    static const double blob[] = {
+        1272.352, 50,       1268.903, 56.14204, 1267.364, 57.83059, 1265.659, 59.11155,
+        1264.16,  60.28751, 1260.103, 63.90504, 1258.839, 65.22836, 1257.561, 66.76808,
+        1255.931, 68.25232, 1250,     71.86213, 1247.711, 72.60107, 1245.172, 72.6531,
+        1242.893, 71.87186, 1237.268, 67.52458, 1235.894, 65.5564,  1235.116, 63.26725,
+        1234.664, 61.14197, 1233.727, 55.28758, 1233.414, 53.50494, 1232.937, 51.84808,
+        1232.352, 50,       1230.861, 43.78136, 1230.617, 41.48613, 1230.836, 38.98894,
+        1231.799, 36.7761,  1236.591, 31.54436, 1238.717, 30.40557, 1241.217, 30.02023,
+        1243.57,  30.21006, 1250,     31.86213, 1251.899, 32.60107, 1253.549, 33.31643,
+        1255.254, 33.8296,  1260.779, 35.1639,  1262.794, 35.65783, 1265.015, 36.36704,
+        1267.025, 37.63056, 1271.769, 42.9269,  1272.751, 45.12804, 1272.937, 47.65929,
+        1272.352, 50};
+    SECTION("the blob: lines, then cubics between them")
+    {
+        conica_path p;
+        conica_path_result r[4];
+        size_t i, k = 2;
+        int lev;
+        conica_path_init(&p);
+        REQUIRE(conica_path_move_to(&p, blob[0], blob[1], 0, NULL) == CONICA_OK);
+        for (i = 0; k + 2 <= sizeof blob / sizeof *blob; i++) {
+            /* L x y, then C x1 y1 x2 y2 x y */
+            REQUIRE(conica_path_line_to(&p, blob[k], blob[k + 1], i, NULL) == CONICA_OK);
+            k += 2;
+            if (k + 6 > sizeof blob / sizeof *blob)
+                break;
+            REQUIRE(conica_path_bezier_to(&p, 3, blob + k, NULL, i, NULL) == CONICA_OK);
+            k += 6;
+        }
+        REQUIRE(conica_path_close(&p, NULL) == CONICA_OK);
+        for (lev = 1; lev <= 4; lev++) {
+            conica_path_result_init(&r[lev - 1]);
+            smooth_at(&p, lev, &r[lev - 1]);
+            REQUIRE_EQ_U(r[lev - 1].n, 1);
+        }
+        for (lev = 1; lev < 4; lev++) {
+            INFO("levels %d against %d", lev, lev + 1);
+            CHECK(subsequence(&r[lev - 1].lines[0], &r[lev].lines[0]));
+            CHECK_LE(r[lev - 1].worst_ratio, 1.0);
+        }
+        /* the same samples at 3 levels as at 4 (level 4 refines the piece
+         * ending at (1232.352, 50), which the estimate margin did not) */
+        CHECK_EQ_U(r[3].samples, r[2].samples);
+        for (lev = 1; lev <= 4; lev++)
+            conica_path_result_free(&r[lev - 1]);
+        conica_path_free(&p);
+    }
+    SECTION("glyphs of DejaVu Sans and Serif")
+    {
+        const char *fonts[2] = {TS_FONT_SANS, TS_FONT_SERIF};
+        int f;
+        for (f = 0; f < 2; f++) {
+            ts_text t;
+            ts_code rc;
+            size_t g, i;
+            ts_text_init(&t);
+            rc = ts_text_outlines(fonts[f], "aegsR&@%8", &t);
+            if (rc == TS_ERR_NO_FONT || rc == TS_ERR_NO_FREETYPE)
+                SKIP("%s: %s (install libfreetype-dev fonts-dejavu-core)", fonts[f],
+                     ts_strerror(rc));
+            REQUIRE_EQ(rc, TS_OK);
+            for (g = 0; g < t.n; g++) {
+                const ts_outline *o = &t.glyph[g];
+                conica_path p;
+                conica_path_result r3, r4;
+                if (o->n == 0)
+                    continue;
+                INFO("font %d glyph U+%04lX", f, t.cp[g]);
+                conica_path_init(&p);
+                for (i = 0; i < o->n; i++)
+                    add_contour(&p, &o->c[i], 1.0, 0.0, 0.0);
+                conica_path_result_init(&r3);
+                conica_path_result_init(&r4);
+                smooth_at(&p, 3, &r3);
+                smooth_at(&p, 4, &r4);
+                REQUIRE_EQ_U(r3.n, r4.n);
+                CHECK_EQ_U(r3.samples, r4.samples);
+                for (i = 0; i < r3.n; i++)
+                    CHECK(subsequence(&r3.lines[i], &r4.lines[i]));
+                conica_path_result_free(&r3);
+                conica_path_result_free(&r4);
+                conica_path_free(&p);
+            }
+            ts_text_free(&t);
+        }
+    }
+}
