@@ -803,6 +803,21 @@ static double check_closed_random(conica_path *p, ts_seg *segs, int nseg, int sm
     return ratio;
 }
 
+/* The start of a random closed path: p begun with a move to a random
+ * point in [0, 10)^2 (start, and cur = start), the number of segments
+ * (2..6) returned. */
+static int random_start(unsigned long long *seed, conica_path *p, double start[2], double cur[2])
+{
+    int nseg = 2 + (int)(rnd(seed) * 5);
+    start[0] = rnd(seed) * 10;
+    start[1] = rnd(seed) * 10;
+    cur[0] = start[0];
+    cur[1] = start[1];
+    conica_path_init(p);
+    REQUIRE(conica_path_move_to(p, start[0], start[1], 0, NULL) == CONICA_OK);
+    return nseg;
+}
+
 TEST_CASE("random drawn paths: never farther from the drawn curve than the tolerance",
           "[path][random]")
 {
@@ -811,13 +826,9 @@ TEST_CASE("random drawn paths: never farther from the drawn curve than the toler
     for (trial = 0; trial < 24; trial++) {
         conica_path p;
         ts_seg segs[8];
-        int nseg = 2 + (int)(rnd(&seed) * 5), i, k, smooth = trial % 2;
-        double start[2] = {rnd(&seed) * 10, rnd(&seed) * 10}, cur[2];
+        double start[2], cur[2];
+        int nseg = random_start(&seed, &p, start, cur), i, k, smooth = trial % 2;
         INFO("trial %d (%s)", trial, smooth ? "smooth" : "flatten");
-        conica_path_init(&p);
-        REQUIRE(conica_path_move_to(&p, start[0], start[1], 0, NULL) == CONICA_OK);
-        cur[0] = start[0];
-        cur[1] = start[1];
         for (i = 0; i < nseg; i++) {
             int d = 1 + (int)(rnd(&seed) * 3);
             double q[6];
@@ -854,13 +865,9 @@ TEST_CASE("random rational quadratics: never farther from the drawn curve than t
     for (trial = 0; trial < 24; trial++) {
         conica_path p;
         ts_seg segs[8];
-        int nseg = 2 + (int)(rnd(&seed) * 5), i, smooth = trial % 2;
-        double start[2] = {rnd(&seed) * 10, rnd(&seed) * 10}, cur[2], ratio;
+        double start[2], cur[2], ratio;
+        int nseg = random_start(&seed, &p, start, cur), i, smooth = trial % 2;
         INFO("trial %d (%s)", trial, smooth ? "smooth" : "flatten");
-        conica_path_init(&p);
-        REQUIRE(conica_path_move_to(&p, start[0], start[1], 0, NULL) == CONICA_OK);
-        cur[0] = start[0];
-        cur[1] = start[1];
         for (i = 0; i < nseg; i++) {
             int last = i + 1 == nseg;
             double q[4], w[3];

@@ -2238,17 +2238,15 @@ static conica_code smooth_piece(ctx *c, const piece *P, double *deviation)
         /* the output levels, and so the check points whose parameters the
          * output takes: every step-th (below), all, or none (the output
          * comes from a subdivision of its own) */
-        lev = c->s.level_tolerance > 0
-                  ? levels_for(c->sxy, c->snxy, ns, P->closed, c->s.level_tolerance, 0,
-                               PATH_LEVELS_MAX)
-                  : c->s.levels;
         s0 = sag0(c->sxy, c->snxy, ns, P->closed);
+        lev = c->s.level_tolerance > 0
+                  ? level_for_sag(s0, c->s.level_tolerance, 0, PATH_LEVELS_MAX)
+                  : c->s.levels;
         L = level_for_sag(s0, PATH_CHECK_SAG * c->tol, PATH_CHECK_MIN_LEVEL,
                           PATH_CHECK_MAX_LEVEL);
         strict = c->tol;
         low = 0;
-        if (lev >= 1 && lev < L && !low_failed &&
-            level_for_sag(s0, PATH_CHECK_SAG * c->tol, lev, L) == lev) {
+        if (lev >= 1 && lev < L && !low_failed && !(sag_at(s0, lev) > PATH_CHECK_SAG * c->tol)) {
             /* Fewer levels written than the check's floor L, and the
              * written level's chords already within PATH_CHECK_SAG of the
              * tolerance by the estimate: the written level is checked
