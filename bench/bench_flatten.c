@@ -101,7 +101,7 @@ static void table_greedy(const char *splines_dir, int verbose)
         printf("| %g | %zu | %zu | %.3fx | %.3fx (%s) | %.4f, %.4f | %zu |\n", rel_tols[ti], pg,
                pr, sum / (double)set->n, worst, wname, wdev, wback, viol);
     }
-    printf("\nMean ratio over all %zu plots: %.3fx\n\n", nall, all / (double)(nall ? nall : 1));
+    printf("\nMean ratio over all %zu plots: %.4fx\n\n", nall, all / (double)(nall ? nall : 1));
     fc_set_free(set);
     free(set);
 }

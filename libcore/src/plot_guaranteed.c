@@ -146,14 +146,16 @@
 #define Q_AIM 0.99
 #define Q_GOOD 0.9
 #define Q_SHRINK 0.995
-/* c3_step: at most C3_ITER steps, ending when one changes the step by
- * less than C3_ITER_STOP of it; C3_LAM_MAX (times the remainder) stands
+/* model_lam: at most C3_ITER steps, ending when one changes the step by
+ * less than C3_STEP_STOP of it (c3_step, planar cubics) or C3_ITER_STOP
+ * (general_march, degrees >= 4); C3_LAM_MAX (times the remainder) stands
  * for "no failing step known"; the largest |v (1 - v) (al + be v)| over
  * [0, 1] with an inflection inside (|2 al + be| < |be|) taken as
  * C3_INFL0 |be| + C3_INFL1 |2 al + be| (exact at both ends of that range,
  * at most 3% high between). */
 #define C3_ITER 8
 #define C3_ITER_STOP 0.01
+#define C3_STEP_STOP 0.01
 #define C3_LAM_MAX 4.0
 #define C3_INFL0 0.0481125224324688 /* 1 / (12 sqrt 3) */
 #define C3_INFL1 0.1000356257527164 /* 4 / 27 - C3_INFL0 */
@@ -386,20 +388,33 @@ static void enter_interval(march *m, size_t mu, const double *form)
  * constant at each call site below, so the inner loops unroll. */
 static inline void casteljau(const double *P, int p, int H, double lam, double *L, double *Rr)
 {
-    if (p == 3 && H == 2) { /* the planar cubic written out: the same operations */
-        for (int c = 0; c < 2; c++) {
-            double p0 = P[c], p1 = P[2 + c], p2 = P[4 + c], p3 = P[6 + c];
-            double a = p0 + lam * (p1 - p0), b = p1 + lam * (p2 - p1), e = p2 + lam * (p3 - p2);
-            double f = a + lam * (b - a), g = b + lam * (e - b), q = f + lam * (g - f);
-            L[c] = p0;
-            L[2 + c] = a;
-            L[4 + c] = f;
-            L[6 + c] = q;
-            Rr[c] = q;
-            Rr[2 + c] = g;
-            Rr[4 + c] = e;
-            Rr[6 + c] = p3;
-        }
+    if (p == 3 && H == 2) {
+        /* the planar cubic written out, the same operations: every load
+         * before every store, since the compiler must assume L and Rr may
+         * alias P (a loop over the two coordinates reloaded P after each
+         * store, 7% of the instructions of the split) */
+        double x0 = P[0], x1 = P[2], x2 = P[4], x3 = P[6];
+        double y0 = P[1], y1 = P[3], y2 = P[5], y3 = P[7];
+        double ax = x0 + lam * (x1 - x0), bx = x1 + lam * (x2 - x1), ex = x2 + lam * (x3 - x2);
+        double ay = y0 + lam * (y1 - y0), by = y1 + lam * (y2 - y1), ey = y2 + lam * (y3 - y2);
+        double fx = ax + lam * (bx - ax), gx = bx + lam * (ex - bx), qx = fx + lam * (gx - fx);
+        double fy = ay + lam * (by - ay), gy = by + lam * (ey - by), qy = fy + lam * (gy - fy);
+        L[0] = x0;
+        L[1] = y0;
+        L[2] = ax;
+        L[3] = ay;
+        L[4] = fx;
+        L[5] = fy;
+        L[6] = qx;
+        L[7] = qy;
+        Rr[0] = qx;
+        Rr[1] = qy;
+        Rr[2] = gx;
+        Rr[3] = gy;
+        Rr[4] = ex;
+        Rr[5] = ey;
+        Rr[6] = x3;
+        Rr[7] = y3;
         return;
     }
     size_t hh = (size_t)H, pp = (size_t)p;
@@ -635,23 +650,34 @@ static double seg_exact(const double *P, int p)
             e = bern_max_on(sd, p, u0, u1) * inv;
         } else { /* beyond an end: the hulls of SEG_PARTS parts, distance to that end */
             const double *end = tm < 0.0 ? P : P + 2 * p;
-            double d2 = 0.0;
+            double d2 = 0.0, A[8], B[8], C[8], *part = A, *rest = B;
+            /* the arc of [u0, u1], then its parts off its front in turn:
+             * part j ends where 1 / (SEG_PARTS - j) of the rest does (one
+             * split per part, not two from P) */
+            if (p == 2) {
+                casteljau(P, 2, 2, u1, A, B);
+                casteljau(A, 2, 2, u1 > 0 ? u0 / u1 : 0.0, C, rest);
+            } else {
+                casteljau(P, 3, 2, u1, A, B);
+                casteljau(A, 3, 2, u1 > 0 ? u0 / u1 : 0.0, C, rest);
+            }
             for (int j = 0; j < SEG_PARTS; j++) {
-                double v0 = u0 + (u1 - u0) * (double)j / SEG_PARTS;
-                double v1 = j + 1 == SEG_PARTS ? u1 : u0 + (u1 - u0) * (double)(j + 1) / SEG_PARTS;
-                double L[8], Rr[8], L2[8], Rr2[8];
-                if (p == 2) {
-                    casteljau(P, 2, 2, v1, L, Rr);
-                    casteljau(L, 2, 2, v1 > 0 ? v0 / v1 : 0.0, L2, Rr2);
+                double *next = rest == B ? C : B;
+                if (j + 1 < SEG_PARTS) {
+                    double v = 1.0 / (double)(SEG_PARTS - j);
+                    if (p == 2)
+                        casteljau(rest, 2, 2, v, part, next);
+                    else
+                        casteljau(rest, 3, 2, v, part, next);
                 } else {
-                    casteljau(P, 3, 2, v1, L, Rr);
-                    casteljau(L, 3, 2, v1 > 0 ? v0 / v1 : 0.0, L2, Rr2);
+                    memcpy(part, rest, (size_t)(2 * p + 2) * sizeof *part);
                 }
                 for (int i = 0; i <= p; i++) {
-                    double ex = Rr2[2 * i] - end[0], ey = Rr2[2 * i + 1] - end[1];
+                    double ex = part[2 * i] - end[0], ey = part[2 * i + 1] - end[1];
                     double v = ex * ex + ey * ey;
                     d2 = v > d2 ? v : d2;
                 }
+                rest = next;
             }
             e = sqrt(d2);
         }
@@ -825,14 +851,13 @@ static double bez_cert(march *m, const double *P1, const double *P2, int steer)
     return D;
 }
 
-static conica_code too_many(const conica_plot_settings *set, conica_plot_stats *stats,
-                            conica_status *st)
+static conica_code too_many(size_t max_iter, conica_plot_stats *stats, conica_status *st)
 {
-    if (stats->iterations >= set->max_iterations)
+    if (stats->iterations >= max_iter)
         return conica__fail(st, CONICA_ERR_LIMIT, 0, 0,
                             "guaranteed plot needs more than %zu trial steps "
                             "(max_iterations)",
-                            set->max_iterations);
+                            max_iter);
     stats->iterations++;
     return CONICA_OK;
 }
@@ -865,7 +890,7 @@ static double secant(double hp, double dp, double hf, double df, double tol)
  * chord is the whole remainder m->R). *halved is set when the rest of the
  * piece (ending at b_end) is to take one more chord, see G_HALVE. */
 static conica_code bez_search(march *m, double *hs, double span_all, double min_step,
-                              double b_end, const conica_plot_settings *set,
+                              double b_end, size_t max_iter,
                               conica_plot_stats *stats, double *xo, double *devo, int *halved,
                               conica_status *st)
 {
@@ -877,7 +902,7 @@ static conica_code bez_search(march *m, double *hs, double span_all, double min_
         double x = ua + *hs;
         if (!(x < bb) || bb - x < G_SNAP * span_all)
             x = bb;
-        conica_code rc = too_many(set, stats, st);
+        conica_code rc = too_many(max_iter, stats, st);
         if (rc != CONICA_OK)
             return rc;
         tries++;
@@ -1055,7 +1080,7 @@ static double cross_trial_end(double x, double end, double b_end, double snap)
  * split halves are then in m->Lb / m->Rb (m->Lb its whole polygon when
  * *xo is its end). *nco gets the number of intervals loaded. */
 static conica_code cross_search(march *m, double dev0, double hs0, double b_end,
-                                double span_all, const conica_plot_settings *set,
+                                double span_all, size_t max_iter,
                                 conica_plot_stats *stats, int *found, double *xo, double *devo,
                                 size_t *jo, size_t *nco, conica_status *st)
 {
@@ -1081,7 +1106,7 @@ static conica_code cross_search(march *m, double dev0, double hs0, double b_end,
         x = cross_trial_end(x, end, b_end, G_SNAP * span_all);
         if (x <= best_x)
             break;
-        conica_code rc = too_many(set, stats, st);
+        conica_code rc = too_many(max_iter, stats, st);
         if (rc != CONICA_OK)
             return rc;
         tries++;
@@ -1193,7 +1218,11 @@ static double next_step(int use_k, double Ks, double dev, double step, double to
 typedef struct c3m {
     const double *T, *d; /* knots, control points (x y interleaved) */
     size_t n;            /* control points */
-    double tol, tol_eff, flops;
+    double tol, tol_eff;
+    /* operations, summed as an integer (every count here is one): a
+     * double sum through memory was a serial chain of load, add and store
+     * on each trial, 4% of the instructions of a cubic's march */
+    size_t flops;
     /* current interval [ba, bb] = [t_mu, t_mu+1], its Bézier form B, the
      * remainder R on [ua, bb]; trial halves Lt / Rt, best certified
      * trial's halves Lb / Rb (pointers swap, no copies) */
@@ -1243,7 +1272,7 @@ static void c3_form(const double *T, const double *d, size_t mu, double *P)
 static double c3_hull(c3m *m, const double *L)
 {
     double De = seg_exact(L, 3);
-    m->flops += 200.0;
+    m->flops += 200;
     if (De >= 0.0)
         return De;
     chord c;
@@ -1251,7 +1280,7 @@ static double c3_hull(c3m *m, const double *L)
     double d2 = chord_d2(&c, L + 2), e = chord_d2(&c, L + 4);
     d2 = e > d2 ? e : d2;
     double D = sqrt(d2);
-    m->flops += 2.0 * 18.0 + 6.0;
+    m->flops += 2 * 18 + 6;
     if (D > m->tol_eff ? D <= G_REFINE_RATIO * m->tol_eff : D >= G_GROW_BELOW * m->tol) {
         double l[C3], r[C3];
         casteljau(L, 3, 2, 0.5, l, r);
@@ -1266,7 +1295,7 @@ static double c3_hull(c3m *m, const double *L)
         }
         double D2 = sqrt(d2);
         D = D2 < D ? D2 : D;
-        m->flops += 36.0 + 5.0 * 18.0;
+        m->flops += 36 + 5 * 18;
     }
     return D;
 }
@@ -1276,7 +1305,7 @@ static double c3_hull(c3m *m, const double *L)
 static int c3_inside(c3m *m, double t1, double t2, double c2)
 {
     double t[4] = {0.0, t1, t2, c2};
-    m->flops += 40.0;
+    m->flops += 40;
     return proj_inside(t, 3, c2);
 }
 
@@ -1296,7 +1325,7 @@ static double c3_cert1(c3m *m, const double *L)
     double cx = L[6] - ax, cy = L[7] - ay, c2 = cx * cx + cy * cy;
     double e1x = L[2] - ax, e1y = L[3] - ay, e2x = L[4] - ax, e2y = L[5] - ay;
     double t1 = e1x * cx + e1y * cy, t2 = e2x * cx + e2y * cy;
-    m->flops += 17.0;
+    m->flops += 17;
     if (c2 > 0 && ((t1 >= 0 && t1 <= c2 && t2 >= 0 && t2 <= c2) || c3_inside(m, t1, t2, c2))) {
         double s1 = e1x * cy - e1y * cx, s2 = e2x * cy - e2y * cx;
         double inv = 1.0 / sqrt(c2); /* in parallel with the bounds */
@@ -1308,13 +1337,13 @@ static double c3_cert1(c3m *m, const double *L)
         up = up > 0.375 * mid ? up : 0.375 * mid;
         lo = lo > 0.375 * mid ? lo : 0.375 * mid;
         double Du = up * inv, Dl = lo * inv;
-        m->flops += 6.0 + 20.0 + 4.0;
+        m->flops += 6 + 20 + 4;
         if (Du <= m->tol_eff || Dl > m->tol_eff)
             return Du <= m->tol_eff ? Du : Dl;
         /* tol_eff itself (a valid bound) on a pass and Dl's least value
          * on a failure keep the value continuous in the data, so rounding
          * cannot swing the step model by the bounds' gap */
-        m->flops += 32.0;
+        m->flops += 32;
         return cubic_max(s1, s2) * inv <= m->tol_eff ? m->tol_eff : nextafter(m->tol_eff, INFINITY);
     }
     return c3_hull(m, L);
@@ -1348,7 +1377,7 @@ static double c3_cert_chain(c3m *m, const double *const *arcs, size_t k)
             D = e > D ? e : D;
         }
     }
-    m->flops += 10.0 + (double)(4 * k) * 10.0 + 30.0 * (double)k;
+    m->flops += 10 + (4 * k) * 10 + 30 * k;
     if (inside)
         return D / sqrt(c2);
     chord c;
@@ -1359,7 +1388,7 @@ static double c3_cert_chain(c3m *m, const double *const *arcs, size_t k)
             double e = chord_d2(&c, arcs[j] + 2 * i);
             d2 = e > d2 ? e : d2;
         }
-    m->flops += (double)(4 * k) * 18.0;
+    m->flops += (4 * k) * 18;
     return sqrt(d2);
 }
 
@@ -1380,9 +1409,15 @@ static void c3_enter(c3m *m, size_t mu, size_t k)
         memmove(m->C[1], m->C[k + 1], (m->nc - k) * sizeof m->C[0]);
         memmove(m->cmu + 1, m->cmu + k + 1, (m->nc - k) * sizeof m->cmu[0]);
         m->nc -= k;
+    } else if (m->n == 4 && m->T[0] == m->T[3] && m->T[4] == m->T[7]) {
+        /* one clamped Bézier piece: its Bézier form is its control
+         * polygon (c3_form's weights are 0 or 1 there, but d1 + 1 (d2 -
+         * d1) need not round to d2) */
+        memcpy(m->B, m->d, sizeof m->B);
+        m->nc = 0;
     } else {
         c3_form(m->T, m->d, mu, m->B);
-        m->flops += 6.0 * 3.0 + 12.0 * 3.0;
+        m->flops += 6 * 3 + 12 * 3;
         m->nc = 0;
     }
     memcpy(m->R, m->B, sizeof m->B);
@@ -1395,7 +1430,7 @@ static void c3_enter(c3m *m, size_t mu, size_t k)
 
 /* bez_search on the current interval of a cubic. */
 static conica_code c3_search(c3m *m, double *hs, double span_all, double min_step,
-                             const conica_plot_settings *set, conica_plot_stats *stats,
+                             size_t max_iter, conica_plot_stats *stats,
                              double *xo, double *devo, conica_status *st)
 {
     double ua = m->ua, bb = m->bb, tol = m->tol;
@@ -1405,7 +1440,7 @@ static conica_code c3_search(c3m *m, double *hs, double span_all, double min_ste
         double x = ua + *hs;
         if (!(x < bb) || bb - x < G_SNAP * span_all)
             x = bb;
-        conica_code rc = too_many(set, stats, st);
+        conica_code rc = too_many(max_iter, stats, st);
         if (rc != CONICA_OK)
             return rc;
         tries++;
@@ -1414,7 +1449,7 @@ static conica_code c3_search(c3m *m, double *hs, double span_all, double min_ste
             dev = c3_cert1(m, m->R);
         } else {
             casteljau(m->R, 3, 2, (x - ua) * m->inv, m->Lt, m->Rt);
-            m->flops += 38.0;
+            m->flops += 38;
             dev = c3_cert1(m, m->Lt);
         }
         if (dev <= m->tol_eff) {
@@ -1483,7 +1518,7 @@ static conica_code c3_search(c3m *m, double *hs, double span_all, double min_ste
  * certificate decides); returns at least 1 when `last` (R ends the piece)
  * and the whole rest is predicted to pass, 2 when R is straight. */
 static CONICA__HOT_INLINE double model_lam(const double *R, int p, double T, double lam,
-                                          int last, double *flops)
+                                          int last, double stop, size_t *flops)
 {
     /* the Taylor cubic at the start: A = p D1, B = C(p,2) D2, C = C(p,3) D3
      * (forward differences of the polygon; the remainder itself for p = 3) */
@@ -1497,7 +1532,7 @@ static CONICA__HOT_INLINE double model_lam(const double *R, int p, double T, dou
     }
     double kab = ax * by - ay * bx, kac = ax * cy - ay * cx, kbc = bx * cy - by * cx;
     double A2 = ax * ax + ay * ay, t2 = T * T, lo = 0.0, hi = C3_LAM_MAX;
-    *flops += 40.0;
+    *flops += 40;
     if (!(fabs(kab) + fabs(kac) > 0) || !(A2 > 0))
         return 2.0;
     if (!(lam > 0.0) && kab != 0.0) /* the small-step value */
@@ -1518,7 +1553,7 @@ static CONICA__HOT_INLINE double model_lam(const double *R, int p, double T, dou
          * by its Padé form, within [3/5, 5/3] lam */
         double u = lam * lam * N, num = u * u, ref = t2 * Q * M * M;
         double f = (5.0 * ref + 3.0 * num) / (3.0 * ref + 5.0 * num), nl = lam * f;
-        *flops += 45.0;
+        *flops += 45;
         if (!(f > 0)) /* not a number: keep lam */
             break;
         if (lam >= 1.0 && num <= ref && last) { /* the whole rest of the piece */
@@ -1532,7 +1567,7 @@ static CONICA__HOT_INLINE double model_lam(const double *R, int p, double T, dou
         /* D may rise much faster than lam^2 (a sharp bend ahead): then the
          * step leaves the bracket and bisects it instead */
         lam = nl > lo && nl < hi ? nl : (hi < C3_LAM_MAX ? 0.5 * (lo + hi) : nl);
-        if (fabs(f - 1.0) < C3_ITER_STOP)
+        if (fabs(f - 1.0) < stop)
             break;
     }
     return lam;
@@ -1543,7 +1578,7 @@ static CONICA__HOT_INLINE double model_lam(const double *R, int p, double T, dou
 static CONICA__HOT_INLINE double c3_step(c3m *m, double T, double h0)
 {
     double L = m->bb - m->ua;
-    return model_lam(m->R, 3, T, h0 * m->inv, m->bb >= m->bend, &m->flops) * L;
+    return model_lam(m->R, 3, T, h0 * m->inv, m->bb >= m->bend, C3_STEP_STOP, &m->flops) * L;
 }
 
 /* Load the Bézier form of the interval after the last chain element as
@@ -1555,7 +1590,7 @@ static int c3_chain_grow(c3m *m)
         return 0;
     size_t mu = c3_next_span(m, prev + 1);
     c3_form(m->T, m->d, mu, m->C[nc + 1]);
-    m->flops += 6.0 * 3.0 + 12.0 * 3.0;
+    m->flops += 6 * 3 + 12 * 3;
     m->cmu[nc + 1] = mu;
     m->nc = nc + 1;
     return 1;
@@ -1568,7 +1603,7 @@ static int c3_chain_grow(c3m *m)
  * searches inside the interval). *xf / *df: a known failing chord end
  * (*xf <= ua: none) on entry, the last failing one on return. */
 static conica_code c3_cross(c3m *m, double dev0, double hs0, double b_end, double span_all,
-                            const conica_plot_settings *set, conica_plot_stats *stats, int *found,
+                            size_t max_iter, conica_plot_stats *stats, int *found,
                             double *xo, double *devo, size_t *jo, double *xf, double *df,
                             conica_status *st)
 {
@@ -1606,7 +1641,7 @@ static conica_code c3_cross(c3m *m, double dev0, double hs0, double b_end, doubl
         x = cross_trial_end(x, end, b_end, G_SNAP * span_all);
         if (x <= best_x || (have_fail && x >= fail_x))
             break;
-        conica_code rc = too_many(set, stats, st);
+        conica_code rc = too_many(max_iter, stats, st);
         if (rc != CONICA_OK)
             return rc;
         tries++;
@@ -1619,7 +1654,7 @@ static conica_code c3_cross(c3m *m, double dev0, double hs0, double b_end, doubl
             dev = c3_cert_chain(m, arcs, j + 1);
         } else {
             casteljau(m->C[j], 3, 2, (x - t0) / (t1 - t0), m->Lt, m->Rt);
-            m->flops += 39.0;
+            m->flops += 39;
             const double *keep = arcs[j];
             arcs[j] = m->Lt;
             dev = c3_cert_chain(m, arcs, j + 1);
@@ -1702,7 +1737,7 @@ static int c3_take_chain(c3m *m, const conica_bspline *g, size_t j, double x, do
  * chord across the knot (one trial; when it fails the search goes on
  * inside the interval, bracketed by it). */
 static conica_code c3_march(const conica_bspline *g, double tol, double tol_eff,
-                            const conica_plot_settings *set, conica__out *o, double **params,
+                            size_t max_iter, conica__out *o, double **params,
                             size_t *np, size_t *cap, conica_plot_stats *stats, double *maxdev,
                             conica_status *st)
 {
@@ -1712,7 +1747,7 @@ static conica_code c3_march(const conica_bspline *g, double tol, double tol_eff,
     m->n = g->n;
     m->tol = tol;
     m->tol_eff = tol_eff;
-    m->flops = 0.0;
+    m->flops = 0;
     m->nc = 0;
     m->R = m->buf[0];
     m->Lt = m->buf[1];
@@ -1731,7 +1766,7 @@ static conica_code c3_march(const conica_bspline *g, double tol, double tol_eff,
         int found = 0, last = 0;
         size_t j = 0;
         if (m->bb < b && m->ua + hs > m->bb + G_SNAP * span) {
-            rc = c3_cross(m, -1.0, hs, b, span, set, stats, &found, &x, &dev, &j, &xf, &df, st);
+            rc = c3_cross(m, -1.0, hs, b, span, max_iter, stats, &found, &x, &dev, &j, &xf, &df, st);
             if (rc != CONICA_OK)
                 break;
             if (!found && xf > m->ua) { /* shrink from the failed trial, D ~ h^2 */
@@ -1741,7 +1776,7 @@ static conica_code c3_march(const conica_bspline *g, double tol, double tol_eff,
             }
         }
         if (!found) {
-            rc = c3_search(m, &hs, span, min_step, set, stats, &x, &dev, st);
+            rc = c3_search(m, &hs, span, min_step, max_iter, stats, &x, &dev, st);
             if (rc != CONICA_OK)
                 break;
         }
@@ -1755,7 +1790,7 @@ static conica_code c3_march(const conica_bspline *g, double tol, double tol_eff,
             m->inv = 1.0 / (m->bb - x);
             if (++splits >= G_RESET) { /* re-split from the Bézier form */
                 casteljau(m->B, 3, 2, (x - m->ba) / (m->bb - m->ba), m->Lt, m->R);
-                m->flops += 39.0;
+                m->flops += 39;
                 splits = 0;
             }
         } else if (m->bb >= b) { /* the end point of the piece exactly */
@@ -1764,7 +1799,7 @@ static conica_code c3_march(const conica_bspline *g, double tol, double tol_eff,
         } else {
             double x2 = x, dev2 = dev;
             if (dev < G_CROSS * tol) { /* try a longer chord across the knot */
-                rc = c3_cross(m, dev, 0.0, b, span, set, stats, &found, &x2, &dev2, &j, &xf, &df,
+                rc = c3_cross(m, dev, 0.0, b, span, max_iter, stats, &found, &x2, &dev2, &j, &xf, &df,
                               st);
                 if (rc != CONICA_OK)
                     break;
@@ -1788,7 +1823,7 @@ static conica_code c3_march(const conica_bspline *g, double tol, double tol_eff,
             break;
         hs = c3_step(m, Q_AIM * tol_eff, step);
     }
-    stats->flops += m->flops;
+    stats->flops += (double)m->flops;
     return rc;
 }
 
@@ -1870,7 +1905,10 @@ static double q2_step(march *m, double T)
  * the remainder as for model_lam. */
 static double march_model_step(march *m, double tol_eff, double lam0, int last)
 {
-    return model_lam(m->R, m->p, m->aim * tol_eff, lam0, last, &m->flops) * (m->bb - m->ua);
+    size_t flops = 0;
+    double lam = model_lam(m->R, m->p, m->aim * tol_eff, lam0, last, C3_ITER_STOP, &flops);
+    m->flops += (double)flops;
+    return lam * (m->bb - m->ua);
 }
 
 /* The march of conica__guaranteed_piece for any other spline (degree,
@@ -1878,7 +1916,7 @@ static double march_model_step(march *m, double tol_eff, double lam0, int last)
  * largest certified bound. */
 
 static conica_code general_march(const conica_bspline *g, double tol, double tol_eff,
-                                 const conica_plot_settings *set, conica__out *o,
+                                 size_t max_iter, conica__out *o,
                                  double **params, size_t *np, size_t *cap,
                                  conica_plot_stats *stats, double *maxdev, conica_status *st)
 {
@@ -1938,7 +1976,7 @@ static conica_code general_march(const conica_bspline *g, double tol, double tol
     for (;;) {
         double x = b, dev = 0.0;
         int halved = 0;
-        rc = bez_search(m, &hs, b - a, min_step, b, set, stats, &x, &dev, &halved, st);
+        rc = bez_search(m, &hs, b - a, min_step, b, max_iter, stats, &x, &dev, &halved, st);
         if (rc != CONICA_OK)
             goto done;
         double step = x - m->ua;
@@ -1962,7 +2000,7 @@ static conica_code general_march(const conica_bspline *g, double tol, double tol
                 /* the first trial: the remainder's cubic model continued
                  * past the knot (a C^(p-1) join) when planar polynomial */
                 double hs0 = pm ? march_model_step(m, tol_eff, 1.0, 0) : 0.0;
-                rc = cross_search(m, dev, hs0, b, b - a, set, stats, &found, &x2, &dev2, &j, &nc,
+                rc = cross_search(m, dev, hs0, b, b - a, max_iter, stats, &found, &x2, &dev2, &j, &nc,
                                   st);
                 if (rc != CONICA_OK)
                     goto done;
@@ -2021,10 +2059,13 @@ done:
     return rc;
 }
 
-conica_code conica__guaranteed_piece(const conica_bspline *g, double tol,
-                                     const conica_plot_settings *set, int first_is_join,
-                                     conica__out *o, double **params, size_t *np,
-                                     conica_plot_stats *stats, conica_status *st)
+/* conica__guaranteed_piece with the one setting the march reads, the
+ * trial limit; scale is the largest coordinate magnitude of g when the
+ * caller has it (conica_plot_bezier), negative otherwise. */
+static conica_code guaranteed_piece(const conica_bspline *g, double tol, size_t max_iter,
+                                    double scale, int first_is_join, conica__out *o,
+                                    double **params, size_t *np, conica_plot_stats *stats,
+                                    conica_status *st)
 {
     double ek[8], ec[8];
     conica_bspline e;
@@ -2057,9 +2098,11 @@ conica_code conica__guaranteed_piece(const conica_bspline *g, double tol,
     size_t p = (size_t)g->degree, d = (size_t)g->dim;
     double a = g->knots[p];
     /* rounding margin from the magnitude of the coordinates */
-    double scale = 0.0;
-    for (size_t i = 0; i < g->n * d; i++)
-        scale = fabs(g->ctrl[i]) > scale ? fabs(g->ctrl[i]) : scale;
+    if (scale < 0.0) {
+        scale = 0.0;
+        for (size_t i = 0; i < g->n * d; i++)
+            scale = fabs(g->ctrl[i]) > scale ? fabs(g->ctrl[i]) : scale;
+    }
     double margin = G_ULPS * (g->w ? 2.0 : 1.0) * (double)(p + 2) * DBL_EPSILON * scale;
     double tol_eff = tol - margin, maxdev = 0.0, pt[3];
     conica_code rc = CONICA_OK;
@@ -2080,12 +2123,21 @@ conica_code conica__guaranteed_piece(const conica_bspline *g, double tol,
     if (rc != CONICA_OK)
         return rc;
     if (p == 3 && d == 2 && !g->w)
-        rc = c3_march(g, tol, tol_eff, set, o, params, np, &cap, stats, &maxdev, st);
+        rc = c3_march(g, tol, tol_eff, max_iter, o, params, np, &cap, stats, &maxdev, st);
     else
-        rc = general_march(g, tol, tol_eff, set, o, params, np, &cap, stats, &maxdev, st);
+        rc = general_march(g, tol, tol_eff, max_iter, o, params, np, &cap, stats, &maxdev, st);
     if (rc == CONICA_OK && maxdev + margin > stats->bound)
         stats->bound = maxdev + margin;
     return rc;
+}
+
+conica_code conica__guaranteed_piece(const conica_bspline *g, double tol,
+                                     const conica_plot_settings *set, int first_is_join,
+                                     conica__out *o, double **params, size_t *np,
+                                     conica_plot_stats *stats, conica_status *st)
+{
+    return guaranteed_piece(g, tol, set->max_iterations, -1.0, first_is_join, o, params, np,
+                            stats, st);
 }
 
 conica_code conica__plot_guaranteed(const conica__pieces *pc, const conica_plot_settings *set,
@@ -2139,9 +2191,9 @@ conica_code conica_plot_bezier(int degree, const double *ctrl, const double *w, 
         }
     }
     conica_bspline g = {degree, 2, np, knots, c, w ? wc : NULL};
-    conica_plot_settings set = conica_plot_defaults();
-    if (max_iterations)
-        set.max_iterations = max_iterations;
+    /* the march reads no other setting: conica_plot_defaults(), filling
+     * every field, was 1% of a cubic piece's instructions */
+    size_t max_iter = max_iterations ? max_iterations : CONICA_PLOT_MAX_ITERATIONS_DEFAULT;
     conica_plot_stats stats;
     memset(&stats, 0, sizeof stats);
     conica__out o;
@@ -2150,7 +2202,9 @@ conica_code conica_plot_bezier(int degree, const double *ctrl, const double *w, 
     o.pl.xy = xy;
     o.pl.t = t;
     o.pl.cap = cap;
-    conica_code rc = conica__guaranteed_piece(&g, tol, &set, 0, &o, NULL, NULL, &stats, st);
+    /* a quadratic is raised to a cubic first, whose scale may be less */
+    conica_code rc = guaranteed_piece(&g, tol, max_iter, degree == 3 ? scale : -1.0, 0, &o,
+                                      NULL, NULL, &stats, st);
     if (rc != CONICA_OK)
         return rc;
     /* As conica_plot: never a NaN or Inf as a result. A polynomial piece of

@@ -48,8 +48,13 @@ static inline conica_code conica__out_push(conica__out *o, const double *pt, dou
     size_t n = o->pl.n, d = (size_t)o->pl.dim;
     if (n >= o->max_points || (!o->fixed && n == o->pl.cap))
         return conica__out_grow(o, pt, t, st);
-    for (size_t i = 0; i < d; i++)
-        o->pl.xy[n * d + i] = pt[i];
+    if (d == 2) { /* planar: no loop (the guaranteed march's points) */
+        o->pl.xy[2 * n] = pt[0];
+        o->pl.xy[2 * n + 1] = pt[1];
+    } else {
+        for (size_t i = 0; i < d; i++)
+            o->pl.xy[n * d + i] = pt[i];
+    }
     if (o->pl.t)
         o->pl.t[n] = t;
     o->pl.n = n + 1;
