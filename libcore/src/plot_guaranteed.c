@@ -155,7 +155,7 @@
  * at most 3% high between). */
 #define C3_ITER 8
 #define C3_ITER_STOP 0.01
-#define C3_STEP_STOP 0.01
+#define C3_STEP_STOP 0.04
 #define C3_LAM_MAX 4.0
 #define C3_INFL0 0.0481125224324688 /* 1 / (12 sqrt 3) */
 #define C3_INFL1 0.1000356257527164 /* 4 / 27 - C3_INFL0 */
