@@ -12,7 +12,10 @@
 /* A small function on a hot path that gcc -O2 leaves out of line (called
  * from more than one place): inlined anyway. */
 #define CONICA__HOT_INLINE inline __attribute__((always_inline))
+/* A branch taken nearly always (the compiler lays that path out straight). */
+#define CONICA__LIKELY(c) __builtin_expect(!!(c), 1)
 #else
+#define CONICA__LIKELY(c) (c)
 #define CONICA__PRINTF(a, b)
 #define CONICA__HOT_INLINE inline
 #endif
