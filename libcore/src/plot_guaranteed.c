@@ -1219,9 +1219,9 @@ typedef struct c3m {
     const double *T, *d; /* knots, control points (x y interleaved) */
     size_t n;            /* control points */
     double tol, tol_eff;
-    /* operations, summed as an integer (every count here is one): a
-     * double sum through memory was a serial chain of load, add and store
-     * on each trial, 4% of the instructions of a cubic's march */
+    /* operations, summed as an integer: every count here is a whole
+     * number, and an integer add through memory is a shorter chain than
+     * a floating-point one */
     size_t flops;
     /* current interval [ba, bb] = [t_mu, t_mu+1], its Bézier form B, the
      * remainder R on [ua, bb]; trial halves Lt / Rt, best certified
@@ -2075,12 +2075,10 @@ done:
 }
 
 /* conica__guaranteed_piece with the one setting the march reads, the
- * trial limit; scale is the largest coordinate magnitude of g when the
- * caller has it (conica_plot_bezier), negative otherwise. */
+ * trial limit. */
 static conica_code guaranteed_piece(const conica_bspline *g, double tol, size_t max_iter,
-                                    double scale, int first_is_join, conica__out *o,
-                                    double **params, size_t *np, conica_plot_stats *stats,
-                                    conica_status *st)
+                                    int first_is_join, conica__out *o, double **params,
+                                    size_t *np, conica_plot_stats *stats, conica_status *st)
 {
     double ek[8], ec[8];
     conica_bspline e;
@@ -2113,11 +2111,9 @@ static conica_code guaranteed_piece(const conica_bspline *g, double tol, size_t 
     size_t p = (size_t)g->degree, d = (size_t)g->dim;
     double a = g->knots[p];
     /* rounding margin from the magnitude of the coordinates */
-    if (scale < 0.0) {
-        scale = 0.0;
-        for (size_t i = 0; i < g->n * d; i++)
-            scale = fabs(g->ctrl[i]) > scale ? fabs(g->ctrl[i]) : scale;
-    }
+    double scale = 0.0;
+    for (size_t i = 0; i < g->n * d; i++)
+        scale = fabs(g->ctrl[i]) > scale ? fabs(g->ctrl[i]) : scale;
     double margin = G_ULPS * (g->w ? 2.0 : 1.0) * (double)(p + 2) * DBL_EPSILON * scale;
     double tol_eff = tol - margin, maxdev = 0.0, pt[3];
     conica_code rc = CONICA_OK;
@@ -2151,8 +2147,8 @@ conica_code conica__guaranteed_piece(const conica_bspline *g, double tol,
                                      conica__out *o, double **params, size_t *np,
                                      conica_plot_stats *stats, conica_status *st)
 {
-    return guaranteed_piece(g, tol, set->max_iterations, -1.0, first_is_join, o, params, np,
-                            stats, st);
+    return guaranteed_piece(g, tol, set->max_iterations, first_is_join, o, params, np, stats,
+                            st);
 }
 
 conica_code conica__plot_guaranteed(const conica__pieces *pc, const conica_plot_settings *set,
@@ -2217,9 +2213,7 @@ conica_code conica_plot_bezier(int degree, const double *ctrl, const double *w, 
     o.pl.xy = xy;
     o.pl.t = t;
     o.pl.cap = cap;
-    /* a quadratic is raised to a cubic first, whose scale may be less */
-    conica_code rc = guaranteed_piece(&g, tol, max_iter, degree == 3 ? scale : -1.0, 0, &o,
-                                      NULL, NULL, &stats, st);
+    conica_code rc = guaranteed_piece(&g, tol, max_iter, 0, &o, NULL, NULL, &stats, st);
     if (rc != CONICA_OK)
         return rc;
     /* As conica_plot: never a NaN or Inf as a result. A polynomial piece of
