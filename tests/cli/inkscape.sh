@@ -50,6 +50,13 @@ if [ ! -d "$inkex_dir/inkex" ]; then
     skip_case "Inkscape's inkex is not installed in $inkex_dir (scripts/deps.sh test installs inkscape)"
     finish
 fi
+# inkex imports lxml, cssselect and numpy: without one of them every run of
+# the extension fails, and real Inkscape waits on its error dialog
+inkex_ok=1
+PYTHONPATH=$inkex_dir "$py" -c 'import inkex' >"$tmp/inkex.err" 2>&1 || inkex_ok=0
+check_true "Inkscape's inkex imports with $py (it needs lxml, cssselect, numpy: scripts/deps.sh test)" \
+    test "$inkex_ok" -eq 1
+[ "$inkex_ok" -eq 1 ] || cat "$tmp/inkex.err"
 mkdir -p "$tmp/ext"
 case "$build" in
     */san)
@@ -137,7 +144,9 @@ check_true "runs without svgsmooth on PATH" test $? -eq 0
 check_true "the same result" cmp -s "$tmp/prefixed.svg" "$tmp/ref.svg"
 
 begin_case "inkscape: real Inkscape runs the extension by its action (select-by-id, org.conica.smooth.noprefs)"
-if ! command -v inkscape >/dev/null 2>&1 || ! command -v xvfb-run >/dev/null 2>&1; then
+if [ "$inkex_ok" -eq 0 ]; then
+    check_true "inkex imports (see the first case); not starting Inkscape to wait on its error dialog" false
+elif ! command -v inkscape >/dev/null 2>&1 || ! command -v xvfb-run >/dev/null 2>&1; then
     skip_case "inkscape or xvfb-run not installed (Inkscape 1.2 offers extension actions only with its GUI; scripts/deps.sh test installs both)"
 else
     mkdir -p "$tmp/profile/extensions"
