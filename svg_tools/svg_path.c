@@ -79,12 +79,36 @@ static const char digit_pairs[201] = "000102030405060708091011121314151617181920
                                      "75767778798081828384858687888990919293949596979899";
 
 /* The digits of |v| for the fast path: dg[0..nd) without trailing zeros,
- * the first of them at 10^e. */
+ * the first of them at 10^e. dg has room for a 16-byte block copy from
+ * any digit (fast_layout). */
 typedef struct fast_num {
-    char dg[24];
+    char dg[32];
     size_t nd;
     int e;
 } fast_num;
+
+/* The `n` digits of m (m < 10^n, n <= 15) at d[0..n), leading zeros
+ * included; two at a time, in 32-bit arithmetic while m fits. */
+static CONICA__HOT_INLINE void put_digits(char *d, unsigned long long m, size_t n)
+{
+    while (n >= 2 && m > 0xffffffffu) {
+        unsigned r = (unsigned)(m % 100);
+        m /= 100;
+        n -= 2;
+        memcpy(d + n, digit_pairs + 2 * r, 2);
+    }
+    {
+        uint32_t m32 = (uint32_t)m;
+        while (n >= 2) {
+            unsigned r = m32 % 100;
+            m32 /= 100;
+            n -= 2;
+            memcpy(d + n, digit_pairs + 2 * r, 2);
+        }
+        if (n)
+            d[0] = (char)('0' + (int)m32);
+    }
+}
 
 /* The fast path of conica_svg__format_number for precision <= 15: scale by
  * an exact power of ten (one rounding), round to an integer of `precision`
@@ -92,13 +116,12 @@ typedef struct fast_num {
  * up to one rounding of the scaling; only values within about 1e-16
  * (relative) of a rounding tie may differ from printf in the last digit.
  * Returns 0 when it does not apply (printf then does it). */
-static int fast_digits(double a, int precision, fast_num *f)
+static CONICA__HOT_INLINE int fast_digits(double a, int precision, fast_num *f)
 {
     double r = 0.0;
     uint64_t bits;
-    size_t i;
+    size_t nd;
     int e, k, tries;
-    unsigned long long m;
 
     if (precision < 1 || precision > 15 || !(a >= 1e-280 && a <= 1e280))
         return 0;
@@ -122,18 +145,12 @@ static int fast_digits(double a, int precision, fast_num *f)
     }
     if (tries == 3)
         return 0;
-    m = (unsigned long long)r;
-    for (i = (size_t)precision; i >= 2; i -= 2) {
-        unsigned d = (unsigned)(m % 100);
-        m /= 100;
-        f->dg[i - 2] = digit_pairs[2 * d];
-        f->dg[i - 1] = digit_pairs[2 * d + 1];
-    }
-    if (i)
-        f->dg[0] = (char)('0' + (int)m);
-    f->nd = (size_t)precision;
-    while (f->nd > 1 && f->dg[f->nd - 1] == '0')
-        f->nd--;
+    memset(f->dg, '0', sizeof f->dg);
+    put_digits(f->dg, (unsigned long long)r, (size_t)precision);
+    nd = (size_t)precision;
+    while (nd > 1 && f->dg[nd - 1] == '0')
+        nd--;
+    f->nd = nd;
     f->e = e;
     return 1;
 }
@@ -146,11 +163,14 @@ static int fast_sci(const fast_num *f, int precision)
 }
 
 /* Lay the digits out as %g would, without "0" before "." or "+" and
- * leading zeros in the exponent; returns the bytes written (no NUL). */
-static size_t fast_layout(const fast_num *f, int neg, int precision, char *out)
+ * leading zeros in the exponent; returns the bytes written (no NUL). The
+ * fixed forms copy digits in 16-byte blocks: out must have room for 40
+ * bytes, of which those past the returned count are scratch. */
+static CONICA__HOT_INLINE size_t fast_layout(const fast_num *f, int neg, int precision,
+                                             char *out)
 {
     size_t n = 0, i, nd = f->nd;
-    int e = f->e, k;
+    int e = f->e;
     if (neg)
         out[n++] = '-';
     if (fast_sci(f, precision)) {
@@ -173,23 +193,23 @@ static size_t fast_layout(const fast_num *f, int neg, int precision, char *out)
         while (ne)
             out[n++] = eb[--ne];
     } else if (e >= 0) {
-        size_t whole = (size_t)e + 1; /* digits before the point */
+        /* whole digits before the point (dg is '0'-padded past nd, so an
+         * integer's trailing zeros come with the block) */
+        size_t whole = (size_t)e + 1;
+        memcpy(out + n, f->dg, 16);
         if (nd <= whole) {
-            memcpy(out + n, f->dg, nd);
-            memset(out + n + nd, '0', whole - nd);
             n += whole;
         } else {
-            memcpy(out + n, f->dg, whole);
             out[n + whole] = '.';
-            memcpy(out + n + whole + 1, f->dg + whole, nd - whole);
+            memcpy(out + n + whole + 1, f->dg + whole, 16);
             n += nd + 1;
         }
     } else {
-        out[n++] = '.';
-        for (k = e + 1; k < 0; k++)
-            out[n++] = '0';
-        for (i = 0; i < nd; i++)
-            out[n++] = f->dg[i];
+        /* '.', then -e - 1 zeros (at most 3: e >= -4), then the digits */
+        size_t z = (size_t)(-e - 1);
+        memcpy(out + n, ".000", 4);
+        memcpy(out + n + 1 + z, f->dg, 16);
+        n += 1 + z + nd;
     }
     return n;
 }
@@ -273,10 +293,12 @@ static int number_kind(const char *s, size_t n)
 
 /* Write v at dst with the separator the grammar needs before it (none
  * after a letter, none before '-', none before '.' after a number that
- * already has its '.'); returns the bytes written (at most 49). The fast
+ * already has its '.'); returns the bytes written (at most 49; dst needs
+ * room for 50, the bytes past those written being scratch). The fast
  * path writes in place: its first character and kind follow from the
  * digits' exponent. */
-static size_t write_number(char *dst, double v, int precision, int *prev_kind)
+static CONICA__HOT_INLINE size_t write_number(char *dst, double v, int precision,
+                                              int *prev_kind)
 {
     char s[48];
     size_t n, k = 0;
@@ -333,7 +355,8 @@ conica_code conica_svg_format_path(const conica_svg_subpath *sp, size_t nsp, int
             return conica__fail(st, CONICA_ERR_NOMEM, 0, 0, "out of memory writing path data");
         need += sp[i].n * per + 3; /* M, L, Z */
     }
-    if (!buf_reserve(&b, need))
+    /* and write_number's scratch past the last number */
+    if (!buf_reserve(&b, need + 40))
         return conica__fail(st, CONICA_ERR_NOMEM, 0, 0, "out of memory writing path data");
     w = b.s;
     for (i = 0; i < nsp; i++) {
