@@ -243,6 +243,7 @@ conica_code conica_svg__path_polylines(const conica_svg_path *p, const conica_sv
     ps.corner_angle = s->corner_angle_deg >= 180.0 ? M_PI : s->corner_angle_deg * M_PI / 180.0;
     ps.precision = precision;
     ps.max_points = *budget;
+    ps.rough_t = 1; /* SVG has no use for the points' parameters */
     if (s->mode == CONICA_SVG_SMOOTH) {
         ps.tolerance = s->fidelity;
         ps.levels = s->levels;

@@ -196,6 +196,76 @@ TEST_CASE("the result does not depend on where the outline sits or its size", "[
     ts_outline_free(&o);
 }
 
+TEST_CASE("rough_t changes only t, and that t stays within the tolerance of its point",
+          "[path][glyphs]")
+{
+    ts_text t;
+    ts_code rc;
+    size_t g, rough_differs;
+    int levels;
+    ts_text_init(&t);
+    rc = ts_text_outlines(TS_FONT_SANS, "Sphinx gR&8 @", &t);
+    if (rc == TS_ERR_NO_FONT || rc == TS_ERR_NO_FREETYPE)
+        SKIP("%s (install libfreetype-dev fonts-dejavu-core)", ts_strerror(rc));
+    REQUIRE_EQ(rc, TS_OK);
+    for (levels = 2; levels <= 5; levels += 3) {
+        rough_differs = 0;
+        for (g = 0; g < t.n; g++) {
+            const ts_outline *o = &t.glyph[g];
+            conica_path p;
+            conica_path_result exact, rough;
+            conica_path_settings s = conica_path_defaults();
+            size_t i, j;
+            if (o->n == 0)
+                continue;
+            INFO("glyph U+%04lX, %d levels", t.cp[g], levels);
+            conica_path_init(&p);
+            conica_path_result_init(&exact);
+            conica_path_result_init(&rough);
+            for (i = 0; i < o->n; i++)
+                add_contour(&p, &o->c[i], 1.0, 0.0, 0.0);
+            s.levels = levels;
+            REQUIRE(conica_path_smooth(&p, &s, &exact, NULL) == CONICA_OK);
+            s.rough_t = 1;
+            REQUIRE(conica_path_smooth(&p, &s, &rough, NULL) == CONICA_OK);
+            REQUIRE_EQ_U(rough.n, exact.n);
+            CHECK(rough.worst_ratio == exact.worst_ratio);
+            CHECK_EQ_U(rough.points, exact.points);
+            for (i = 0; i < exact.n; i++) {
+                const conica_path_polyline *a = &exact.lines[i], *b = &rough.lines[i];
+                REQUIRE_EQ_U(b->n, a->n);
+                CHECK(memcmp(b->xy, a->xy, 2 * a->n * sizeof *a->xy) == 0);
+                CHECK(memcmp(b->nxy, a->nxy, 2 * a->n * sizeof *a->nxy) == 0);
+                CHECK(memcmp(b->seg, a->seg, a->n * sizeof *a->seg) == 0);
+                CHECK(memcmp(b->flags, a->flags, a->n) == 0);
+                CHECK(b->deviation == a->deviation);
+                for (j = 0; j < a->n; j++) {
+                    double c[2];
+                    CHECK(b->t[j] >= 0.0);
+                    CHECK(b->t[j] <= 1.0);
+                    /* segment ends stay exact: the polyline's start and
+                     * the vertices are found by them */
+                    if (a->t[j] == 0.0 || a->t[j] == 1.0)
+                        CHECK(b->t[j] == a->t[j]);
+                    if (j > 0 && b->seg[j] == b->seg[j - 1])
+                        CHECK(b->t[j] >= b->t[j - 1]);
+                    conica_path_seg_eval(&p, b->seg[j], b->t[j], c, NULL);
+                    CHECK_LE(hypot(c[0] - b->xy[2 * j], c[1] - b->xy[2 * j + 1]),
+                             b->tolerance * (1 + 1e-9));
+                    rough_differs += b->t[j] != a->t[j];
+                }
+            }
+            conica_path_result_free(&exact);
+            conica_path_result_free(&rough);
+            conica_path_free(&p);
+        }
+        /* what the setting is for: the feet were not all searched */
+        INFO("%d levels", levels);
+        CHECK(rough_differs > 0);
+    }
+    ts_text_free(&t);
+}
+
 static double radial(const conica_path_result *r, double cx, double cy, double a, double b)
 {
     double w = 0;

@@ -2287,7 +2287,10 @@ static conica_code smooth_piece(ctx *c, const piece *P, double *deviation)
             }
             strict = c->tol - PATH_CHECK_NEXT_BULGE * b;
         }
-        keep = lev < L && ninfl == 0 ? (size_t)1 << (L - lev) : lev == L ? 1 : 0;
+        keep = c->s.rough_t                 ? 0
+               : lev < L && ninfl == 0 ? (size_t)1 << (L - lev)
+               : lev == L              ? 1
+                                       : 0;
         worst = 0;
         for (i = 0; i < ne; i++) {
             size_t kk;

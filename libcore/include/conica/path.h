@@ -148,6 +148,12 @@ typedef struct conica_path_settings {
      *  INSIDE). The side is the subpath's own: OUTSIDE grows what a
      *  contour encloses, whichever way it runs (a hole gets bigger). */
     conica_path_fit fit;
+    /** Smoothing: nonzero when the caller does not read the points' t
+     *  (svgsmooth): t is then the parameter of the point's nearest dense
+     *  chord point, within the check's bound of its foot, instead of the
+     *  foot itself, which saves a Newton search per point. The points,
+     *  normals, flags and deviation are the same either way (default 0). */
+    int rough_t;
 } conica_path_settings;
 
 /** Output point flags. */
