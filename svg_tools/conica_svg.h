@@ -400,6 +400,24 @@ CONICA_API conica_code conica_svg_process(conica_svg_doc *doc, const conica_svg_
                                           conica_svg_stats *stats, conica_status *st);
 
 /**
+ * @brief conica_svg_process() and conica_svg_doc_write() in one pass: the
+ *        same bytes go to f, but each element's new value is written as
+ *        soon as it is made and then dropped, so the new path data of a
+ *        large document never all exists in memory (the CLI's path: a
+ *        document of 10^6 vertices writes some 150 MB of it). On failure
+ *        part of the document may have been written: write to a
+ *        temporary file. The document is spent afterwards (it may or may
+ *        not hold the new values): only free it. Where the bytes cannot be
+ *        matched to the tree, or the document was processed before, the
+ *        two steps run one after the other.
+ * @return as conica_svg_process(), or CONICA_ERR_IO (a write error)
+ */
+CONICA_API conica_code conica_svg_process_write(conica_svg_doc *doc,
+                                                const conica_svg_settings *s,
+                                                conica_svg_stats *stats, FILE *f,
+                                                conica_status *st);
+
+/**
  * @brief The polyline(s) of one parsed path (all its subpaths) per s->mode,
  *        without a document. Subpaths are appended to out (element index 0).
  */

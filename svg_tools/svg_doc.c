@@ -45,6 +45,7 @@ struct conica_svg_doc {
     char decl[SVG_MAX_DECL + 1]; /* the input's XML declaration, verbatim ("" if none) */
     char *src;                   /* the input's bytes, which a save splices into */
     size_t srclen;
+    int rewritten; /* conica_svg_process() changed the tree */
 };
 
 conica_svg_limits conica_svg_limits_defaults(void)
@@ -601,6 +602,7 @@ static conica_code doc_load(const char *buf, size_t len, const conica_svg_limits
         return conica__fail(st, CONICA_ERR_NOMEM, 0, 0, "out of memory");
     }
     doc->xml = xml;
+    doc->rewritten = 0;
     doc->src = take ? take : malloc(len ? len : 1);
     if (!doc->src) {
         xmlFreeDoc(xml);
@@ -759,15 +761,30 @@ static xmlAttrPtr own_attr(xmlNodePtr n, const char *name)
 }
 
 /* conica_svg_process() marks each element whose geometry attribute it
- * rewrote in the node's application field (_private): 1 `d`, 2 `points`. */
-static void mark_rewritten(xmlNodePtr n, int points)
+ * rewrote in the node's application field (_private): 1 `d`, 2 `points`,
+ * 3 `d` of a shape it converted to a path. */
+static void mark_rewritten(xmlNodePtr n, int kind)
 {
-    n->_private = (void *)(uintptr_t)(points ? 2u : 1u);
+    n->_private = (void *)(uintptr_t)(kind == 1 || kind == 2 ? 2u : kind == 3 ? 3u : 1u);
 }
 
 static const char *mark_name(xmlNodePtr n)
 {
     return (uintptr_t)n->_private == 2u ? "points" : "d";
+}
+
+/* The geometry attributes a shape converted to a path loses (SVG 2,
+ * sections 10.2-10.6). */
+static const char *const shape_geometry[] = {"x",  "y",  "width", "height", "rx", "ry", "cx",
+                                             "cy", "r",  "x1",    "y1",     "x2", "y2"};
+
+static int is_shape_geometry(const char *name, size_t n)
+{
+    size_t i;
+    for (i = 0; i < sizeof shape_geometry / sizeof shape_geometry[0]; i++)
+        if (strlen(shape_geometry[i]) == n && memcmp(shape_geometry[i], name, n) == 0)
+            return 1;
+    return 0;
 }
 
 /* Does the n-byte qualified name s name element or attribute node x? */
@@ -778,6 +795,17 @@ static int same_qname(const char *s, size_t n, const xmlChar *prefix, const xmlC
         return n == pl + 1 + nl && memcmp(s, prefix, pl) == 0 && s[pl] == ':' &&
                memcmp(s + pl + 1, name, nl) == 0;
     return n == nl && memcmp(s, name, nl) == 0;
+}
+
+/* "path" with the element's namespace prefix, as written in its tags. */
+static void put_path_name(save_sink *k, xmlNodePtr n)
+{
+    const xmlChar *prefix = n->ns ? n->ns->prefix : NULL;
+    if (prefix) {
+        sink_put(k, (const char *)prefix, strlen((const char *)prefix));
+        sink_put(k, ":", 1);
+    }
+    sink_put(k, "path", 4);
 }
 
 /* A rewritten value with the entity rules of its quote. */
@@ -817,43 +845,44 @@ static const char *new_value(xmlNodePtr n, const char *name)
     return (const char *)a->children->content;
 }
 
-/* Write a start tag of element n whose attribute `mark` was rewritten (and
- * which conica_svg_process() may have renamed and stripped of attributes):
- * every byte outside what changed as it was. *p is after "<name"; returns
- * 0 when the bytes do not match the element. */
-static int splice_tag(save_sink *k, xmlNodePtr n, const char *mark, const char **p,
-                      const char *end)
+/* How one start tag changes: attribute `mark` takes `value` (appended when
+ * the tag has none); a converted shape is renamed to a path and loses its
+ * geometry attributes. */
+typedef struct rewrite {
+    const char *mark;
+    const char *value;
+    int shape;
+} rewrite;
+
+/* Write the start tag of element n as rw changes it: every byte outside
+ * what changed as it was. name..*p is its name in the bytes; returns 0
+ * when the bytes after it are not attributes. */
+static int splice_tag(save_sink *k, xmlNodePtr n, const rewrite *rw, const char *name,
+                      const char **p, const char *end)
 {
-    const char *v = new_value(n, mark), *cur;
+    const char *cur;
+    size_t ml = strlen(rw->mark);
     src_attr a;
     int r, seen = 0;
-    if (!v)
-        return 0;
-    if (k)
-        sink_put(k, (const char *)n->name, strlen((const char *)n->name));
+    if (k) {
+        if (rw->shape)
+            put_path_name(k, n);
+        else
+            sink_put(k, name, (size_t)(*p - name));
+    }
     cur = *p;
     while ((r = src_next_attr(p, end, &a)) == 1) {
-        int is_mark = a.nlen == strlen(mark) && memcmp(a.name, mark, a.nlen) == 0;
-        int prefixed = memchr(a.name, ':', a.nlen) != NULL ||
-                       (a.nlen >= 5 && memcmp(a.name, "xmlns", 5) == 0);
-        if (is_mark) {
+        if (a.nlen == ml && memcmp(a.name, rw->mark, ml) == 0) {
             if (k) {
                 sink_put(k, cur, (size_t)(a.val - cur));
-                put_escaped(k, v, a.quote);
+                put_escaped(k, rw->value, a.quote);
             }
             cur = a.val + a.vlen;
             seen = 1;
-        } else if (!prefixed) {
-            char an[64];
-            if (a.nlen >= sizeof an)
-                continue; /* not one conica_svg_process() removes: kept */
-            memcpy(an, a.name, a.nlen);
-            an[a.nlen] = '\0';
-            if (!own_attr(n, an)) { /* removed (a converted shape's geometry) */
-                if (k)
-                    sink_put(k, cur, (size_t)(a.lead - cur));
-                cur = *p;
-            }
+        } else if (rw->shape && is_shape_geometry(a.name, a.nlen)) {
+            if (k)
+                sink_put(k, cur, (size_t)(a.lead - cur));
+            cur = *p;
         }
     }
     if (r < 0)
@@ -861,64 +890,101 @@ static int splice_tag(save_sink *k, xmlNodePtr n, const char *mark, const char *
     if (k) {
         sink_put(k, cur, (size_t)(*p - cur));
         if (!seen) { /* a new attribute goes last, before the tag's end */
-            char q = '"';
             sink_put(k, " ", 1);
-            sink_put(k, mark, strlen(mark));
+            sink_put(k, rw->mark, ml);
             sink_put(k, "=\"", 2);
-            put_escaped(k, v, q);
+            put_escaped(k, rw->value, '"');
             sink_put(k, "\"", 1);
         }
     }
     return 1;
 }
 
-/* Write the original bytes with the rewritten attribute values spliced in,
+/* An element whose start tag the splicer has passed and whose end tag it
+ * has not: that end tag must name it (a converted shape's is renamed). */
+typedef struct open_tag {
+    xmlNodePtr n;
+    int shape;
+} open_tag;
+
+/* Writes the original bytes with rewritten attribute values spliced in,
  * element by element: the start tags of the bytes (a scan that skips
  * comments, CDATA, processing instructions and the DOCTYPE, as
  * scan_start_tags() does) are matched in order to the tree's elements, by
- * name. With k NULL nothing is written: 1 when the bytes and the tree
- * match (so a second call with k writes the whole document), else 0. */
-static int splice(const conica_svg_doc *doc, save_sink *k)
+ * name. It can stop after any element's start tag and go on later, so
+ * that conica_svg_process_write() writes each element as it is made. With
+ * k NULL nothing is written, only matched. */
+typedef struct splicer {
+    save_sink *k;
+    int from_tree; /* the rewrites are those conica_svg_process() marked */
+    const char *p, *end, *cur; /* scan position; bytes before cur are written */
+    xmlNodePtr root, n;        /* the tree's element of the last start tag */
+    open_tag *open;
+    size_t depth, cap, tdepth;
+    int ok; /* 0 once the bytes and the tree do not match */
+} splicer;
+
+static void splicer_init(splicer *sp, const conica_svg_doc *doc, save_sink *k, int from_tree)
 {
-    const char *p = doc->src, *end = doc->src + doc->srclen, *cur = doc->src;
-    xmlNodePtr root = xmlDocGetRootElement(doc->xml), n = NULL, e;
-    xmlNodePtr *open = NULL; /* the open elements: an end tag must name its element */
-    size_t depth = 0, cap = 0, tdepth = 0;
-    int ok = 1;
-    if (!root || memchr(doc->src, '\0', doc->srclen))
-        return 0; /* UTF-16 and other encodings this byte scan cannot read */
-    while (ok && p < end && (p = memchr(p, '<', (size_t)(end - p))) != NULL) {
+    memset(sp, 0, sizeof *sp);
+    sp->k = k;
+    sp->from_tree = from_tree;
+    sp->p = sp->cur = doc->src;
+    sp->end = doc->src + doc->srclen;
+    sp->root = xmlDocGetRootElement(doc->xml);
+    /* UTF-16 and other encodings this byte scan cannot read */
+    sp->ok = sp->root && !memchr(doc->src, '\0', doc->srclen);
+}
+
+/* Go on to the start tag of `stop` and write it as *stop_rw changes it
+ * (the rewrites marked in the tree apply on the way when from_tree), or
+ * with stop NULL to the end of the bytes. Returns 1 when stop's tag was
+ * written. */
+static int splice_until(splicer *sp, xmlNodePtr stop, const rewrite *stop_rw)
+{
+    save_sink *k = sp->k;
+    const char *p = sp->p, *end = sp->end;
+    int hit = 0;
+    while (sp->ok && !hit && p < end) {
         const char *name, *q;
+        const rewrite *r = NULL;
+        rewrite rw;
+        xmlNodePtr n;
         size_t nlen;
-        p++;
+        if ((q = memchr(p, '<', (size_t)(end - p))) == NULL) {
+            p = end;
+            break;
+        }
+        p = q + 1;
         if (p == end)
             break;
         if ((q = scan_skip_markup(p, end)) != p) {
-            ok = q != NULL;
-            p = q;
+            if (!q)
+                sp->ok = 0;
+            else
+                p = q;
             continue;
         }
         if (*p == '/') {
+            open_tag *e;
             p++;
-            if (!depth) {
-                ok = 0;
+            if (!sp->depth) {
+                sp->ok = 0;
                 break;
             }
             name = p;
             while (p < end && !scan_space(*p) && *p != '>')
                 p++;
-            e = open[--depth];
-            if (!same_qname(name, (size_t)(p - name), e->ns ? e->ns->prefix : NULL, e->name)) {
-                if (!e->_private) {
-                    ok = 0;
-                    break;
-                }
-                /* a renamed element (a shape converted to a path) */
+            e = &sp->open[--sp->depth];
+            if (e->shape) {
                 if (k) {
-                    sink_put(k, cur, (size_t)(name - cur));
-                    sink_put(k, (const char *)e->name, strlen((const char *)e->name));
+                    sink_put(k, sp->cur, (size_t)(name - sp->cur));
+                    put_path_name(k, e->n);
                 }
-                cur = p;
+                sp->cur = p;
+            } else if (!same_qname(name, (size_t)(p - name), e->n->ns ? e->n->ns->prefix : NULL,
+                                   e->n->name)) {
+                sp->ok = 0;
             }
             continue;
         }
@@ -926,53 +992,89 @@ static int splice(const conica_svg_doc *doc, save_sink *k)
         while (p < end && !scan_space(*p) && *p != '>' && *p != '/')
             p++;
         nlen = (size_t)(p - name);
-        n = n ? next_element(n, root, &tdepth) : root;
+        n = sp->n ? next_element(sp->n, sp->root, &sp->tdepth) : sp->root;
         if (!n) {
-            ok = 0;
+            sp->ok = 0;
             break;
         }
-        if (depth == cap) {
-            size_t nc = cap ? 2 * cap : 64;
-            xmlNodePtr *t = realloc(open, nc * sizeof *t);
+        sp->n = n;
+        if (sp->depth == sp->cap) {
+            size_t nc = sp->cap ? 2 * sp->cap : 64;
+            open_tag *t = realloc(sp->open, nc * sizeof *t);
             if (!t) {
-                ok = 0;
+                sp->ok = 0;
                 break;
             }
-            open = t;
-            cap = nc;
+            sp->open = t;
+            sp->cap = nc;
         }
-        open[depth] = n;
-        if (n->_private) {
-            if (k)
-                sink_put(k, cur, (size_t)(name - cur));
-            if (!splice_tag(k, n, mark_name(n), &p, end)) {
-                ok = 0;
+        if (n == stop) {
+            r = stop_rw;
+            hit = 1;
+        } else if (sp->from_tree && n->_private) {
+            rw.mark = mark_name(n);
+            rw.value = new_value(n, rw.mark);
+            rw.shape = (uintptr_t)n->_private == 3u;
+            if (!rw.value) {
+                sp->ok = 0;
                 break;
             }
-            cur = p;
+            r = &rw;
+        }
+        /* (a converted shape's tree name may already be "path") */
+        if (!(r && r->shape) &&
+            !same_qname(name, nlen, n->ns ? n->ns->prefix : NULL, n->name)) {
+            sp->ok = 0;
+            break;
+        }
+        sp->open[sp->depth].n = n;
+        sp->open[sp->depth].shape = r && r->shape;
+        if (r) {
+            if (k)
+                sink_put(k, sp->cur, (size_t)(name - sp->cur));
+            if (!splice_tag(k, n, r, name, &p, end)) {
+                sp->ok = 0;
+                break;
+            }
+            sp->cur = p;
         } else {
             src_attr a;
-            int r;
-            if (!same_qname(name, nlen, n->ns ? n->ns->prefix : NULL, n->name)) {
-                ok = 0;
-                break;
-            }
-            while ((r = src_next_attr(&p, end, &a)) == 1)
+            int ra;
+            while ((ra = src_next_attr(&p, end, &a)) == 1)
                 ;
-            if (r < 0) {
-                ok = 0;
+            if (ra < 0) {
+                sp->ok = 0;
                 break;
             }
         }
         if (*p != '/')
-            depth++;
+            sp->depth++;
     }
-    if (ok && (depth != 0 || (n ? next_element(n, root, &tdepth) : root) != NULL))
-        ok = 0; /* the tree holds elements the bytes do not */
-    if (ok && k)
-        sink_put(k, cur, (size_t)(end - cur));
-    free(open);
-    return ok;
+    sp->p = p;
+    return sp->ok && hit;
+}
+
+/* The rest of the bytes; 1 when the whole document matched the tree. */
+static int splice_finish(splicer *sp)
+{
+    splice_until(sp, NULL, NULL);
+    if (sp->ok && (sp->depth != 0 ||
+                   (sp->n ? next_element(sp->n, sp->root, &sp->tdepth) : sp->root) != NULL))
+        sp->ok = 0; /* the tree holds elements the bytes do not */
+    if (sp->ok && sp->k)
+        sink_put(sp->k, sp->cur, (size_t)(sp->end - sp->cur));
+    free(sp->open);
+    sp->open = NULL;
+    return sp->ok;
+}
+
+/* The whole document in one go (k NULL: 1 when the bytes and the tree
+ * match, so that a second call with k writes all of it). */
+static int splice(const conica_svg_doc *doc, save_sink *k, int from_tree)
+{
+    splicer sp;
+    splicer_init(&sp, doc, k, from_tree);
+    return splice_finish(&sp);
 }
 
 /* Serialise into k (memory or file): the input's declaration, the tree,
@@ -983,8 +1085,8 @@ static conica_code save_to(const conica_svg_doc *doc, save_sink *k, conica_statu
     int opts = doc->decl[0] ? 0 : XML_SAVE_NO_DECL;
     long r;
     /* byte for byte as read, the rewritten values spliced in */
-    if (splice(doc, NULL)) {
-        splice(doc, k);
+    if (splice(doc, NULL, 1)) {
+        splice(doc, k, 1);
         if (k->failed)
             return conica__fail(st, k->f ? CONICA_ERR_IO : CONICA_ERR_NOMEM, 0, 0,
                                 k->f ? "write error" : "out of memory");
@@ -1895,24 +1997,21 @@ conica_code conica_svg_extract(const conica_svg_doc *doc, const conica_svg_setti
 }
 
 /* `points` list of a polygon/polyline from its (single) subpath. */
-static char *format_points(const conica_svg_subpath *sp, size_t nsp, int precision)
+/* Append a `points` list to *b ("x,y x,y ..."); 0 when out of memory. */
+static int format_points(conica_svg__buf *b, const conica_svg_subpath *sp, size_t nsp,
+                         int precision)
 {
-    conica_svg__buf b = {NULL, 0, 0, 0};
     size_t i, j;
     int kind = 0;
-    conica_svg__buf_put(&b, "", 0);
+    conica_svg__buf_put(b, "", 0);
     for (i = 0; i < nsp; i++)
         for (j = 0; j < sp[i].n; j++) {
-            conica_svg__put_number(&b, sp[i].xy[2 * j], precision, &kind);
-            conica_svg__buf_putc(&b, ',');
+            conica_svg__put_number(b, sp[i].xy[2 * j], precision, &kind);
+            conica_svg__buf_putc(b, ',');
             kind = 0;
-            conica_svg__put_number(&b, sp[i].xy[2 * j + 1], precision, &kind);
+            conica_svg__put_number(b, sp[i].xy[2 * j + 1], precision, &kind);
         }
-    if (b.oom) {
-        free(b.s);
-        return NULL;
-    }
-    return b.s;
+    return !b->oom;
 }
 
 /* A text node whose content is `text`, taken over when libxml2 frees with
@@ -1936,13 +2035,17 @@ static xmlNodePtr text_node(xmlDocPtr doc, char *text)
 }
 
 /* What conica_svg_process() builds before the document changes: one text
- * node (the new value) per element, and the attributes it lacks. */
+ * node (the new value) per element, and the attributes it lacks. When
+ * streaming (conica_svg_process_write()), instead each value is formatted
+ * into `out`, one buffer for all of them, and written at once. */
 typedef struct pending {
     conica_svg_doc *doc;
     const conica_svg_settings *s;
     xmlNodePtr *texts;
     xmlAttrPtr *fresh;
     size_t cap;
+    splicer *stream;
+    conica_svg__buf out;
 } pending;
 
 /* collect()'s hook: write element idx's polylines as its new value and
@@ -1955,9 +2058,32 @@ static conica_code format_element(void *ctx, conica_svg_shapes *sh, size_t idx, 
     const conica_svg_element *el = &sh->elements[idx];
     conica_svg_subpath *sp = sh->subpaths + el->first_subpath;
     const char *name = it->kind == 0 || it->kind == 3 ? "d" : "points";
-    conica_code rc = CONICA_OK;
-    char *text = NULL;
-    size_t len, k;
+    int ok;
+    size_t k;
+    pd->out.n = 0;
+    if (it->kind == 1 || it->kind == 2)
+        ok = format_points(&pd->out, sp, el->nsubpaths, pd->s->precision);
+    else
+        ok = conica_svg__format_path_into(&pd->out, sp, el->nsubpaths, pd->s->precision);
+    /* the polylines are written: let them go now (peak memory) */
+    for (k = 0; k < el->nsubpaths; k++) {
+        free(sp[k].xy);
+        sp[k].xy = NULL;
+    }
+    if (!ok)
+        return conica__fail(st, CONICA_ERR_NOMEM, 0, 0, "out of memory writing path data");
+    if (pd->stream) {
+        rewrite rw;
+        rw.mark = name;
+        rw.value = pd->out.s;
+        rw.shape = it->kind == 3;
+        if (!splice_until(pd->stream, it->node, &rw))
+            return conica__fail(st, CONICA_ERR_IO, 0, 0,
+                                "cannot match the document's bytes to its elements");
+        if (pd->stream->k->failed)
+            return conica__fail(st, CONICA_ERR_IO, 0, 0, "write error");
+        return CONICA_OK;
+    }
     if (idx >= pd->cap) {
         size_t nc = pd->cap ? 2 * pd->cap : 16;
         xmlNodePtr *tt = realloc(pd->texts, nc * sizeof *tt);
@@ -1972,21 +2098,15 @@ static conica_code format_element(void *ctx, conica_svg_shapes *sh, size_t idx, 
         memset(pd->fresh + pd->cap, 0, (nc - pd->cap) * sizeof *tf);
         pd->cap = nc;
     }
-    if (it->kind == 1 || it->kind == 2) {
-        text = format_points(sp, el->nsubpaths, pd->s->precision);
+    {
+        /* the buffer becomes the text node's content: a value that stays
+         * needs its own block, trimmed to size */
+        char *text = realloc(pd->out.s, pd->out.n + 1);
         if (!text)
-            rc = conica__fail(st, CONICA_ERR_NOMEM, 0, 0, "out of memory");
-    } else {
-        rc = conica_svg_format_path(sp, el->nsubpaths, pd->s->precision, &text, &len, st);
+            text = pd->out.s;
+        memset(&pd->out, 0, sizeof pd->out);
+        pd->texts[idx] = text_node(pd->doc->xml, text);
     }
-    /* the polylines are written: let them go now (peak memory) */
-    for (k = 0; k < el->nsubpaths; k++) {
-        free(sp[k].xy);
-        sp[k].xy = NULL;
-    }
-    if (rc != CONICA_OK)
-        return rc;
-    pd->texts[idx] = text_node(pd->doc->xml, text);
     if (!pd->texts[idx])
         return conica__fail(st, CONICA_ERR_NOMEM, 0, 0, "out of memory");
     if (it->kind == 3 || !own_attr(it->node, name)) {
@@ -1997,8 +2117,10 @@ static conica_code format_element(void *ctx, conica_svg_shapes *sh, size_t idx, 
     return CONICA_OK;
 }
 
-conica_code conica_svg_process(conica_svg_doc *doc, const conica_svg_settings *s,
-                               conica_svg_stats *stats, conica_status *st)
+/* conica_svg_process(), or with stream its streaming form: the values go
+ * through the splicer as they are made and the tree is not changed. */
+static conica_code process(conica_svg_doc *doc, const conica_svg_settings *s,
+                           conica_svg_stats *stats, splicer *stream, conica_status *st)
 {
     conica_svg_shapes sh;
     conica_svg_stats local;
@@ -2007,31 +2129,32 @@ conica_code conica_svg_process(conica_svg_doc *doc, const conica_svg_settings *s
     conica_code rc;
     size_t i, k;
     double t0;
-    if (!doc || !s)
-        return conica__fail(st, CONICA_ERR_ARG, 0, 0, "conica_svg_process: NULL argument");
-    if ((rc = check_settings(s, st)) != CONICA_OK)
-        return rc;
     conica_svg_shapes_init(&sh);
     memset(&local, 0, sizeof local);
     memset(&pd, 0, sizeof pd);
     pd.doc = doc;
     pd.s = s;
+    pd.stream = stream;
     /* Everything that allocates comes first (the new values are written as
      * each element's polylines are made): the document changes only when
      * all of it succeeded. */
     rc = collect(doc, s, &sh, &items, &local, stats != NULL, format_element, &pd, st);
     t0 = stats ? conica_svg__now() : 0.0;
-    if (rc == CONICA_OK) {
+    if (rc == CONICA_OK && stream) {
+        if (!splice_finish(stream))
+            rc = conica__fail(st, CONICA_ERR_IO, 0, 0,
+                              "cannot match the document's bytes to its elements");
+        else if (stream->k->failed)
+            rc = conica__fail(st, CONICA_ERR_IO, 0, 0, "write error");
+    } else if (rc == CONICA_OK) {
         xmlNodePtr *texts = pd.texts;
         xmlAttrPtr *fresh = pd.fresh;
         for (i = 0; i < sh.nelements; i++) {
             xmlNodePtr n = items[i].node;
             xmlAttrPtr a;
             if (items[i].kind == 3) {
-                static const char *geo[] = {"x", "y", "width", "height", "rx", "ry", "cx",
-                                            "cy", "r", "x1", "y1", "x2", "y2"};
-                for (k = 0; k < sizeof geo / sizeof geo[0]; k++) {
-                    a = xmlHasNsProp(n, BAD_CAST geo[k], NULL);
+                for (k = 0; k < sizeof shape_geometry / sizeof shape_geometry[0]; k++) {
+                    a = xmlHasNsProp(n, BAD_CAST shape_geometry[k], NULL);
                     if (a)
                         xmlRemoveProp(a);
                 }
@@ -2051,7 +2174,8 @@ conica_code conica_svg_process(conica_svg_doc *doc, const conica_svg_settings *s
             a->children = a->last = texts[i];
             texts[i]->parent = (xmlNodePtr)a;
             texts[i] = NULL;
-            mark_rewritten(n, items[i].kind == 1 || items[i].kind == 2);
+            mark_rewritten(n, items[i].kind);
+            doc->rewritten = 1;
         }
     }
     if (stats)
@@ -2063,9 +2187,47 @@ conica_code conica_svg_process(conica_svg_doc *doc, const conica_svg_settings *s
     }
     free(pd.texts);
     free(pd.fresh);
+    free(pd.out.s);
     free(items);
     conica_svg_shapes_free(&sh);
     if (rc == CONICA_OK && stats)
         *stats = local;
+    return rc;
+}
+
+conica_code conica_svg_process(conica_svg_doc *doc, const conica_svg_settings *s,
+                               conica_svg_stats *stats, conica_status *st)
+{
+    conica_code rc;
+    if (!doc || !s)
+        return conica__fail(st, CONICA_ERR_ARG, 0, 0, "conica_svg_process: NULL argument");
+    if ((rc = check_settings(s, st)) != CONICA_OK)
+        return rc;
+    return process(doc, s, stats, NULL, st);
+}
+
+conica_code conica_svg_process_write(conica_svg_doc *doc, const conica_svg_settings *s,
+                                     conica_svg_stats *stats, FILE *f, conica_status *st)
+{
+    save_sink k;
+    splicer sp;
+    conica_code rc;
+    if (!doc || !s || !f)
+        return conica__fail(st, CONICA_ERR_ARG, 0, 0,
+                            "conica_svg_process_write: NULL argument");
+    if ((rc = check_settings(s, st)) != CONICA_OK)
+        return rc;
+    /* Streaming needs the tree as loaded and bytes it can be matched to;
+     * otherwise the same result in two steps. */
+    if (doc->rewritten || !splice(doc, NULL, 0)) {
+        if ((rc = process(doc, s, stats, NULL, st)) != CONICA_OK)
+            return rc;
+        return conica_svg_doc_write(doc, f, st);
+    }
+    memset(&k, 0, sizeof k);
+    k.f = f;
+    splicer_init(&sp, doc, &k, 0);
+    rc = process(doc, s, stats, &sp, st);
+    free(sp.open);
     return rc;
 }

@@ -31,6 +31,12 @@ size_t conica_svg__format_number(double v, int precision, char out[48]);
  * needs one. *prev_kind tracks the previous token (0 = none/letter). */
 void conica_svg__put_number(conica_svg__buf *b, double v, int precision, int *prev_kind);
 
+/* Append polylines as conica_svg_format_path() writes them to *b (for a
+ * caller that formats many elements into one buffer); 0 when out of
+ * memory (b->oom set, or the size would overflow). */
+int conica_svg__format_path_into(conica_svg__buf *b, const conica_svg_subpath *sp, size_t nsp,
+                                 int precision);
+
 /* Endpoint to centre parametrisation of an arc (SVG 2, F.6.5 and F.6.6);
  * fills the ARC fields of *seg from x0,y0,x1,y1,rx,ry,phi(deg),flags, or
  * turns it into a LINE for a zero radius. Returns 0 when the arc must be

@@ -335,30 +335,27 @@ void conica_svg__put_number(conica_svg__buf *b, double v, int precision, int *pr
  * within the same count), plus slack. */
 #define SVG_NUMBER_MAX_BYTES(precision) ((size_t)(precision) + 12)
 
-conica_code conica_svg_format_path(const conica_svg_subpath *sp, size_t nsp, int precision,
-                                   char **buf, size_t *len, conica_status *st)
+int conica_svg__format_path_into(conica_svg__buf *b, const conica_svg_subpath *sp, size_t nsp,
+                                 int precision)
 {
-    conica_svg__buf b = {NULL, 0, 0, 0};
     size_t i, j, need = 1;
     char *w;
-    if ((!sp && nsp) || !buf || !len)
-        return conica__fail(st, CONICA_ERR_ARG, 0, 0, "conica_svg_format_path: NULL argument");
     if (precision < 1)
         precision = 1;
     if (precision > 17)
         precision = 17;
-    /* Count, then allocate once and write without further checks (STYLE.md
+    /* Count, then make room once and write without further checks (STYLE.md
      * item 7). Pages reserved but not written are never touched. */
     for (i = 0; i < nsp; i++) {
         size_t per = 2 * SVG_NUMBER_MAX_BYTES(precision);
         if (sp[i].n > ((size_t)-1 / 4 - need) / per)
-            return conica__fail(st, CONICA_ERR_NOMEM, 0, 0, "out of memory writing path data");
+            return 0;
         need += sp[i].n * per + 3; /* M, L, Z */
     }
     /* and write_number's scratch past the last number */
-    if (!buf_reserve(&b, need + 40))
-        return conica__fail(st, CONICA_ERR_NOMEM, 0, 0, "out of memory writing path data");
-    w = b.s;
+    if (!buf_reserve(b, need + 40))
+        return 0;
+    w = b->s + b->n;
     for (i = 0; i < nsp; i++) {
         int kind = 0;
         const double *xy = sp[i].xy;
@@ -377,7 +374,20 @@ conica_code conica_svg_format_path(const conica_svg_subpath *sp, size_t nsp, int
             *w++ = 'Z';
     }
     *w = '\0';
-    b.n = (size_t)(w - b.s);
+    b->n = (size_t)(w - b->s);
+    return 1;
+}
+
+conica_code conica_svg_format_path(const conica_svg_subpath *sp, size_t nsp, int precision,
+                                   char **buf, size_t *len, conica_status *st)
+{
+    conica_svg__buf b = {NULL, 0, 0, 0};
+    if ((!sp && nsp) || !buf || !len)
+        return conica__fail(st, CONICA_ERR_ARG, 0, 0, "conica_svg_format_path: NULL argument");
+    if (!conica_svg__format_path_into(&b, sp, nsp, precision)) {
+        free(b.s);
+        return conica__fail(st, CONICA_ERR_NOMEM, 0, 0, "out of memory writing path data");
+    }
     {
         /* give back what the worst case reserved (in place for large blocks) */
         char *t = realloc(b.s, b.n + 1);

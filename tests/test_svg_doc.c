@@ -1081,3 +1081,145 @@ TEST_CASE("lengths convert between CSS units exactly where they can", "[svg][doc
     CHECK(isnan(conica_svg_convert_length(1.0, "%", "mm")));
     CHECK(isnan(conica_svg_convert_length(1.0, "mm", "em")));
 }
+
+/* The bytes conica_svg_process_write() writes for text (len bytes). */
+static char *process_write(const char *text, size_t len, const conica_svg_settings *s,
+                           conica_code *rc, int processed_before)
+{
+    conica_svg_doc *doc = NULL;
+    conica_status st;
+    FILE *f = tmpfile();
+    long n;
+    char *out;
+    REQUIRE(f != NULL);
+    REQUIRE(conica_svg_doc_load(text, len, NULL, &doc, &st) == CONICA_OK);
+    if (processed_before)
+        REQUIRE(conica_svg_process(doc, s, NULL, &st) == CONICA_OK);
+    *rc = conica_svg_process_write(doc, s, NULL, f, &st);
+    INFO("process_write: %s", *rc == CONICA_OK ? "ok" : st.message);
+    conica_svg_doc_free(doc);
+    n = ftell(f);
+    REQUIRE(n >= 0);
+    out = malloc((size_t)n + 1);
+    REQUIRE(out != NULL);
+    rewind(f);
+    REQUIRE(fread(out, 1, (size_t)n, f) == (size_t)n);
+    out[n] = '\0';
+    fclose(f);
+    return out;
+}
+
+/* The bytes of conica_svg_process() then conica_svg_doc_save(), once or twice. */
+static char *process_save(const char *text, size_t len, const conica_svg_settings *s,
+                          conica_code *rc, int times)
+{
+    conica_svg_doc *doc = NULL;
+    char *out = NULL;
+    size_t n;
+    REQUIRE(conica_svg_doc_load(text, len, NULL, &doc, NULL) == CONICA_OK);
+    while (times-- > 0 && (*rc = conica_svg_process(doc, s, NULL, NULL)) == CONICA_OK)
+        ;
+    if (*rc == CONICA_OK)
+        REQUIRE(conica_svg_doc_save(doc, &out, &n, NULL) == CONICA_OK);
+    conica_svg_doc_free(doc);
+    return out;
+}
+
+TEST_CASE("writing each element as it is made gives the bytes of process then save",
+          "[svg][doc]")
+{
+    static const char shapes_doc[] =
+        "<svg xmlns='http://www.w3.org/2000/svg' viewBox='0 0 40 40'>\n"
+        "<rect id='r' x='1' y='2' width='10' height='8' rx='2' d='M9 9' fill='red'/>\n"
+        "<circle\n  cx='20'\tcy='20' r='5'  ></circle>\n"
+        "<line x1=\"0\" y1=\"0\" x2=\"5\" y2=\"5\"/><ellipse cx='1' cy='1' rx='4%' ry='1'/>\n"
+        "<path id='q' d='M0 0Q10 20 20 0' data-note='a &amp; b'/>"
+        "<polygon id='t' points='0,0 10,0 5,8'/>\n"
+        "</svg>";
+    static const char prefixed_doc[] =
+        "<?xml version=\"1.0\"?>\n"
+        "<svg:svg xmlns:svg=\"http://www.w3.org/2000/svg\" viewBox=\"0 0 10 10\">\n"
+        "<svg:path d=\"M0 0C1 2 3 4 5 5L9 9\"></svg:path>\n"
+        "<svg:rect x=\"1\" y=\"1\" width=\"3\" height=\"2\" rx=\"1\"></svg:rect>\n"
+        "<svg:g><svg:circle cx=\"5\" cy=\"5\" r=\"2\"/></svg:g>\n"
+        "</svg:svg>\n";
+    const char *docs[] = {roundtrip_doc, shapes_doc, prefixed_doc};
+    conica_svg_settings s = conica_svg_defaults();
+    size_t i;
+    int convert;
+    conica_code r1, r2;
+    s.levels = 3;
+    for (i = 0; i < sizeof docs / sizeof docs[0]; i++)
+        for (convert = 0; convert < 2; convert++) {
+            char *a, *b;
+            s.convert_shapes = convert;
+            a = process_write(docs[i], strlen(docs[i]), &s, &r1, 0);
+            b = process_save(docs[i], strlen(docs[i]), &s, &r2, 1);
+            INFO("document %zu, convert_shapes %d", i, convert);
+            REQUIRE_EQ(r1, CONICA_OK);
+            REQUIRE_EQ(r2, CONICA_OK);
+            CHECK_STR_EQ(a, b);
+            free(a);
+            free(b);
+        }
+    SECTION("a prefixed SVG element keeps its prefix in both tags, converted or not")
+    {
+        conica_svg_doc *doc;
+        char *a;
+        s.convert_shapes = 1;
+        a = process_write(prefixed_doc, strlen(prefixed_doc), &s, &r1, 0);
+        REQUIRE_EQ(r1, CONICA_OK);
+        CHECK(strstr(a, "<svg:path d=\"M0 0L") != NULL);
+        CHECK(strstr(a, "<path") == NULL);
+        CHECK(strstr(a, "</svg:rect>") == NULL);
+        CHECK(strstr(a, "<svg:g><svg:path d=\"M7 5L") != NULL);
+        /* and it is XML again */
+        doc = NULL;
+        CHECK(conica_svg_doc_load(a, strlen(a), NULL, &doc, NULL) == CONICA_OK);
+        conica_svg_doc_free(doc);
+        free(a);
+    }
+    SECTION("a document processed before: the second pass over the first one's values")
+    {
+        char *a = process_write(shapes_doc, strlen(shapes_doc), &s, &r1, 1);
+        char *b = process_save(shapes_doc, strlen(shapes_doc), &s, &r2, 2);
+        REQUIRE_EQ(r1, CONICA_OK);
+        REQUIRE_EQ(r2, CONICA_OK);
+        CHECK_STR_EQ(a, b);
+        free(a);
+        free(b);
+    }
+    SECTION("UTF-16, which the byte scan cannot read, is written by libxml2 as before")
+    {
+        const char *t = "<svg xmlns=\"http://www.w3.org/2000/svg\"><path d=\"M0 0Q1 2 2 0\"/>"
+                        "</svg>";
+        size_t n = strlen(t), k;
+        char *u = malloc(2 * n + 2), *a, *b;
+        REQUIRE(u != NULL);
+        u[0] = '\xff';
+        u[1] = '\xfe';
+        for (k = 0; k < n; k++) {
+            u[2 + 2 * k] = t[k];
+            u[3 + 2 * k] = '\0';
+        }
+        a = process_write(u, 2 * n + 2, &s, &r1, 0);
+        b = process_save(u, 2 * n + 2, &s, &r2, 1);
+        REQUIRE_EQ(r1, CONICA_OK);
+        REQUIRE_EQ(r2, CONICA_OK);
+        CHECK_STR_EQ(a, b);
+        CHECK(strstr(a, "d=\"M0 0L") != NULL);
+        free(a);
+        free(b);
+        free(u);
+    }
+    SECTION("a failure is the one conica_svg_process() reports")
+    {
+        char *a;
+        s.limits.max_points = 40;
+        a = process_write(shapes_doc, strlen(shapes_doc), &s, &r1, 0);
+        free(process_save(shapes_doc, strlen(shapes_doc), &s, &r2, 1));
+        CHECK_EQ(r1, CONICA_ERR_LIMIT);
+        CHECK_EQ(r2, CONICA_ERR_LIMIT);
+        free(a);
+    }
+}
