@@ -4,7 +4,8 @@
  * on-curve vertices each (10^6 vertices; half the segments straight, half
  * cubic with exact tangents) goes through svgsmooth's pipeline in process:
  * XML parse, path parse + geometry + path writing (conica_svg_process,
- * which splits its own time), XML save. Modes: smoothing with 3 levels and
+ * which splits its own time), XML save; then as svgsmooth itself runs it,
+ * processed and written in one pass (conica_svg_process_write). Modes: smoothing with 3 levels and
  * flattening within 0.01 units. Prints figures, asserts nothing.
  *
  *   build/bench/bench_svg [--write FILE] [SUBPATHS [VERTICES]]
@@ -143,6 +144,47 @@ static int run(const char *label, const text *doc, const conica_svg_settings *s)
     return 0;
 }
 
+/* svgsmooth's own path, end to end: the document loaded from a buffer it
+ * takes over, then processed and written in one pass
+ * (conica_svg_process_write) into a temporary file. CPU seconds (user +
+ * system) of the whole, and the file's size. */
+static int run_stream(const char *label, const text *doc, const conica_svg_settings *s)
+{
+    conica_svg_doc *d = NULL;
+    conica_status st;
+    char *buf = malloc(doc->n);
+    FILE *f = tmpfile();
+    double t0, t;
+    long size;
+    if (!buf || !f) {
+        fprintf(stderr, "bench_svg: out of memory or no temporary file\n");
+        free(buf);
+        if (f)
+            fclose(f);
+        return 1;
+    }
+    memcpy(buf, doc->s, doc->n);
+    t0 = now();
+    if (conica_svg_doc_load_owned(buf, doc->n, &s->limits, &d, &st) != CONICA_OK) {
+        fprintf(stderr, "bench_svg: load: %s\n", st.message);
+        free(buf);
+        fclose(f);
+        return 1;
+    }
+    if (conica_svg_process_write(d, s, NULL, f, &st) != CONICA_OK || fflush(f) != 0) {
+        fprintf(stderr, "bench_svg: %s: %s\n", label, st.message);
+        conica_svg_doc_free(d);
+        fclose(f);
+        return 1;
+    }
+    conica_svg_doc_free(d);
+    t = now() - t0;
+    size = ftell(f);
+    fclose(f);
+    printf("%-34s %11.1f %9.3f\n", label, (double)size / 1e6, t);
+    return 0;
+}
+
 /* The 20 000-point circle through conica_path and through conica_subdivide
  * alone: CPU seconds (best of 3) and points of each. */
 static int samples_run(void)
@@ -211,7 +253,7 @@ int main(int argc, char **argv)
 {
     const char *write_to = NULL;
     size_t nsub, nv;
-    conica_svg_settings s = conica_svg_defaults();
+    conica_svg_settings modes[2];
     text doc;
     int rc = 0;
     if (argc == 2 && !strcmp(argv[1], "--samples"))
@@ -240,12 +282,17 @@ int main(int argc, char **argv)
     printf("SVG layer = XML parse + path parse/write + XML save; ratio = SVG layer / geometry\n\n");
     printf("%-22s %10s %10s %11s %8s %8s %8s %9s %8s %6s\n", "mode", "vertices", "points",
            "out MB", "XML in", "path I/O", "XML out", "geometry", "total s", "ratio");
-    s.levels = 3;
-    rc |= run("smooth --levels 3", &doc, &s);
-    s = conica_svg_defaults();
-    s.mode = CONICA_SVG_FLATTEN;
-    s.tolerance = 0.01;
-    rc |= run("flatten --tolerance .01", &doc, &s);
+    modes[0] = modes[1] = conica_svg_defaults();
+    modes[0].levels = 3;
+    modes[1].mode = CONICA_SVG_FLATTEN;
+    modes[1].tolerance = 0.01;
+    rc |= run("smooth --levels 3", &doc, &modes[0]);
+    rc |= run("flatten --tolerance .01", &doc, &modes[1]);
+    printf("\nas svgsmooth runs it: load, then process and write in one pass to a file\n"
+           "(conica_svg_process_write), CPU s user + system\n\n");
+    printf("%-34s %11s %9s\n", "mode", "out MB", "CPU s");
+    rc |= run_stream("smooth --levels 3, streamed", &doc, &modes[0]);
+    rc |= run_stream("flatten --tolerance .01, streamed", &doc, &modes[1]);
     free(doc.s);
     rc |= samples_run();
     return rc;

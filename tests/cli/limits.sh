@@ -252,6 +252,28 @@ refused 1 "path 'R': path data exceeds the limit of 10 bytes \(--max-path-bytes\
 refused 1 'path data exceeds the limit of 8388608 bytes \(--max-path-bytes\)' "$tmp/o.svg" \
     "$svgsmooth" -o "$tmp/o.svg" "$tmp/path9m.svg"
 
+begin_case "svgsmooth writes each element as it goes: a later failure leaves the output as it was"
+# The first paths are written into the temporary before the budget runs out
+# on the last one: the run fails naming it, the existing output keeps its
+# bytes and no temporary is left beside it.
+mkdir -p "$tmp/stream"
+{
+    printf '<svg xmlns="http://www.w3.org/2000/svg">\n'
+    for i in 1 2 3; do
+        printf '<path id="p%s" d="M0 0C1 2 3 4 5 5S9 1 10 0"/>\n' "$i"
+    done
+    printf '<path id="big" d="M0 0C1 2 3 4 5 5S9 1 10 0S19 1 20 0S29 1 30 0S39 1 40 0S49 1 50 0"/>\n</svg>\n'
+} >"$tmp/stream/in.svg"
+printf 'keep me\n' >"$tmp/stream/out.svg"
+check_exit 0 "without a budget the document is written (3 x 73 + 201 points)" \
+    "$svgsmooth" --levels 3 --stats -o "$tmp/stream/ok.svg" "$tmp/stream/in.svg"
+check_grep ' 4 elements, .* 420 output points' "$err" "four paths, 420 points"
+check_exit 1 "exit 1 with a budget the last path exceeds" \
+    "$svgsmooth" --levels 3 --max-points 350 -o "$tmp/stream/out.svg" "$tmp/stream/in.svg"
+check_grep "in\.svg:5: .*path 'big'.*--max-points" "$err" "the message names the file, line and path"
+check_true "the output keeps its bytes" sh -c "test \"\$(cat '$tmp/stream/out.svg')\" = 'keep me'"
+check_true "no temporary left" sh -c "test \$(ls -A '$tmp/stream' | wc -l) -eq 3"
+
 begin_case "stdin: the size cap applies to a pipe too"
 check_exit 1 "svgsmooth refuses a large stdin" \
     sh -c "cat '$ex/traced-leaf.svg' | '$svgsmooth' --max-input-bytes 200 -"
