@@ -5,8 +5,9 @@
  * cubic with exact tangents) goes through svgsmooth's pipeline in process:
  * XML parse, path parse + geometry + path writing (conica_svg_process,
  * which splits its own time), XML save; then as svgsmooth itself runs it,
- * processed and written in one pass (conica_svg_process_write). Modes: smoothing with 3 levels and
- * flattening within 0.01 units. Prints figures, asserts nothing.
+ * processed and written in one pass (conica_svg_process_write). Modes:
+ * smoothing with 3 levels and flattening within 0.01 units. Prints
+ * figures, asserts nothing.
  *
  *   build/bench/bench_svg [--write FILE] [SUBPATHS [VERTICES]]
  *   build/bench/bench_svg --samples     (the samples run below alone)

@@ -1996,7 +1996,6 @@ conica_code conica_svg_extract(const conica_svg_doc *doc, const conica_svg_setti
     return CONICA_OK;
 }
 
-/* `points` list of a polygon/polyline from its (single) subpath. */
 /* Append a `points` list to *b ("x,y x,y ..."); 0 when out of memory. */
 static int format_points(conica_svg__buf *b, const conica_svg_subpath *sp, size_t nsp,
                          int precision)

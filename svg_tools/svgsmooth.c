@@ -145,8 +145,9 @@ static int smooth_file(void *ctx, const char *in, const char *out_path)
 {
     const run_opts *ro = ctx;
     conica_svg_settings set = ro->set;
-    conica_svg_stats stats;
+    conica_svg_stats stats, *want;
     conica_svg_doc *doc = NULL;
+    conica_code prc;
     conica_status st;
     warn_ctx wc;
     char *buf = NULL;
@@ -173,40 +174,34 @@ static int smooth_file(void *ctx, const char *in, const char *out_path)
     buf = NULL;
     t_io += now() - t0;
     t0 = now();
-    /* a file (not stdout): opened first, so that each element's new path
-     * data goes out as soon as it is made (into the temporary, which a
-     * failure removes) instead of all of it held in memory */
-    if (out_path && strcmp(out_path, "-") != 0 && cli_output_open(PROG, out_path, &out))
+    /* opened first: a file gets each element's new path data as soon as it
+     * is made (into the temporary, which a failure removes) instead of all
+     * of it held in memory; stdout and devices get the document once all
+     * of it succeeded */
+    if (cli_output_open(PROG, out_path, &out))
         goto done;
     t_io += now() - t0;
     /* the CPU clock is a system call: read it only when asked to report */
-    if (out.tmp) {
-        if (conica_svg_process_write(doc, &set, ro->want_stats ? &stats : NULL, out.f, &st) !=
-            CONICA_OK) {
-            int write_error = ferror(out.f);
-            cli_output_abort(&out);
-            if (write_error)
-                cli_error(PROG, out_path, "%s", st.message);
-            else
-                fail_status(wc.name, &st);
-            goto done;
-        }
-        t0 = now();
-    } else {
-        if (conica_svg_process(doc, &set, ro->want_stats ? &stats : NULL, &st) != CONICA_OK) {
-            cli_output_abort(&out);
+    want = ro->want_stats ? &stats : NULL;
+    if (out.tmp)
+        prc = conica_svg_process_write(doc, &set, want, out.f, &st);
+    else
+        prc = conica_svg_process(doc, &set, want, &st);
+    if (prc != CONICA_OK) {
+        int write_error = out.tmp && ferror(out.f);
+        cli_output_abort(&out);
+        if (write_error)
+            cli_error(PROG, out_path, "%s", st.message);
+        else
             fail_status(wc.name, &st);
-            goto done;
-        }
-        t0 = now();
-        if (!out.f && cli_output_open(PROG, out_path, &out))
-            goto done;
-        /* serialised straight into the output */
-        if (conica_svg_doc_write(doc, out.f, &st) != CONICA_OK) {
-            cli_output_abort(&out);
-            cli_error(PROG, out_path ? out_path : "<stdout>", "%s", st.message);
-            goto done;
-        }
+        goto done;
+    }
+    t0 = now();
+    /* the two-step path: serialised straight into the output */
+    if (!out.tmp && conica_svg_doc_write(doc, out.f, &st) != CONICA_OK) {
+        cli_output_abort(&out);
+        cli_error(PROG, out_path ? out_path : "<stdout>", "%s", st.message);
+        goto done;
     }
     if (cli_output_commit(PROG, &out))
         goto done;
