@@ -1,10 +1,7 @@
 /* SPDX-License-Identifier: MIT */
 /* scadprofile: smooth, exact 2D profiles as OpenSCAD modules.
  *
- *   scadprofile [--levels K | --tolerance T] [--fit F] [--module NAME]
- *               [--units U] [--extrude H | --rotate-extrude [ANGLE]]
- *               [--demo-call | --no-demo-call] [--select IDS]
- *               [--force] [--stats] [-o OUT.scad] IN
+ *   scadprofile [OPTION]... [-o OUT.scad] IN     (options: the table below)
  *
  * IN is a point-normal file (`v`/`vn`, refined by conic subdivision), an SVG
  * document (every closed subpath of the selected elements) or a spline file
@@ -20,6 +17,7 @@
 
 #include "cli.h"
 #include "cli_batch.h"
+#include "cli_opt.h"
 #include "conica/curve.h"
 #include "conica/subdiv.h"
 #include "conica_scad.h"
@@ -74,6 +72,8 @@ typedef struct options {
     size_t ninputs;
     int out_arg;
     int jobs;           /* -j N, 0: not given */
+    char **argv0;       /* the command line in the order typed */
+    int out_attached;   /* -o's value is part of its argument (-oDIR/, --output=DIR/) */
 } options;
 
 typedef struct stats {
@@ -85,78 +85,135 @@ typedef struct stats {
     double seconds;
 } stats;
 
-static void usage(FILE *f)
-{
-    fputs("Usage: " PROG " [--levels K | --tolerance T] [--fit F] [--module NAME]\n"
-          "                   [--units U] [--extrude H | --rotate-extrude [ANGLE]]\n"
-          "                   [--demo-call | --no-demo-call] [--select IDS] [--force]\n"
-          "                   [--stats] [-o OUT.scad] IN\n"
-          "       " PROG " [OPTION]... [-j N] IN... -o DIR/\n"
-          "Write a 2D profile as an OpenSCAD library file: module NAME(center=false)\n"
-          "(a polygon with holes; center=true centres its bounding box on the origin),\n"
-          "functions NAME_points(), NAME_paths(), NAME_bbox() = [[xmin,ymin],[xmax,ymax]],\n"
-          "plus NAME_extruded(height, center) / NAME_revolved(angle) when asked. The\n"
-          "file has no top-level geometry, so `use <OUT.scad>` and `include <OUT.scad>`\n"
-          "both work, then e.g. `linear_extrude(3) NAME();`.\n"
-          "\n"
-          "IN: a point-normal file (`v x y` / `vn nx ny`, refined by conic subdivision),\n"
-          "    an SVG file (every closed subpath of the selected elements; y flipped),\n"
-          "    or a spline file (.spl, through the adaptive plotter); - reads stdin.\n"
-          "\n"
-          "  --tolerance T     largest distance between the polygon and the curve, in\n"
-          "                    output units (default 0.01); fewest points that meet it.\n"
-          "                    Numbers are written with the fewest digits that keep each\n"
-          "                    point within T/1000 (inside T); the input's own numbers\n"
-          "                    (corners, straight edges) stay exact when that is cheap\n"
-          "  --levels K        subdivide exactly K levels instead (0..30); every point\n"
-          "                    is kept and written exactly (round-trip decimals)\n"
-          "  --flatten-only    keep the input geometry: only flatten curves (SVG, .spl)\n"
-          "  --fit F           which side of each curve the polygon keeps to (SVG input;\n"
-          "                    point-normal and spline input: inside only):\n"
-          "                      inside     vertices on the curve, chords inside: every\n"
-          "                                 contour at most as large as drawn (default)\n"
-          "                      outside    chords on or outside: every contour, outline\n"
-          "                                 or hole, at least as large as drawn\n"
-          "                      middle     chords straddle the curve: fewest points\n"
-          "                                 (smooth closed contours; others as inside)\n"
-          "                      clearance  outlines inside, holes outside: the part is\n"
-          "                                 never larger than drawn, its holes never\n"
-          "                                 smaller\n"
-          "  --module NAME     module name (default: the input file's name made into an\n"
-          "                    identifier, e.g. bracket-v2.svg -> bracket_v2, with a\n"
-          "                    warning when it had to be changed; stdin: profile)\n",
-          f);
-    fputs("  --units U         SVG only: output units px, mm (default) or in; 96 px per\n"
-          "                    inch, the document's viewBox/width/height honoured\n"
-          "  --demo-call       end the file with a top-level call of NAME() (or of the\n"
-          "                    wrapper below) so that it renders alone\n"
-          "  --extrude H       also emit NAME_extruded(height=H, center=false); implies\n"
-          "                    --demo-call (the file renders the solid alone)\n"
-          "  --rotate-extrude [ANGLE]  also emit NAME_revolved(angle=ANGLE, default 360),\n"
-          "                    implies --demo-call; the profile must not have x < 0\n"
-          "  --no-demo-call    no top-level call even with --extrude / --rotate-extrude\n"
-          "  --select IDS      SVG only: comma-separated element ids (default: all)\n"
-          "  --max-points N    cap on the dense points of one curve (default 4194304)\n"
-          "  --max-input-bytes N   input size cap (default 256 MiB, SVG 64 MiB, or the\n"
-          "                        environment variable CONICA_MAX_INPUT_BYTES)\n"
-          CONICA_SVG_CLI_LIMITS_HELP
-          "  --force           write even if validation fails (warnings instead of errors;\n"
-          "                    coordinates beyond +-1e12 are refused all the same)\n"
-          "  --stats           figures on stderr\n"
-          "  -o FILE           output (default stdout; written via a temporary file)\n"
-          "  -o DIR/           several inputs (or a name ending in '/'): one DIR/NAME.scad\n"
-          "                    per input, module names from the file names\n"
-          "  -j, --jobs N      inputs processed in parallel (1..256, default: the number\n"
-          "                    of processors); one summary line, exit 1 if any failed\n"
-          "  -h, --help        this help;  --version  version\n"
-          "\n"
-          "Subpaths that enclose no area (fewer than 3 points, all on one line) are\n"
-          "skipped with a warning; messages name a subpath as the SVG does: the element\n"
-          "(id or tag) and line, and the subpath's number within the element from 1.\n"
-          "\n"
-          "Exit status: 0 success, 1 error (nothing written), 2 usage error.\n",
-          f);
-}
+enum {
+    OPT_MODULE = CLI_OPT_LONG,
+    OPT_FIT,
+    OPT_DEMO_CALL,
+    OPT_NO_DEMO_CALL,
+    OPT_UNITS,
+    OPT_EXTRUDE,
+    OPT_REVOLVE,
+    OPT_SELECT,
+    OPT_MAX_POINTS,
+    OPT_MAX_INPUT,
+    OPT_FLATTEN_ONLY,
+    OPT_FORCE,
+    OPT_STATS,
+    OPT_LIMITS, /* CONICA_SVG_CLI_LIMIT_COUNT ids from here */
+};
+
+static const cli_opt opts[] = {
+    {'t', "tolerance", CLI_ARG_REQUIRED, "T", NULL,
+     "largest distance between the polygon and the\n"
+     "curve, in output units (default %g); fewest points\n"
+     "that meet it. Numbers are written with the fewest\n"
+     "digits that keep each point within T/1000 (inside\n"
+     "T); the input's own numbers (corners, straight\n"
+     "edges) stay exact when that is cheap",
+     {DEFAULT_TOLERANCE, 0, 0}},
+    {'k', "levels", CLI_ARG_REQUIRED, "K", NULL,
+     "subdivide exactly K levels instead (0..%.0f); every\n"
+     "point is kept and written exactly (round-trip\n"
+     "decimals)",
+     {CONICA_SUBDIV_MAX_LEVELS, 0, 0}},
+    {OPT_FLATTEN_ONLY, "flatten-only", CLI_ARG_NONE, NULL, NULL,
+     "keep the input geometry: only flatten curves (SVG,\n.spl)", {0, 0, 0}},
+    {OPT_FIT, "fit", CLI_ARG_REQUIRED, "F", "inside|outside|middle|clearance",
+     "which side of each curve the polygon keeps to (SVG\n"
+     "input; point-normal and spline input: inside only):\n"
+     "  inside     vertices on the curve, chords inside:\n"
+     "             every contour at most as large as\n"
+     "             drawn (default)\n"
+     "  outside    chords on or outside: every contour,\n"
+     "             outline or hole, at least as large\n"
+     "  middle     chords straddle the curve: fewest\n"
+     "             points (smooth closed contours;\n"
+     "             others as inside)\n"
+     "  clearance  outlines inside, holes outside: the\n"
+     "             part is never larger than drawn, its\n"
+     "             holes never smaller",
+     {0, 0, 0}},
+    {OPT_MODULE, "module", CLI_ARG_REQUIRED, "NAME", NULL,
+     "module name (default: the input file's name made\n"
+     "into an identifier, e.g. bracket-v2.svg ->\n"
+     "bracket_v2, with a warning when it had to be\n"
+     "changed; stdin: profile)",
+     {0, 0, 0}},
+    {OPT_UNITS, "units", CLI_ARG_REQUIRED, "U", "px|mm|in",
+     "SVG only: output units px, mm (default) or in; 96\n"
+     "px per inch, the document's viewBox/width/height\n"
+     "honoured",
+     {0, 0, 0}},
+    {OPT_DEMO_CALL, "demo-call", CLI_ARG_NONE, NULL, NULL,
+     "end the file with a top-level call of NAME() (or of\n"
+     "the wrapper below) so that it renders alone",
+     {0, 0, 0}},
+    {OPT_EXTRUDE, "extrude", CLI_ARG_REQUIRED, "H", NULL,
+     "also emit NAME_extruded(height=H, center=false);\n"
+     "implies --demo-call (the file renders the solid\n"
+     "alone)",
+     {0, 0, 0}},
+    {OPT_REVOLVE, "rotate-extrude", CLI_ARG_OPTIONAL, "ANGLE", NULL,
+     "also emit NAME_revolved(angle=ANGLE, default 360),\n"
+     "implies --demo-call; the profile must not have\n"
+     "x < 0 (the angle may follow as the next argument)",
+     {0, 0, 0}},
+    {OPT_NO_DEMO_CALL, "no-demo-call", CLI_ARG_NONE, NULL, NULL,
+     "no top-level call even with --extrude /\n--rotate-extrude", {0, 0, 0}},
+    {OPT_SELECT, "select", CLI_ARG_REQUIRED, "IDS", NULL,
+     "SVG only: comma-separated element ids (default:\nall)", {0, 0, 0}},
+    {OPT_MAX_POINTS, "max-points", CLI_ARG_REQUIRED, "N", NULL,
+     "cap on the dense points of one curve (default\n%.0f)",
+     {(double)CONICA_SCAD_DEFAULT_MAX_DENSE, 0, 0}},
+    {OPT_MAX_INPUT, "max-input-bytes", CLI_ARG_REQUIRED, "N", NULL,
+     "input size cap (default 256 MiB, SVG 64 MiB, or\n"
+     "the environment variable CONICA_MAX_INPUT_BYTES)",
+     {0, 0, 0}},
+    CONICA_SVG_CLI_LIMIT_OPTS(OPT_LIMITS),
+    {OPT_FORCE, "force", CLI_ARG_NONE, NULL, NULL,
+     "write even if validation fails (warnings instead\n"
+     "of errors; coordinates beyond +-1e12 are refused\n"
+     "all the same)",
+     {0, 0, 0}},
+    {OPT_STATS, "stats", CLI_ARG_NONE, NULL, NULL, "figures on stderr", {0, 0, 0}},
+    {'o', "output", CLI_ARG_REQUIRED, "FILE", "file",
+     "output (default stdout; written via a temporary\n"
+     "file); a name ending in '/' (or several inputs): a\n"
+     "directory, one DIR/NAME.scad per input, module\n"
+     "names from the file names",
+     {0, 0, 0}},
+    {'j', "jobs", CLI_ARG_REQUIRED, "N", NULL,
+     "inputs processed in parallel (1..%.0f, default: the\n"
+     "number of processors); one summary line, exit 1 if\n"
+     "any failed",
+     {CLI_BATCH_MAX_JOBS, 0, 0}},
+    {0, NULL, 0, NULL, NULL, NULL, {0, 0, 0}},
+};
+
+static const cli_tool tool = {
+    PROG,
+    "[OPTION]... [-o OUT.scad] IN\n"
+    "[OPTION]... [-j N] IN... -o DIR/",
+    "Write a 2D profile as an OpenSCAD library file: module NAME(center=false)\n"
+    "(a polygon with holes; center=true centres its bounding box on the origin),\n"
+    "functions NAME_points(), NAME_paths(), NAME_bbox() = [[xmin,ymin],[xmax,ymax]],\n"
+    "plus NAME_extruded(height, center) / NAME_revolved(angle) when asked. The\n"
+    "file has no top-level geometry, so `use <OUT.scad>` and `include <OUT.scad>`\n"
+    "both work, then e.g. `linear_extrude(3) NAME();`.\n"
+    "\n"
+    "IN: a point-normal file (`v x y` / `vn nx ny`, refined by conic subdivision),\n"
+    "    an SVG file (every closed subpath of the selected elements; y flipped),\n"
+    "    or a spline file (.spl, through the adaptive plotter); - reads stdin.\n",
+    opts,
+    "Subpaths that enclose no area (fewer than 3 points, all on one line) are\n"
+    "skipped with a warning; messages name a subpath as the SVG does: the element\n"
+    "(id or tag) and line, and the subpath's number within the element from 1.\n"
+    "\n"
+    "Exit status: 0 success, 1 error (nothing written), 2 usage error.\n",
+    "file",
+    0,
+    NULL,
+};
 
 static int is_number(const char *s)
 {
@@ -164,15 +221,120 @@ static int is_number(const char *s)
     return s && cli_parse_double(s, &d) == 0;
 }
 
+/* One option's value into *o; returns -1 to go on, or an exit status. */
+static int take_option(cli_parser *p, int c, void *ctx)
+{
+    options *o = ctx;
+    const char *v = p->arg;
+    long l;
+    switch (c) {
+    case 'k':
+        if (cli_parse_int(v, 0, CONICA_SUBDIV_MAX_LEVELS, &l) != 0)
+            return cli_usage_error(PROG, "--levels needs an integer in 0..%d, not '%s'",
+                                   CONICA_SUBDIV_MAX_LEVELS, v);
+        o->levels = (int)l;
+        break;
+    case 't':
+        if (cli_parse_double(v, &o->tolerance) != 0 || !(o->tolerance > 0))
+            return cli_usage_error(PROG, "--tolerance needs a number > 0, not '%s'", v);
+        break;
+    case OPT_MODULE: {
+        const char *why = conica_scad_name_problem(v);
+        if (why)
+            return cli_usage_error(PROG,
+                                   "--module '%.80s' is %s; use a name like 'profile' "
+                                   "([A-Za-z_][A-Za-z0-9_]*, at most %d characters)",
+                                   v, why, CONICA_SCAD_MAX_MODULE_NAME);
+        o->module = v;
+        o->module_given = 1;
+        break;
+    }
+    case OPT_FIT: {
+        int found = 0;
+        for (int f = 0; f < 4; f++)
+            if (strcmp(v, fit_names[f]) == 0) {
+                o->fit = (fit)f;
+                found = 1;
+            }
+        if (!found)
+            return cli_usage_error(PROG,
+                                   "--fit must be inside, outside, middle or clearance, not '%s'",
+                                   v);
+        break;
+    }
+    case OPT_DEMO_CALL: o->demo_call = 1; break;
+    case OPT_NO_DEMO_CALL: o->demo_call = 0; break;
+    case OPT_UNITS:
+        if (strcmp(v, "px") == 0)
+            o->unit = U_PX;
+        else if (strcmp(v, "mm") == 0)
+            o->unit = U_MM;
+        else if (strcmp(v, "in") == 0)
+            o->unit = U_IN;
+        else
+            return cli_usage_error(PROG, "--units must be px, mm or in, not '%s'", v);
+        break;
+    case OPT_EXTRUDE:
+        if (cli_parse_double(v, &o->height) != 0 || !(o->height > 0))
+            return cli_usage_error(PROG, "--extrude needs a height > 0, not '%s'", v);
+        o->extrude = 1;
+        break;
+    case OPT_REVOLVE:
+        /* the angle as --rotate-extrude=A, or the next argument when it is a number */
+        if (!v)
+            v = cli_opt_optional_next(p, is_number);
+        if (v && (cli_parse_double(v, &o->angle) != 0 || !(o->angle > 0 && o->angle <= 360)))
+            return cli_usage_error(PROG, "--rotate-extrude angle must be in (0, 360], not '%s'",
+                                   v);
+        o->revolve = 1;
+        break;
+    case OPT_SELECT: o->select = v; break;
+    case OPT_MAX_POINTS:
+        if (cli_parse_int(v, 16, (long)CONICA_SCAD_MAX_POINTS, &l) != 0)
+            return cli_usage_error(PROG, "--max-points needs an integer in 16..%zu",
+                                   (size_t)CONICA_SCAD_MAX_POINTS);
+        o->max_points = (size_t)l;
+        break;
+    case OPT_FLATTEN_ONLY: o->flatten_only = 1; break;
+    case OPT_FORCE: o->force = 1; break;
+    case OPT_STATS: o->stats = 1; break;
+    case 'o':
+        o->out = v;
+        /* which argument holds the value: the header of each file of a
+         * batch repeats the command with the value replaced */
+        for (int i = 1; i < p->argc; i++)
+            if (v >= o->argv0[i] && v < o->argv0[i] + strlen(o->argv0[i]) + 1) {
+                o->out_arg = i;
+                o->out_attached = v != o->argv0[i];
+            }
+        break;
+    case 'j':
+        if (cli_parse_int(v, 1, CLI_BATCH_MAX_JOBS, &l) != 0)
+            return cli_opt_bad(p, "needs a whole number in 1..%d", CLI_BATCH_MAX_JOBS);
+        o->jobs = (int)l;
+        break;
+    default: /* --max-input-bytes and the XML limits */
+        if (conica_svg__cli_limit(PROG, p->spelled, v, &o->limits) != 1)
+            return CLI_EXIT_USAGE;
+        o->max_input_given |= c == OPT_MAX_INPUT;
+        break;
+    }
+    return -1;
+}
+
 static int parse_args(int argc, char **argv, options *o, int *exit_now)
 {
-    long l;
+    int first, rc;
     memset(o, 0, sizeof *o);
     o->out_arg = -1;
-    /* the inputs point into argv: at most argc of them */
+    *exit_now = 0;
+    /* the inputs point into argv: at most argc of them; argv0 keeps the
+     * order as typed (getopt_long moves the operands to the end) */
     o->inputs = malloc((size_t)argc * sizeof *o->inputs);
-    if (!o->inputs)
+    o->argv0 = malloc(((size_t)argc + 1) * sizeof *o->argv0);
+    if (!o->inputs || !o->argv0)
         return cli_error(PROG, NULL, "out of memory");
+    memcpy(o->argv0, argv, ((size_t)argc + 1) * sizeof *argv);
     o->levels = -1;
     o->module = "profile";
     o->fit = FIT_INSIDE;
@@ -181,128 +343,12 @@ static int parse_args(int argc, char **argv, options *o, int *exit_now)
     o->angle = 360;
     o->max_points = CONICA_SCAD_DEFAULT_MAX_DENSE;
     o->limits = conica_svg_limits_defaults();
-    *exit_now = 0;
-    for (int i = 1; i < argc; i++) {
-        const char *a = argv[i];
-        const char *next = i + 1 < argc ? argv[i + 1] : NULL;
-        int lr;
-#define NEED_ARG()                                                                         \
-    do {                                                                                   \
-        if (!next)                                                                         \
-            return cli_usage_error(PROG, "%s needs an argument", a);                       \
-        i++;                                                                               \
-    } while (0)
-        if (strcmp(a, "-h") == 0 || strcmp(a, "--help") == 0) {
-            usage(stdout);
-            *exit_now = 1;
-            return 0;
-        } else if (strcmp(a, "--version") == 0) {
-            *exit_now = 1;
-            return cli_version(PROG);
-        } else if (strcmp(a, "--levels") == 0 || strcmp(a, "-k") == 0) {
-            NEED_ARG();
-            if (cli_parse_int(next, 0, CONICA_SUBDIV_MAX_LEVELS, &l) != 0)
-                return cli_usage_error(PROG, "--levels needs an integer in 0..%d, not '%s'",
-                                       CONICA_SUBDIV_MAX_LEVELS, next);
-            o->levels = (int)l;
-        } else if (strcmp(a, "--tolerance") == 0 || strcmp(a, "-t") == 0) {
-            NEED_ARG();
-            if (cli_parse_double(next, &o->tolerance) != 0 || !(o->tolerance > 0))
-                return cli_usage_error(PROG, "--tolerance needs a number > 0, not '%s'", next);
-        } else if (strcmp(a, "--module") == 0) {
-            NEED_ARG();
-            const char *why = conica_scad_name_problem(next);
-            if (why)
-                return cli_usage_error(PROG,
-                                       "--module '%.80s' is %s; use a name like 'profile' "
-                                       "([A-Za-z_][A-Za-z0-9_]*, at most %d characters)",
-                                       next, why, CONICA_SCAD_MAX_MODULE_NAME);
-            o->module = next;
-            o->module_given = 1;
-        } else if (strcmp(a, "--fit") == 0) {
-            NEED_ARG();
-            int found = 0;
-            for (int f = 0; f < 4; f++)
-                if (strcmp(next, fit_names[f]) == 0) {
-                    o->fit = (fit)f;
-                    found = 1;
-                }
-            if (!found)
-                return cli_usage_error(PROG,
-                                       "--fit must be inside, outside, middle or clearance, "
-                                       "not '%s'",
-                                       next);
-        } else if (strcmp(a, "--demo-call") == 0) {
-            o->demo_call = 1;
-        } else if (strcmp(a, "--no-demo-call") == 0) {
-            o->demo_call = 0;
-        } else if (strcmp(a, "--units") == 0) {
-            NEED_ARG();
-            if (strcmp(next, "px") == 0)
-                o->unit = U_PX;
-            else if (strcmp(next, "mm") == 0)
-                o->unit = U_MM;
-            else if (strcmp(next, "in") == 0)
-                o->unit = U_IN;
-            else
-                return cli_usage_error(PROG, "--units must be px, mm or in, not '%s'", next);
-        } else if (strcmp(a, "--extrude") == 0) {
-            NEED_ARG();
-            if (cli_parse_double(next, &o->height) != 0 || !(o->height > 0))
-                return cli_usage_error(PROG, "--extrude needs a height > 0, not '%s'", next);
-            o->extrude = 1;
-        } else if (strcmp(a, "--rotate-extrude") == 0 ||
-                   strncmp(a, "--rotate-extrude=", 17) == 0) {
-            const char *v = a[16] == '=' ? a + 17 : (is_number(next) ? next : NULL);
-            if (v) {
-                if (v == next)
-                    i++;
-                if (cli_parse_double(v, &o->angle) != 0 || !(o->angle > 0 && o->angle <= 360))
-                    return cli_usage_error(PROG, "--rotate-extrude angle must be in (0, 360], not '%s'", v);
-            }
-            o->revolve = 1;
-        } else if (strcmp(a, "--select") == 0) {
-            NEED_ARG();
-            o->select = next;
-        } else if (strcmp(a, "--max-points") == 0) {
-            NEED_ARG();
-            if (cli_parse_int(next, 16, (long)CONICA_SCAD_MAX_POINTS, &l) != 0)
-                return cli_usage_error(PROG, "--max-points needs an integer in 16..%zu",
-                                       (size_t)CONICA_SCAD_MAX_POINTS);
-            o->max_points = (size_t)l;
-        } else if ((lr = conica_svg__cli_limit(PROG, a, next, &o->limits)) != 0) {
-            if (lr < 0)
-                return CLI_EXIT_USAGE;
-            o->max_input_given |= strcmp(a, "--max-input-bytes") == 0;
-            i++;
-        } else if (strcmp(a, "--flatten-only") == 0) {
-            o->flatten_only = 1;
-        } else if (strcmp(a, "--force") == 0) {
-            o->force = 1;
-        } else if (strcmp(a, "--stats") == 0) {
-            o->stats = 1;
-        } else if (strcmp(a, "-o") == 0 || strcmp(a, "--output") == 0) {
-            NEED_ARG();
-            if (!*next)
-                return cli_usage_error(PROG, "%s needs a file name", a);
-            o->out = next;
-            o->out_arg = i;
-        } else if (strcmp(a, "-j") == 0 || strcmp(a, "--jobs") == 0) {
-            NEED_ARG();
-            if (cli_parse_int(next, 1, CLI_BATCH_MAX_JOBS, &l) != 0)
-                return cli_usage_error(PROG, "%s needs a whole number in 1..%d", a,
-                                       CLI_BATCH_MAX_JOBS);
-            o->jobs = (int)l;
-        } else if (strcmp(a, "--") == 0) {
-            while (i + 1 < argc)
-                o->inputs[o->ninputs++] = argv[++i];
-        } else if (a[0] == '-' && a[1] != '\0') {
-            return cli_usage_error(PROG, "unknown option '%s'", a);
-        } else {
-            o->inputs[o->ninputs++] = argv[i];
-        }
-#undef NEED_ARG
+    if ((rc = cli_opt_parse(&tool, argc, argv, take_option, o, &first)) >= 0) {
+        *exit_now = 1;
+        return rc;
     }
+    for (int i = first; i < argc; i++)
+        o->inputs[o->ninputs++] = argv[i];
     if (o->ninputs == 0)
         return cli_usage_error(PROG, "no input file");
     o->in = o->inputs[0];
@@ -1248,7 +1294,7 @@ fail:
 static char **file_command(int argc, char **argv, const options *o, const char *in,
                            const char *out, int *n)
 {
-    char **v = malloc(((size_t)argc + 1) * sizeof *v);
+    char **v = malloc(((size_t)argc + 2) * sizeof *v);
     size_t k = 0;
     if (!v)
         return NULL;
@@ -1258,6 +1304,8 @@ static char **file_command(int argc, char **argv, const options *o, const char *
             is_input = o->inputs[j] == argv[i];
         if (is_input || (strcmp(argv[i], "--") == 0 && i > 0))
             continue;
+        if (i == o->out_arg && o->out_attached)
+            v[k++] = (char *)"-o"; /* -oDIR/ or --output=DIR/: -o FILE */
         v[k++] = i == o->out_arg ? (char *)out : argv[i];
     }
     v[k++] = (char *)in;
@@ -1288,6 +1336,7 @@ int main(int argc, char **argv)
 
     if ((rc = parse_args(argc, argv, &o, &exit_now)) != 0 || exit_now) {
         free(o.inputs);
+        free(o.argv0);
         return rc;
     }
     if (o.ninputs > 1 || (o.out && o.out[strlen(o.out) - 1] == '/')) {
@@ -1300,7 +1349,7 @@ int main(int argc, char **argv)
         spec.out_ext = ".scad";
         bc.o = &o;
         bc.argc = argc;
-        bc.argv = argv;
+        bc.argv = o.argv0;
         cli_batch_init(&b);
         rc = cli_batch_plan(PROG, o.inputs, o.ninputs, &spec, &b);
         if (rc == 0)
@@ -1311,9 +1360,10 @@ int main(int argc, char **argv)
         run_ctx r;
         r.o = &o;
         r.argc = argc;
-        r.argv = argv;
+        r.argv = o.argv0;
         rc = profile_file(&r, o.in, o.out);
     }
     free(o.inputs);
+    free(o.argv0);
     return rc;
 }

@@ -5,19 +5,30 @@
 #ifndef CONICA_SVG_CLI_H
 #define CONICA_SVG_CLI_H
 
+#include "cli_opt.h"
 #include "conica_svg.h"
 
-/* Help lines for --max-depth, --max-elements, --max-path-bytes,
- * --max-attributes and --max-namespaces
- * (--max-input-bytes is described by each tool: its default differs). */
-#define CONICA_SVG_CLI_LIMITS_HELP                                                           \
-    "  --max-depth N         XML element nesting cap (default 256; above 256 libxml2's\n"    \
-    "                        own caps are lifted: XML_PARSE_HUGE)\n"                         \
-    "  --max-elements N      XML element cap (default 1048576)\n"                            \
-    "  --max-path-bytes N    cap on one d/points attribute (default 8 MiB)\n"              \
-    "  --max-attributes N    cap on the attributes of one element (default 256)\n"         \
-    "  --max-namespaces N    cap on the xmlns declarations in scope at one element\n"       \
-    "                        (its own and its ancestors', default 64)\n"
+/* Option-table entries (cli_opt.h) for --max-depth, --max-elements,
+ * --max-path-bytes, --max-attributes and --max-namespaces with ids
+ * first..first+4, in a tool's table (--max-input-bytes is described by
+ * each tool: its default differs). Their values go through
+ * conica_svg__cli_limit() with the option's full name. */
+#define CONICA_SVG_CLI_LIMIT_OPTS(first)                                                       \
+    {(first), "max-depth", CLI_ARG_REQUIRED, "N", NULL,                                        \
+     "XML element nesting cap (default 256; above 256\n"                                       \
+     "libxml2's own caps are lifted: XML_PARSE_HUGE)",                                          \
+     {0, 0, 0}},                                                                               \
+        {(first) + 1, "max-elements", CLI_ARG_REQUIRED, "N", NULL,                             \
+         "XML element cap (default 1048576)", {0, 0, 0}},                                      \
+        {(first) + 2, "max-path-bytes", CLI_ARG_REQUIRED, "N", NULL,                           \
+         "cap on one d/points attribute (default 8 MiB)", {0, 0, 0}},                          \
+        {(first) + 3, "max-attributes", CLI_ARG_REQUIRED, "N", NULL,                           \
+         "cap on the attributes of one element (default 256)", {0, 0, 0}},                     \
+        {(first) + 4, "max-namespaces", CLI_ARG_REQUIRED, "N", NULL,                           \
+         "cap on the xmlns declarations in scope at one\n"                                     \
+         "element (its own and its ancestors', default 64)",                                   \
+         {0, 0, 0}}
+#define CONICA_SVG_CLI_LIMIT_COUNT 5
 
 /* If flag is --max-input-bytes, --max-depth, --max-elements,
  * --max-path-bytes, --max-attributes or --max-namespaces, read value (a

@@ -9,67 +9,116 @@
 
 #include "cli.h"
 #include "cli_batch.h"
+#include "cli_opt.h"
 #include "conica_svg.h"
 #include "svg_cli.h"
 
 #define PROG "svgsmooth"
 #define MAX_SELECT 4096 /* ids in one --select list */
 
-static const char usage_text[] =
-    "Usage: svgsmooth [OPTION]... IN [-o OUT]\n"
-    "       svgsmooth [OPTION]... FILE... -o DIR/\n"
-    "       svgsmooth [OPTION]... --in-place FILE...\n"
-    "       svgsmooth -r [OPTION]... DIR... (-o OUTDIR/ | --in-place)\n"
+enum {
+    OPT_FIDELITY = CLI_OPT_LONG,
+    OPT_CORNER,
+    OPT_LINES,
+    OPT_SIMPLIFY,
+    OPT_FLATTEN,
+    OPT_PRECISION,
+    OPT_SELECT,
+    OPT_SHAPES,
+    OPT_STATS,
+    OPT_IN_PLACE,
+    OPT_MAX_INPUT,
+    OPT_MAX_POINTS,
+    OPT_LIMITS, /* CONICA_SVG_CLI_LIMIT_COUNT ids from here */
+};
+
+static const cli_opt opts[] = {
+    {'k', "levels", CLI_ARG_REQUIRED, "K", NULL,
+     "subdivision levels, 0..30 (default 4; 0 writes the\nvertices)", {0, 0, 0}},
+    {'t', "tolerance", CLI_ARG_REQUIRED, "T", NULL,
+     "smoothing: the fewest levels (per piece) whose\n"
+     "chords stay within T user units of the smoothed\n"
+     "curve; with --flatten: maximum distance from the\n"
+     "drawn curve",
+     {0, 0, 0}},
+    {OPT_FIDELITY, "fidelity", CLI_ARG_REQUIRED, "T", NULL,
+     "largest distance of the smoothed curve from the\n"
+     "drawn one, user units (default 1e-3 of each\n"
+     "subpath's bounding-box diagonal)",
+     {0, 0, 0}},
+    {OPT_CORNER, "corner-angle", CLI_ARG_REQUIRED, "DEG", NULL,
+     "tangent turn that makes a corner (default 40; 180\ndisables corners)", {0, 0, 0}},
+    {OPT_LINES, "lines-as-samples", CLI_ARG_NONE, NULL, NULL,
+     "smooth through the vertices of subpaths made only\n"
+     "of straight segments (traced outlines); by default\n"
+     "straight segments stay straight",
+     {0, 0, 0}},
+    {OPT_SIMPLIFY, "simplify", CLI_ARG_REQUIRED, "T", NULL,
+     "before smoothing traced outlines (polygons,\n"
+     "polylines, paths of straight segments), keep the\n"
+     "fewest vertices whose smoothed curve passes within\n"
+     "T user units of every vertex; corners kept",
+     {0, 0, 0}},
+    {OPT_FLATTEN, "flatten", CLI_ARG_NONE, NULL, NULL,
+     "flatten curves within --tolerance (required) with\n"
+     "the guaranteed adaptive plotter; straight segments\n"
+     "stay",
+     {0, 0, 0}},
+    {OPT_PRECISION, "precision", CLI_ARG_REQUIRED, "N", NULL,
+     "significant digits written (1..17, default 7)", {0, 0, 0}},
+    {OPT_SELECT, "select", CLI_ARG_REQUIRED, "IDS", NULL,
+     "only the elements with these ids or inside groups\n"
+     "with these ids (comma separated)",
+     {0, 0, 0}},
+    {OPT_SHAPES, "convert-shapes", CLI_ARG_NONE, NULL, NULL,
+     "also rect, circle, ellipse, line (rewritten as\npaths)", {0, 0, 0}},
+    {OPT_STATS, "stats", CLI_ARG_NONE, NULL, NULL, "counts and CPU seconds on stderr", {0, 0, 0}},
+    {OPT_IN_PLACE, "in-place", CLI_ARG_NONE, NULL, NULL,
+     "replace each input (through a temporary file)", {0, 0, 0}},
+    {'o', "output", CLI_ARG_REQUIRED, "OUT", "file",
+     "output file (default stdout); with a name ending in\n"
+     "'/', or a directory with several inputs or -r: the\n"
+     "directory the outputs go to, named as the inputs",
+     {0, 0, 0}},
+    {'r', "recursive", CLI_ARG_NONE, NULL, NULL,
+     "inputs may be directories: every *.svg under them,\n"
+     "the tree mirrored under -o DIR/ (or --in-place)",
+     {0, 0, 0}},
+    {'j', "jobs", CLI_ARG_REQUIRED, "N", NULL,
+     "files processed in parallel (1..%.0f, default: the\n"
+     "number of processors); each file runs on its own",
+     {CLI_BATCH_MAX_JOBS, 0, 0}},
+    {OPT_MAX_INPUT, "max-input-bytes", CLI_ARG_REQUIRED, "N", NULL,
+     "document size cap (default 64 MiB)", {0, 0, 0}},
+    CONICA_SVG_CLI_LIMIT_OPTS(OPT_LIMITS),
+    {OPT_MAX_POINTS, "max-points", CLI_ARG_REQUIRED, "N", NULL,
+     "cap on output points in the document (default\n67108864)", {0, 0, 0}},
+    {0, NULL, 0, NULL, NULL, NULL, {0, 0, 0}},
+};
+
+static const cli_tool tool = {
+    PROG,
+    "[OPTION]... IN [-o OUT]\n"
+    "[OPTION]... FILE... -o DIR/\n"
+    "[OPTION]... --in-place FILE...\n"
+    "-r [OPTION]... DIR... (-o OUTDIR/ | --in-place)",
     "Smooth the outlines of an SVG file (paths, polylines, polygons) with\n"
     "conic-preserving subdivision that stays within --fidelity of the drawn\n"
     "curves: corners stay sharp, straight segments straight, arcs and conics\n"
     "exact; polygon and polyline vertices are interpolated. Or flatten every\n"
     "curve to a polyline within a tolerance. Everything else in the document\n"
     "is kept as it is.\n"
-    "IN and OUT may be '-' for stdin/stdout.\n"
-    "\n"
-    "  --levels K          subdivision levels (default 4; 0 writes the vertices)\n"
-    "  --tolerance T       smoothing: the fewest levels (per piece) whose chords\n"
-    "                      stay within T user units of the smoothed curve; with\n"
-    "                      --flatten: maximum distance from the drawn curve\n"
-    "  --fidelity T        largest distance of the smoothed curve from the drawn\n"
-    "                      one, user units (default 1e-3 of each subpath's\n"
-    "                      bounding-box diagonal)\n"
-    "  --corner-angle DEG  tangent turn that makes a corner (default 40; 180\n"
-    "                      disables corners)\n"
-    "  --lines-as-samples  smooth through the vertices of subpaths made only of\n"
-    "                      straight segments (traced outlines); by default\n"
-    "                      straight segments stay straight\n"
-    "  --simplify T        before smoothing traced outlines (polygons, polylines,\n"
-    "                      paths of straight segments), keep the fewest vertices\n"
-    "                      whose smoothed curve passes within T user units of\n"
-    "                      every vertex; corners kept\n"
-    "  --flatten           flatten curves within --tolerance (required) with the\n"
-    "                      guaranteed adaptive plotter; straight segments stay\n"
-    "  --precision N       significant digits written (1..17, default 7)\n"
-    "  --select IDS        only the elements with these ids or inside groups with\n"
-    "                      these ids (comma separated)\n"
-    "  --convert-shapes    also rect, circle, ellipse, line (rewritten as paths)\n"
-    "  --stats             counts and CPU seconds on stderr\n"
-    "  --in-place          replace each input (through a temporary file)\n"
-    "  -o OUT              output file (default stdout); with a name ending in\n"
-    "                      '/', or a directory with several inputs or -r: the\n"
-    "                      directory the outputs go to, named as the inputs\n"
-    "  -r, --recursive     inputs may be directories: every *.svg under them,\n"
-    "                      the tree mirrored under -o DIR/ (or --in-place)\n"
-    "  -j, --jobs N        files processed in parallel (1..256, default: the\n"
-    "                      number of processors); each file runs on its own\n"
-    "  --max-input-bytes N   document size cap (default 64 MiB)\n"
-    CONICA_SVG_CLI_LIMITS_HELP
-    "  --max-points N        cap on output points in the document (default 67108864)\n"
-    "  --help              this text\n"
-    "  --version           the version\n"
-    "\n"
+    "IN and OUT may be '-' for stdin/stdout.\n",
+    opts,
     "Several files: one error line per failed file, one summary line on stderr;\n"
     "every other file is still written. At most 1048576 files in one call.\n"
     "\n"
     "Exit status: 0 ok (warnings included), 1 error (output untouched; several\n"
-    "files: some failed), 2 usage.\n";
+    "files: some failed), 2 usage.\n",
+    "svg",
+    0,
+    NULL,
+};
 
 static double now(void)
 {
@@ -219,122 +268,111 @@ done:
     return rc;
 }
 
+/* What the command line asks for, as parsed (checked together in main). */
+typedef struct cmdline {
+    run_opts *ro;
+    const char *out_path, *select;
+    int have_levels, have_tol, flatten, in_place, recurse, jobs;
+} cmdline;
+
+/* One option's value into *ctx; returns -1 to go on, or an exit status. */
+static int take_option(cli_parser *p, int c, void *ctx)
+{
+    cmdline *cl = ctx;
+    conica_svg_settings *setp = &cl->ro->set;
+    const char *v = p->arg;
+    long x;
+    double d;
+    switch (c) {
+    case 'k':
+        if (cli_parse_int(v, 0, 30, &x))
+            return cli_opt_bad(p, "needs a whole number in 0..30, not '%s'", v);
+        setp->levels = (int)x;
+        cl->have_levels = 1;
+        break;
+    case 't':
+        if (cli_parse_double(v, &d) || !(d > 0.0))
+            return cli_opt_bad(p, "needs a number > 0, not '%s'", v);
+        setp->tolerance = d;
+        cl->have_tol = 1;
+        break;
+    case OPT_FIDELITY:
+    case OPT_SIMPLIFY:
+        if (cli_parse_double(v, &d) || !(d > 0.0) || !(d < 1e300))
+            return cli_opt_bad(p, "needs a number > 0, not '%s'", v);
+        *(c == OPT_FIDELITY ? &setp->fidelity : &setp->simplify) = d;
+        break;
+    case OPT_LINES: setp->lines_as_samples = 1; break;
+    case OPT_CORNER:
+        if (cli_parse_double(v, &d) || !(d >= 0.0 && d <= 180.0))
+            return cli_opt_bad(p, "needs degrees in 0..180, not '%s'", v);
+        setp->corner_angle_deg = d;
+        break;
+    case OPT_PRECISION:
+        if (cli_parse_int(v, 1, 17, &x))
+            return cli_opt_bad(p, "needs a whole number in 1..17, not '%s'", v);
+        setp->precision = (int)x;
+        break;
+    case OPT_SELECT: cl->select = v; break;
+    case OPT_FLATTEN: cl->flatten = 1; break;
+    case OPT_SHAPES: setp->convert_shapes = 1; break;
+    case OPT_STATS: cl->ro->want_stats = 1; break;
+    case OPT_IN_PLACE: cl->in_place = 1; break;
+    case 'r': cl->recurse = 1; break;
+    case 'j':
+        if (cli_parse_int(v, 1, CLI_BATCH_MAX_JOBS, &x))
+            return cli_opt_bad(p, "needs a whole number in 1..%d, not '%s'", CLI_BATCH_MAX_JOBS, v);
+        cl->jobs = (int)x;
+        break;
+    case 'o':
+        cl->out_path = v;
+        break;
+    case OPT_MAX_POINTS:
+        if (size_arg(p->spelled, v, &setp->limits.max_points))
+            return CLI_EXIT_USAGE;
+        break;
+    default: /* --max-input-bytes and the XML limits */
+        if (conica_svg__cli_limit(PROG, p->spelled, v, &setp->limits) != 1)
+            return CLI_EXIT_USAGE;
+        break;
+    }
+    return -1;
+}
+
 int main(int argc, char **argv)
 {
     run_opts ro;
     conica_svg_settings *setp = &ro.set;
-    const char *out_path = NULL, **ids = NULL;
+    const char *out_path, **ids = NULL;
     char *sel = NULL, **inputs;
     size_t nids = 0, nin = 0;
-    int i, have_levels = 0, have_tol = 0, flatten = 0, in_place = 0, recurse = 0, rc;
-    int jobs = 0;
+    int i, first, have_levels, have_tol, flatten, in_place, recurse, rc, jobs;
+    cmdline cl;
 
     memset(&ro, 0, sizeof ro);
     ro.set = conica_svg_defaults();
+    memset(&cl, 0, sizeof cl);
+    cl.ro = &ro;
+    if ((rc = cli_opt_parse(&tool, argc, argv, take_option, &cl, &first)) >= 0)
+        return rc;
+    out_path = cl.out_path;
+    have_levels = cl.have_levels;
+    have_tol = cl.have_tol;
+    flatten = cl.flatten;
+    in_place = cl.in_place;
+    recurse = cl.recurse;
+    jobs = cl.jobs;
     /* the input names, in order: at most argc of them */
     inputs = malloc((size_t)argc * sizeof *inputs);
-    if (!inputs)
+    sel = cl.select ? strdup(cl.select) : NULL; /* split_ids() writes into it */
+    if (!inputs || (cl.select && !sel)) {
+        free(inputs);
+        free(sel);
         return cli_error(PROG, NULL, "out of memory");
-#define USAGE_FAIL(...) do { free(sel); free(inputs); return cli_usage_error(PROG, __VA_ARGS__); } while (0)
-    for (i = 1; i < argc; i++) {
-        const char *a = argv[i];
-        const char *v = i + 1 < argc ? argv[i + 1] : NULL;
-        long x;
-        double d;
-        int lr;
-        if (!strcmp(a, "--help") || !strcmp(a, "-h")) {
-            fputs(usage_text, stdout);
-            free(sel);
-            free(inputs);
-            return 0;
-        } else if (!strcmp(a, "--version")) {
-            free(sel);
-            free(inputs);
-            return cli_version("svgsmooth");
-        } else if (!strcmp(a, "--levels")) {
-            if (!v || cli_parse_int(v, 0, 30, &x))
-                USAGE_FAIL("--levels needs a whole number in 0..30");
-            setp->levels = (int)x;
-            have_levels = 1;
-            i++;
-        } else if (!strcmp(a, "--tolerance")) {
-            if (!v || cli_parse_double(v, &d) || !(d > 0.0))
-                USAGE_FAIL("--tolerance needs a number > 0");
-            setp->tolerance = d;
-            have_tol = 1;
-            i++;
-        } else if (!strcmp(a, "--fidelity")) {
-            if (!v || cli_parse_double(v, &d) || !(d > 0.0) || !(d < 1e300))
-                USAGE_FAIL("--fidelity needs a number > 0");
-            setp->fidelity = d;
-            i++;
-        } else if (!strcmp(a, "--lines-as-samples")) {
-            setp->lines_as_samples = 1;
-        } else if (!strcmp(a, "--simplify")) {
-            if (!v || cli_parse_double(v, &d) || !(d > 0.0) || !(d < 1e300))
-                USAGE_FAIL("--simplify needs a number > 0");
-            setp->simplify = d;
-            i++;
-        } else if (!strcmp(a, "--corner-angle")) {
-            if (!v || cli_parse_double(v, &d) || !(d >= 0.0 && d <= 180.0))
-                USAGE_FAIL("--corner-angle needs degrees in 0..180");
-            setp->corner_angle_deg = d;
-            i++;
-        } else if (!strcmp(a, "--precision")) {
-            if (!v || cli_parse_int(v, 1, 17, &x))
-                USAGE_FAIL("--precision needs a whole number in 1..17");
-            setp->precision = (int)x;
-            i++;
-        } else if (!strcmp(a, "--select")) {
-            if (!v)
-                USAGE_FAIL("--select needs a list of ids");
-            free(sel);
-            sel = strdup(v);
-            if (!sel) {
-                free(inputs);
-                return cli_error(PROG, NULL, "out of memory");
-            }
-            i++;
-        } else if (!strcmp(a, "--flatten")) {
-            flatten = 1;
-        } else if (!strcmp(a, "--convert-shapes")) {
-            setp->convert_shapes = 1;
-        } else if (!strcmp(a, "--stats")) {
-            ro.want_stats = 1;
-        } else if (!strcmp(a, "--in-place")) {
-            in_place = 1;
-        } else if (!strcmp(a, "-r") || !strcmp(a, "--recursive")) {
-            recurse = 1;
-        } else if (!strcmp(a, "-j") || !strcmp(a, "--jobs")) {
-            if (!v || cli_parse_int(v, 1, CLI_BATCH_MAX_JOBS, &x))
-                USAGE_FAIL("%s needs a whole number in 1..%d", a, CLI_BATCH_MAX_JOBS);
-            jobs = (int)x;
-            i++;
-        } else if (!strcmp(a, "-o")) {
-            if (!v || !*v)
-                USAGE_FAIL("-o needs a file name");
-            out_path = v;
-            i++;
-        } else if ((lr = conica_svg__cli_limit(PROG, a, v, &setp->limits)) != 0) {
-            if (lr < 0) {
-                free(sel);
-                free(inputs);
-                return CLI_EXIT_USAGE;
-            }
-            i++;
-        } else if (!strcmp(a, "--max-points")) {
-            if (size_arg(a, v, &setp->limits.max_points)) {
-                free(sel);
-                free(inputs);
-                return CLI_EXIT_USAGE;
-            }
-            i++;
-        } else if (a[0] == '-' && a[1] != '\0') {
-            USAGE_FAIL("unknown option '%s'", a);
-        } else {
-            inputs[nin++] = argv[i];
-        }
     }
+#define USAGE_FAIL(...) do { free(sel); free(inputs); return cli_usage_error(PROG, __VA_ARGS__); } while (0)
+    for (i = first; i < argc; i++)
+        inputs[nin++] = argv[i];
     if (nin == 0)
         USAGE_FAIL("no input file (use '-' for stdin)");
     if (have_levels && have_tol)

@@ -10,6 +10,7 @@
 #include <string.h>
 
 #include "cli.h"
+#include "cli_opt.h"
 #include "conica/curve.h"
 #include "conica/subdiv.h"
 #include "plotsvg.h"
@@ -19,34 +20,103 @@
 #define COMBS_MAX_WIDTH 20000.0
 
 static const char *const prog = "conica";
-static const char *const usage_prog = "conica combs";
 
-static void usage(FILE *f)
+enum { OPT_SCALE = CLI_OPT_LONG, OPT_OPEN, OPT_CLOSED, OPT_SIGNED, OPT_MAX_TEETH, OPT_WIDTH,
+       OPT_STATS };
+
+static const cli_opt opts[] = {
+    {'k', "levels", CLI_ARG_REQUIRED, "K", NULL, "subdivision levels (default %.0f, max %.0f)",
+     {COMBS_DEFAULT_LEVELS, CONICA_SUBDIV_MAX_LEVELS, 0}},
+    {OPT_SCALE, "scale", CLI_ARG_REQUIRED, "S", NULL,
+     "tooth length per unit curvature (default: the\n"
+     "largest tooth is %.0f%% of the curve's size, not\n"
+     "counting the top 2%% of teeth, which are cut at\n"
+     "twice that length)",
+     {PLOTSVG_COMB_FRACTION * 100.0, 0, 0}},
+    {OPT_OPEN, "open", CLI_ARG_NONE, NULL, NULL, "the curve is open", {0, 0, 0}},
+    {OPT_CLOSED, "closed", CLI_ARG_NONE, NULL, NULL, "the curve is closed (default)", {0, 0, 0}},
+    {OPT_SIGNED, "signed", CLI_ARG_NONE, NULL, NULL,
+     "flip teeth to the other side where the curve\n"
+     "bends towards its normal (shows inflections);\n"
+     "default: unsigned 1/R",
+     {0, 0, 0}},
+    {OPT_MAX_TEETH, "max-teeth", CLI_ARG_REQUIRED, "N", NULL,
+     "draw at most N teeth (default %.0f; every vertex\n"
+     "still shapes the comb outline)",
+     {PLOTSVG_DEFAULT_MAX_TEETH, 0, 0}},
+    {OPT_WIDTH, "width", CLI_ARG_REQUIRED, "PX", NULL, "picture width, 100..%.0f (default %.0f)",
+     {COMBS_MAX_WIDTH, COMBS_DEFAULT_WIDTH, 0}},
+    {OPT_STATS, "stats", CLI_ARG_NONE, NULL, NULL,
+     "print points, curvature range and scale to stderr", {0, 0, 0}},
+    {'o', "output", CLI_ARG_REQUIRED, "OUT.svg", "file",
+     "output file (default stdout); written atomically", {0, 0, 0}},
+    {0, NULL, 0, NULL, NULL, NULL, {0, 0, 0}},
+};
+
+static const cli_tool tool = {
+    "conica combs",
+    "[OPTION]... IN",
+    "Subdivide the point-normal curve IN (`v x y` / `vn nx ny` lines, '-' = stdin)\n"
+    "and draw its curvature comb as SVG: control polygon dashed, subdivided curve,\n"
+    "a tooth of length S*kappa along the unit normal at every vertex (kappa from\n"
+    "the circle through three consecutive points, the CONIS paper's Code 3), tips\n"
+    "joined.\n",
+    opts,
+    "Exit status: 0 success, 1 error (nothing is written), 2 usage error.\n",
+    "file",
+    0,
+    NULL,
+};
+
+typedef struct combs_opts {
+    long levels, max_teeth;
+    double scale, width;
+    int closed, signed_comb, stats;
+    const char *in_path, *out_path;
+} combs_opts;
+
+/* One option's value into *o; returns -1 to go on, or an exit status. */
+static int take_option(cli_parser *p, int c, void *ctx)
 {
-    fprintf(f,
-            "usage: conica combs [-k LEVELS] [--scale S] [--open|--closed] [--signed]\n"
-            "                    [--max-teeth N] [--width PX] [--stats] [-o OUT.svg] IN\n"
-            "\n"
-            "Subdivide the point-normal curve IN (`v x y` / `vn nx ny` lines, '-' = stdin)\n"
-            "and draw its curvature comb as SVG: control polygon dashed, subdivided curve,\n"
-            "a tooth of length S*kappa along the unit normal at every vertex (kappa from\n"
-            "the circle through three consecutive points, the CONIS paper's Code 3), tips\n"
-            "joined.\n"
-            "\n"
-            "  -k LEVELS      subdivision levels (default %d, max %d)\n"
-            "  --scale S      tooth length per unit curvature (default: the largest tooth\n"
-            "                 is %.0f%% of the curve's size, not counting the top 2%% of\n"
-            "                 teeth, which are cut at twice that length)\n"
-            "  --open         the curve is open; --closed (default) joins last to first\n"
-            "  --signed       flip teeth to the other side where the curve bends towards\n"
-            "                 its normal (shows inflections); default: unsigned 1/R\n"
-            "  --max-teeth N  draw at most N teeth (default %d; every vertex still shapes\n"
-            "                 the comb outline)\n"
-            "  --width PX     picture width (default %.0f)\n"
-            "  --stats        print points, curvature range and scale to stderr\n"
-            "  -o OUT.svg     output file (default stdout); written atomically\n",
-            COMBS_DEFAULT_LEVELS, CONICA_SUBDIV_MAX_LEVELS, PLOTSVG_COMB_FRACTION * 100.0,
-            PLOTSVG_DEFAULT_MAX_TEETH, COMBS_DEFAULT_WIDTH);
+    combs_opts *o = ctx;
+    const char *v = p->arg;
+    switch (c) {
+    case OPT_OPEN: o->closed = 0; break;
+    case OPT_CLOSED: o->closed = 1; break;
+    case OPT_SIGNED: o->signed_comb = 1; break;
+    case OPT_STATS: o->stats = 1; break;
+    case 'k':
+        if (cli_parse_int(v, 0, CONICA_SUBDIV_MAX_LEVELS, &o->levels))
+            return cli_opt_bad(p, "wants an integer 0..%d, got '%s'", CONICA_SUBDIV_MAX_LEVELS, v);
+        break;
+    case OPT_SCALE:
+        if (cli_parse_double(v, &o->scale) || !(o->scale > 0.0))
+            return cli_opt_bad(p, "wants a positive number, got '%s'", v);
+        break;
+    case OPT_MAX_TEETH:
+        if (cli_parse_int(v, 0, PLOTSVG_MAX_TEETH_LIMIT, &o->max_teeth))
+            return cli_opt_bad(p, "wants an integer 0..%d, got '%s'", PLOTSVG_MAX_TEETH_LIMIT, v);
+        break;
+    case OPT_WIDTH:
+        if (cli_parse_double(v, &o->width) || !(o->width >= 100.0) || o->width > COMBS_MAX_WIDTH)
+            return cli_opt_bad(p, "wants 100..%.0f px, got '%s'", COMBS_MAX_WIDTH, v);
+        break;
+    case 'o':
+        o->out_path = v;
+        break;
+    default:
+        return cli_opt_bad(p, "is not handled"); /* a table entry without a case */
+    }
+    return -1;
+}
+
+/* Returns -1 to go on, or an exit status. */
+static int parse_args(int argc, char **argv, combs_opts *o)
+{
+    int first, rc;
+    if ((rc = cli_opt_parse(&tool, argc, argv, take_option, o, &first)) >= 0)
+        return rc;
+    return cli_opt_one_operand(&tool, argc, argv, first, 1, &o->in_path);
 }
 
 extern const char conica_cmd_combs_summary[];
@@ -54,54 +124,22 @@ const char conica_cmd_combs_summary[] = "curvature comb of a point-normal curve,
 int conica_cmd_combs(int argc, char **argv);
 int conica_cmd_combs(int argc, char **argv)
 {
-    long levels = COMBS_DEFAULT_LEVELS, max_teeth = PLOTSVG_DEFAULT_MAX_TEETH;
-    double scale = 0.0, width = COMBS_DEFAULT_WIDTH;
-    int closed = 1, signed_comb = 0, stats = 0, rc = CLI_EXIT_ERROR;
-    const char *in_path = NULL, *out_path = NULL;
+    combs_opts a = {COMBS_DEFAULT_LEVELS, PLOTSVG_DEFAULT_MAX_TEETH, 0.0, COMBS_DEFAULT_WIDTH,
+                    1, 0, 0, NULL, NULL};
+    int rc = parse_args(argc, argv, &a);
     conica_curve in, out;
     conica_subdiv_settings set = conica_subdiv_defaults();
     conica_status st;
     double *kappa = NULL, *tips = NULL;
     cli_output o = {0};
+    long levels = a.levels, max_teeth = a.max_teeth;
+    double scale = a.scale, width = a.width;
+    int closed = a.closed, signed_comb = a.signed_comb, stats = a.stats;
+    const char *in_path = a.in_path, *out_path = a.out_path;
 
-    for (int i = 1; i < argc; i++) {
-        const char *a = argv[i];
-        int has_next = i + 1 < argc;
-        if (!strcmp(a, "-h") || !strcmp(a, "--help")) {
-            usage(stdout);
-            return CLI_EXIT_OK;
-        } else if (!strcmp(a, "-k") && has_next) {
-            if (cli_parse_int(argv[++i], 0, CONICA_SUBDIV_MAX_LEVELS, &levels))
-                return cli_usage_error(usage_prog, "-k wants an integer 0..%d, got '%s'",
-                                       CONICA_SUBDIV_MAX_LEVELS, argv[i]);
-        } else if (!strcmp(a, "--scale") && has_next) {
-            if (cli_parse_double(argv[++i], &scale) || !(scale > 0.0))
-                return cli_usage_error(usage_prog, "--scale wants a positive number, got '%s'",
-                                       argv[i]);
-        } else if (!strcmp(a, "--max-teeth") && has_next) {
-            if (cli_parse_int(argv[++i], 0, PLOTSVG_MAX_TEETH_LIMIT, &max_teeth))
-                return cli_usage_error(usage_prog, "--max-teeth wants an integer 0..%d, got '%s'",
-                                       PLOTSVG_MAX_TEETH_LIMIT, argv[i]);
-        } else if (!strcmp(a, "--width") && has_next) {
-            if (cli_parse_double(argv[++i], &width) || !(width >= 100.0) ||
-                width > COMBS_MAX_WIDTH)
-                return cli_usage_error(usage_prog, "--width wants 100..%.0f px, got '%s'",
-                                       COMBS_MAX_WIDTH, argv[i]);
-        } else if (!strcmp(a, "-o") && has_next) {
-            out_path = argv[++i];
-            if (!*out_path)
-                return cli_usage_error(usage_prog, "-o needs a file name");
-        } else if (!strcmp(a, "--signed")) {
-            signed_comb = 1;
-        } else if (!strcmp(a, "--stats")) {
-            stats = 1;
-        } else if (plotsvg_common_arg(usage_prog, a, has_next, &closed, &in_path)) {
-            return CLI_EXIT_USAGE;
-        }
-    }
-    if (!in_path)
-        return cli_usage_error(usage_prog, "no input file (a file name, or - for standard input)");
-
+    if (rc >= 0)
+        return rc;
+    rc = CLI_EXIT_ERROR;
     conica_curve_init(&in);
     conica_curve_init(&out);
     if (plotsvg_load_curve(prog, in_path, closed, &in))

@@ -10,6 +10,7 @@
 #include <string.h>
 
 #include "cli.h"
+#include "cli_opt.h"
 #include "conica/curve.h"
 #include "conica/subdiv.h"
 #include "plotsvg.h"
@@ -20,30 +21,45 @@
 #define ERRORS_MAX_LEVEL 20
 
 static const char *const prog = "conica";
-static const char *const usage_prog = "conica errors";
 
-static void usage(FILE *f)
-{
-    fprintf(f,
-            "usage: conica errors [-k MAX] [--conic Q20,Q02,Q11,Q10,Q01,Q00]\n"
-            "                     [--variant base|norm-skip|final|precise] [--open|--closed]\n"
-            "                     [--plot OUT.svg] IN\n"
-            "\n"
-            "For every level k = 0..MAX (default %d, at most %d), subdivide IN and print\n"
-            "n_k, the conic error E, E_max (CONIS paper, eqs. (13)-(14), with --conic)\n"
-            "and the mean / max angle in degrees between the scheme's normals and normals\n"
-            "estimated from the points.\n"
-            "\n"
-            "  --conic ...  the conic of eq. (3), coefficients in its order:\n"
-            "               f = Q20 x^2 + Q02 y^2 + 2 Q11 xy + 2 Q10 x + 2 Q01 y + Q00\n"
-            "               (circle x^2+y^2=25: --conic 1,1,0,0,0,-25)\n"
-            "  --variant V  numerics of the CONIS paper, Sec. 3.2: base (normals normalised each level,\n"
-            "               plain quadratic formula), norm-skip, final (default), precise\n"
-            "               (long double)\n"
-            "  --open       the curve is open; --closed (default)\n"
-            "  --plot F     also draw the table as an SVG chart (log-scale y)\n",
-            ERRORS_DEFAULT_MAX, ERRORS_MAX_LEVEL);
-}
+enum { OPT_CONIC = CLI_OPT_LONG, OPT_VARIANT, OPT_OPEN, OPT_CLOSED, OPT_PLOT };
+
+static const cli_opt opts[] = {
+    {'k', "levels", CLI_ARG_REQUIRED, "MAX", NULL,
+     "the last level measured (default %.0f, at most %.0f)",
+     {ERRORS_DEFAULT_MAX, ERRORS_MAX_LEVEL, 0}},
+    {OPT_CONIC, "conic", CLI_ARG_REQUIRED, "Q20,Q02,Q11,Q10,Q01,Q00", NULL,
+     "the conic of eq. (3), coefficients in its order:\n"
+     "f = Q20 x^2 + Q02 y^2 + 2 Q11 xy + 2 Q10 x\n"
+     "    + 2 Q01 y + Q00\n"
+     "(circle x^2+y^2=25: --conic 1,1,0,0,0,-25)",
+     {0, 0, 0}},
+    {OPT_VARIANT, "variant", CLI_ARG_REQUIRED, "V", "base|norm-skip|final|precise",
+     "numerics of the CONIS paper, Sec. 3.2: base\n"
+     "(normals normalised each level, plain quadratic\n"
+     "formula), norm-skip, final (default), precise\n"
+     "(long double)",
+     {0, 0, 0}},
+    {OPT_OPEN, "open", CLI_ARG_NONE, NULL, NULL, "the curve is open", {0, 0, 0}},
+    {OPT_CLOSED, "closed", CLI_ARG_NONE, NULL, NULL, "the curve is closed (default)", {0, 0, 0}},
+    {OPT_PLOT, "plot", CLI_ARG_REQUIRED, "OUT.svg", "file",
+     "also draw the table as an SVG chart (log-scale y)", {0, 0, 0}},
+    {0, NULL, 0, NULL, NULL, NULL, {0, 0, 0}},
+};
+
+static const cli_tool tool = {
+    "conica errors",
+    "[OPTION]... IN",
+    "For every level k = 0..MAX, subdivide IN ('-' = stdin) and print n_k, the\n"
+    "conic error E, E_max (CONIS paper, eqs. (13)-(14), with --conic) and the\n"
+    "mean / max angle in degrees between the scheme's normals and normals\n"
+    "estimated from the points.\n",
+    opts,
+    "Exit status: 0 success, 1 error (nothing is printed), 2 usage error.\n",
+    "file",
+    0,
+    NULL,
+};
 
 /* Six comma-separated numbers, no locale. */
 static int parse_conic(const char *s, plotsvg_conic *q)
@@ -121,55 +137,74 @@ static int write_plot(const char *path, const char *in_path, const char *variant
     return 0;
 }
 
+/* What the options set. */
+typedef struct errors_opts {
+    long kmax;
+    int closed, have_conic;
+    const char *plot_path, *variant;
+    plotsvg_conic q;
+    conica_subdiv_settings set;
+} errors_opts;
+
+/* One option's value into *o; returns -1 to go on, or an exit status. */
+static int take_option(cli_parser *p, int c, void *ctx)
+{
+    errors_opts *o = ctx;
+    const char *v = p->arg;
+    switch (c) {
+    case OPT_OPEN: o->closed = 0; break;
+    case OPT_CLOSED: o->closed = 1; break;
+    case 'k':
+        if (cli_parse_int(v, 0, ERRORS_MAX_LEVEL, &o->kmax))
+            return cli_opt_bad(p, "wants an integer 0..%d, got '%s'", ERRORS_MAX_LEVEL, v);
+        break;
+    case OPT_CONIC:
+        if (parse_conic(v, &o->q))
+            return cli_opt_bad(p, "wants six numbers Q20,Q02,Q11,Q10,Q01,Q00, got '%s'", v);
+        /* the error of eq. (13) divides by the gradient: with only Q00
+         * left the gradient is 0 everywhere and there is no curve */
+        if (o->q.q20 == 0 && o->q.q02 == 0 && o->q.q11 == 0 && o->q.q10 == 0 && o->q.q01 == 0)
+            return cli_opt_bad(p, "'%s' is not a curve: Q20, Q02, Q11, Q10 and Q01 are all zero",
+                               v);
+        o->have_conic = 1;
+        break;
+    case OPT_VARIANT:
+        o->variant = v;
+        if (plotsvg_variant(v, &o->set))
+            return cli_opt_bad(p, "wants base, norm-skip, final or precise, got '%s'", v);
+        break;
+    case OPT_PLOT:
+        o->plot_path = v;
+        break;
+    default:
+        return cli_opt_bad(p, "is not handled"); /* a table entry without a case */
+    }
+    return -1;
+}
+
 extern const char conica_cmd_errors_summary[];
 const char conica_cmd_errors_summary[] = "conic error and normal error per subdivision level, as a table";
 int conica_cmd_errors(int argc, char **argv);
 int conica_cmd_errors(int argc, char **argv)
 {
-    long kmax = ERRORS_DEFAULT_MAX;
-    int closed = 1, have_conic = 0, rc = CLI_EXIT_ERROR;
-    const char *in_path = NULL, *plot_path = NULL, *variant = "final";
-    plotsvg_conic q = {0, 0, 0, 0, 0, 0};
+    errors_opts a = {ERRORS_DEFAULT_MAX, 1, 0, NULL, "final", {0, 0, 0, 0, 0, 0},
+                     conica_subdiv_defaults()};
+    int first, rc = cli_opt_parse(&tool, argc, argv, take_option, &a, &first);
+    if (rc >= 0)
+        return rc;
+    const char *in_path;
+    if ((rc = cli_opt_one_operand(&tool, argc, argv, first, 1, &in_path)) >= 0)
+        return rc;
+    long kmax = a.kmax;
+    int closed = a.closed, have_conic = a.have_conic;
+    const char *plot_path = a.plot_path, *variant = a.variant;
+    plotsvg_conic q = a.q;
     plotsvg_errors e[ERRORS_MAX_LEVEL + 1];
     conica_curve in;
-    conica_subdiv_settings set = conica_subdiv_defaults();
+    conica_subdiv_settings set = a.set;
     conica_status st;
 
-    for (int i = 1; i < argc; i++) {
-        const char *a = argv[i];
-        int has_next = i + 1 < argc;
-        if (!strcmp(a, "-h") || !strcmp(a, "--help")) {
-            usage(stdout);
-            return CLI_EXIT_OK;
-        } else if (!strcmp(a, "-k") && has_next) {
-            if (cli_parse_int(argv[++i], 0, ERRORS_MAX_LEVEL, &kmax))
-                return cli_usage_error(usage_prog, "-k wants an integer 0..%d, got '%s'",
-                                       ERRORS_MAX_LEVEL, argv[i]);
-        } else if (!strcmp(a, "--conic") && has_next) {
-            if (parse_conic(argv[++i], &q))
-                return cli_usage_error(usage_prog, "--conic wants six numbers Q20,Q02,Q11,Q10,Q01,Q00,"
-                                       " got '%s'", argv[i]);
-            /* the error of eq. (13) divides by the gradient: with only Q00
-             * left the gradient is 0 everywhere and there is no curve */
-            if (q.q20 == 0 && q.q02 == 0 && q.q11 == 0 && q.q10 == 0 && q.q01 == 0)
-                return cli_usage_error(usage_prog, "--conic '%s' is not a curve: Q20, Q02, Q11, Q10 "
-                                       "and Q01 are all zero", argv[i]);
-            have_conic = 1;
-        } else if (!strcmp(a, "--variant") && has_next) {
-            variant = argv[++i];
-            if (plotsvg_variant(variant, &set))
-                return cli_usage_error(usage_prog, "--variant wants base, norm-skip, final or precise,"
-                                       " got '%s'", variant);
-        } else if (!strcmp(a, "--plot") && has_next) {
-            plot_path = argv[++i];
-            if (!*plot_path)
-                return cli_usage_error(usage_prog, "--plot needs a file name");
-        } else if (plotsvg_common_arg(usage_prog, a, has_next, &closed, &in_path)) {
-            return CLI_EXIT_USAGE;
-        }
-    }
-    if (!in_path)
-        return cli_usage_error(usage_prog, "no input file (a file name, or - for standard input)");
+    rc = CLI_EXIT_ERROR;
 
     conica_curve_init(&in);
     if (plotsvg_load_curve(prog, in_path, closed, &in))

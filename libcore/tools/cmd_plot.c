@@ -9,85 +9,134 @@
 #include <string.h>
 
 #include "cli.h"
+#include "cli_opt.h"
 #include "conica/bspline.h"
 #include "conica/plot.h"
 
 #define PROG "conica"
 #define USAGE_PROG "conica plot"
 
-static void usage(FILE *f)
-{
-    fprintf(f,
-            "usage: conica plot [--method METHOD] [--criterion NAME] [--rule NAME]\n"
-            "                   [--stop movement|threshold|budget] [--knot-budget K]\n"
-            "                   [--abs-tolerance E | --tolerance PX [--viewport WxH]]\n"
-            "                   [--points N] [--curve-points] [--prephase K]\n"
-            "                   [--local-weight length|angle|both] [--angle DEG]\n"
-            "                   [--max-recursion N] [--max-points N] [--max-knots N]\n"
-            "                   [--max-iterations N] [--max-control-points N]\n"
-            "                   [--max-degree N] [--stats] [-o OUT] IN.spl\n"
-            "\n"
-            "Plot a B-spline function or curve (optionally rational) as a polyline\n"
-            "(after T. Dahl, \"Adaptive plotting of splines\", Oslo 2019).\n"
-            "\n"
-            "Input: `degree P`, `knots ...`, one `c x [y [z]]` line per control point,\n"
-            "optional `w ...` weights; `#` starts a comment. IN of `-`: stdin.\n"
-            "Output: one `x y` line per vertex (`t f(t)` for a spline function, `x y z`\n"
-            "for a 3-D curve); a blank line separates pieces split at discontinuities.\n"
-            "\n"
-            "options:\n"
-            "      --method METHOD     guaranteed (default: every point of the spline within\n"
-            "                          the tolerance of the polyline and back), adaptive (the\n"
-            "                          thesis's knot-insertion loop), uniform, local-uniform,\n"
-            "                          chaikin, lane-riesenfeld, mathematica\n"
-            "      --criterion NAME    adaptive: simplified-length, length, length-ratio\n"
-            "                          (default), simplified-angle, angle, base-line,\n"
-            "                          extended-base-line\n"
-            "      --rule NAME         adaptive: midpoint (default, R = 0.5), knot-average,\n"
-            "                          chaikin\n"
-            "      --stop NAME         adaptive: movement (default), threshold, budget\n"
-            "      --knot-budget K     adaptive: knots inserted at most (default %zu)\n"
-            "      --curve-points      adaptive: emit curve points at the knot averages\n"
-            "                          instead of the refined control polygon\n"
-            "      --prephase K        adaptive: insert K uniform knots before the loop\n"
-            "      --local-weight W    local-uniform: share points by control polygon\n"
-            "                          length, angle or both (default, omega = 0.5)\n"
-            "      --angle DEG         mathematica: angle threshold (default 5)\n"
-            "      --max-recursion N   mathematica: recursion depth (default 6)\n"
-            "      --abs-tolerance E   tolerance in curve units\n"
-            "      --tolerance PX      tolerance in pixels (default %g) for the viewport,\n"
-            "                          eps = PX / diagonal * (control point box diagonal)\n"
-            "      --viewport WxH      viewport in pixels (default 1000x1000)\n"
-            "      --points N          uniform / local-uniform / chaikin / lane-riesenfeld:\n"
-            "                          number of points (default %zu); mathematica: initial\n"
-            "                          points (default 50)\n"
-            "      --stats             print `plot: <points> points, <K> knots inserted,\n"
-            "                          <ops> flops, <S> s` on stderr\n"
-            "  -o, --output OUT        write to OUT (`-` = stdout) via a temporary file\n"
-            "  -h, --help              show this help\n"
-            "\n"
-            "limits (the run fails with exit 1 and a message naming the flag when one is\n"
-            "hit; nothing is written):\n"
-            "      --max-points N      refuse outputs of more than N points (default %zu)\n"
-            "      --max-knots N       refuse to insert more than N knots, in all (default\n"
-            "                          %zu); --knot-budget and --prephase must not exceed it\n"
-            "      --max-iterations N  refuse to run more than N plotter iterations / trial\n"
-            "                          steps (default %zu)\n"
-            "      --max-control-points N  refuse input splines with more than N control\n"
-            "                          points (default and maximum %zu)\n"
-            "      --max-degree N      refuse input splines of degree above N (default and\n"
-            "                          maximum %d)\n"
-            "      (the input file size: environment variable CONICA_MAX_INPUT_BYTES,\n"
-            "      default %zu bytes)\n"
-            "\n"
-            "exit status: 0 success, 1 error (bad input, I/O; nothing is written),\n"
-            "2 usage error.\n",
-            (size_t)CONICA_PLOT_DEFAULT_KNOT_BUDGET, CONICA_PLOT_DEFAULT_PIXEL_TOLERANCE,
-            (size_t)CONICA_PLOT_DEFAULT_UNIFORM_POINTS, (size_t)CONICA_PLOT_MAX_POINTS_DEFAULT,
-            (size_t)CONICA_PLOT_MAX_KNOTS_DEFAULT, (size_t)CONICA_PLOT_MAX_ITERATIONS_DEFAULT,
-            (size_t)CONICA_BSPLINE_MAX_CTRL, CONICA_BSPLINE_MAX_DEGREE,
-            (size_t)CLI_DEFAULT_MAX_INPUT);
-}
+enum {
+    OPT_METHOD = CLI_OPT_LONG,
+    OPT_CRITERION,
+    OPT_RULE,
+    OPT_STOP,
+    OPT_KNOT_BUDGET,
+    OPT_CURVE_POINTS,
+    OPT_PREPHASE,
+    OPT_LOCAL_WEIGHT,
+    OPT_ANGLE,
+    OPT_MAX_RECURSION,
+    OPT_ABS_TOLERANCE,
+    OPT_TOLERANCE,
+    OPT_VIEWPORT,
+    OPT_POINTS,
+    OPT_STATS,
+    OPT_MAX_POINTS,
+    OPT_MAX_KNOTS,
+    OPT_MAX_ITERATIONS,
+    OPT_MAX_CTRL,
+    OPT_MAX_DEGREE,
+};
+
+static const cli_opt opts[] = {
+    {OPT_METHOD, "method", CLI_ARG_REQUIRED, "METHOD",
+     "guaranteed|adaptive|uniform|local-uniform|chaikin|lane-riesenfeld|mathematica",
+     "guaranteed (default: every point of the spline\n"
+     "within the tolerance of the polyline and back),\n"
+     "adaptive (the thesis's knot-insertion loop),\n"
+     "uniform, local-uniform, chaikin, lane-riesenfeld,\n"
+     "mathematica",
+     {0, 0, 0}},
+    {OPT_CRITERION, "criterion", CLI_ARG_REQUIRED, "NAME",
+     "simplified-length|length|length-ratio|simplified-angle|angle|base-line|extended-base-line",
+     "adaptive: simplified-length, length, length-ratio\n"
+     "(default), simplified-angle, angle, base-line,\n"
+     "extended-base-line",
+     {0, 0, 0}},
+    {OPT_RULE, "rule", CLI_ARG_REQUIRED, "NAME", "midpoint|knot-average|chaikin",
+     "adaptive: midpoint (default, R = 0.5),\nknot-average, chaikin", {0, 0, 0}},
+    {OPT_STOP, "stop", CLI_ARG_REQUIRED, "NAME", "movement|threshold|budget",
+     "adaptive: movement (default), threshold, budget", {0, 0, 0}},
+    {OPT_KNOT_BUDGET, "knot-budget", CLI_ARG_REQUIRED, "K", NULL,
+     "adaptive: knots inserted at most (default %.0f)",
+     {(double)CONICA_PLOT_DEFAULT_KNOT_BUDGET, 0, 0}},
+    {OPT_CURVE_POINTS, "curve-points", CLI_ARG_NONE, NULL, NULL,
+     "adaptive: emit curve points at the knot averages\n"
+     "instead of the refined control polygon",
+     {0, 0, 0}},
+    {OPT_PREPHASE, "prephase", CLI_ARG_REQUIRED, "K", NULL,
+     "adaptive: insert K uniform knots before the loop", {0, 0, 0}},
+    {OPT_LOCAL_WEIGHT, "local-weight", CLI_ARG_REQUIRED, "W", "length|angle|both",
+     "local-uniform: share points by control polygon\n"
+     "length, angle or both (default, omega = 0.5)",
+     {0, 0, 0}},
+    {OPT_ANGLE, "angle", CLI_ARG_REQUIRED, "DEG", NULL,
+     "mathematica: angle threshold (default 5)", {0, 0, 0}},
+    {OPT_MAX_RECURSION, "max-recursion", CLI_ARG_REQUIRED, "N", NULL,
+     "mathematica: recursion depth (default 6)", {0, 0, 0}},
+    {OPT_ABS_TOLERANCE, "abs-tolerance", CLI_ARG_REQUIRED, "E", NULL, "tolerance in curve units",
+     {0, 0, 0}},
+    {OPT_TOLERANCE, "tolerance", CLI_ARG_REQUIRED, "PX", NULL,
+     "tolerance in pixels (default %g) for the viewport,\n"
+     "eps = PX / diagonal * (control point box diagonal)",
+     {CONICA_PLOT_DEFAULT_PIXEL_TOLERANCE, 0, 0}},
+    {OPT_VIEWPORT, "viewport", CLI_ARG_REQUIRED, "WxH", NULL,
+     "viewport in pixels (default 1000x1000)", {0, 0, 0}},
+    {OPT_POINTS, "points", CLI_ARG_REQUIRED, "N", NULL,
+     "uniform / local-uniform / chaikin / lane-riesenfeld:\n"
+     "number of points (default %.0f); mathematica:\n"
+     "initial points (default 50)",
+     {(double)CONICA_PLOT_DEFAULT_UNIFORM_POINTS, 0, 0}},
+    {OPT_STATS, "stats", CLI_ARG_NONE, NULL, NULL,
+     "print `plot: <points> points, <K> knots inserted,\n"
+     "<ops> flops, <S> s` on stderr",
+     {0, 0, 0}},
+    {'o', "output", CLI_ARG_REQUIRED, "OUT", "file",
+     "write to OUT (`-` = stdout) via a temporary file", {0, 0, 0}},
+    {OPT_MAX_POINTS, "max-points", CLI_ARG_REQUIRED, "N", NULL,
+     "limit: refuse outputs of more than N points\n(default %.0f)",
+     {(double)CONICA_PLOT_MAX_POINTS_DEFAULT, 0, 0}},
+    {OPT_MAX_KNOTS, "max-knots", CLI_ARG_REQUIRED, "N", NULL,
+     "limit: refuse to insert more than N knots, in all\n"
+     "(default %.0f); --knot-budget and --prephase must\n"
+     "not exceed it",
+     {(double)CONICA_PLOT_MAX_KNOTS_DEFAULT, 0, 0}},
+    {OPT_MAX_ITERATIONS, "max-iterations", CLI_ARG_REQUIRED, "N", NULL,
+     "limit: refuse to run more than N plotter\n"
+     "iterations / trial steps (default %.0f)",
+     {(double)CONICA_PLOT_MAX_ITERATIONS_DEFAULT, 0, 0}},
+    {OPT_MAX_CTRL, "max-control-points", CLI_ARG_REQUIRED, "N", NULL,
+     "limit: refuse input splines with more than N\n"
+     "control points (default and maximum %.0f)",
+     {(double)CONICA_BSPLINE_MAX_CTRL, 0, 0}},
+    {OPT_MAX_DEGREE, "max-degree", CLI_ARG_REQUIRED, "N", NULL,
+     "limit: refuse input splines of degree above N\n(default and maximum %.0f)",
+     {CONICA_BSPLINE_MAX_DEGREE, 0, 0}},
+    {0, NULL, 0, NULL, NULL, NULL, {0, 0, 0}},
+};
+
+static const cli_tool tool = {
+    USAGE_PROG,
+    "[OPTION]... IN.spl",
+    "Plot a B-spline function or curve (optionally rational) as a polyline\n"
+    "(after T. Dahl, \"Adaptive plotting of splines\", Oslo 2019).\n"
+    "\n"
+    "Input: `degree P`, `knots ...`, one `c x [y [z]]` line per control point,\n"
+    "optional `w ...` weights; `#` starts a comment. IN of `-`: stdin.\n"
+    "Output: one `x y` line per vertex (`t f(t)` for a spline function, `x y z`\n"
+    "for a 3-D curve); a blank line separates pieces split at discontinuities.\n",
+    opts,
+    "A limit that is hit fails the run with exit 1 and a message naming the\n"
+    "flag; nothing is written. The input file size is capped by the environment\n"
+    "variable CONICA_MAX_INPUT_BYTES (default 268435456 bytes).\n"
+    "\n"
+    "Exit status: 0 success, 1 error (bad input, I/O; nothing is written),\n"
+    "2 usage error.\n",
+    "file",
+    0,
+    NULL,
+};
 
 typedef struct options {
     conica_plot_settings set;
@@ -95,24 +144,6 @@ typedef struct options {
     int stats, have_abs, have_px, have_points, have_budget;
     const char *in, *out;
 } options;
-
-/* "--name VALUE" or "--name=VALUE"; NULL when missing. */
-static const char *opt_value(int argc, char **argv, int *i, const char *arg, size_t name_len)
-{
-    if (arg[name_len] == '=')
-        return arg + name_len + 1;
-    if (arg[name_len] != '\0' && arg[1] != '-') /* -oFILE */
-        return arg + name_len;
-    if (*i + 1 >= argc)
-        return NULL;
-    return argv[++*i];
-}
-
-static int is_opt(const char *a, const char *name)
-{
-    size_t n = strlen(name);
-    return strncmp(a, name, n) == 0 && (a[n] == '\0' || a[n] == '=');
-}
 
 static int parse_viewport(const char *v, double *w, double *h)
 {
@@ -136,142 +167,149 @@ static int parse_viewport(const char *v, double *w, double *h)
             return cli_usage_error(USAGE_PROG, __VA_ARGS__);                                  \
     } while (0)
 
+/* A value that must be one of names (NULL-terminated); its index or -1. */
+static int word_index(const char *v, const char *const *names)
+{
+    for (int k = 0; names[k]; k++)
+        if (strcmp(v, names[k]) == 0)
+            return k;
+    return -1;
+}
+
+/* One option's value into *o; returns -1 to go on, or an exit status. */
+static int take_option(cli_parser *p, int c, void *ctx)
+{
+    options *o = ctx;
+    static const char *const stops[] = {"movement", "threshold", "budget", NULL};
+    static const conica_plot_stop stop_values[] = {CONICA_STOP_MOVEMENT, CONICA_STOP_THRESHOLD,
+                                                   CONICA_STOP_BUDGET};
+    static const char *const weights[] = {"length", "angle", "both", NULL};
+    static const conica_plot_local_weight weight_values[] = {CONICA_LOCAL_LENGTH, CONICA_LOCAL_ANGLE,
+                                                         CONICA_LOCAL_BOTH};
+    const char *v = p->arg;
+    long num;
+    double x;
+    int k;
+    switch (c) {
+    case OPT_STATS: o->stats = 1; break;
+    case OPT_CURVE_POINTS: o->set.output = CONICA_OUTPUT_CURVE_POINTS; break;
+    case OPT_METHOD:
+        if ((k = conica_plot_method_from_name(v)) < 0)
+            return cli_opt_bad(p, "takes a method named in --help, not '%s'", v);
+        o->set.method = (conica_plot_method)k;
+        break;
+    case OPT_CRITERION:
+        if ((k = conica_plot_criterion_from_name(v)) < 0)
+            return cli_opt_bad(p, "takes a criterion named in --help, not '%s'", v);
+        o->set.criterion = (conica_plot_criterion)k;
+        break;
+    case OPT_RULE:
+        if ((k = conica_plot_rule_from_name(v)) < 0)
+            return cli_opt_bad(p, "takes a rule named in --help, not '%s'", v);
+        o->set.rule = (conica_plot_rule)k;
+        break;
+    case OPT_STOP:
+        if ((k = word_index(v, stops)) < 0)
+            return cli_opt_bad(p, "takes movement, threshold or budget, not '%s'", v);
+        o->set.stop = stop_values[k];
+        break;
+    case OPT_KNOT_BUDGET:
+    case OPT_PREPHASE:
+        if (cli_parse_int(v, 0, LONG_MAX, &num))
+            return cli_opt_bad(p, "needs a whole number of knots, not '%s'", v);
+        if (c == OPT_KNOT_BUDGET) {
+            o->set.knot_budget = (size_t)num;
+            o->have_budget = 1;
+        } else {
+            o->set.prephase_knots = (size_t)num;
+        }
+        break;
+    case OPT_LOCAL_WEIGHT:
+        if ((k = word_index(v, weights)) < 0)
+            return cli_opt_bad(p, "takes length, angle or both, not '%s'", v);
+        o->set.local_weight = weight_values[k];
+        break;
+    case OPT_ANGLE:
+        if (cli_parse_double(v, &x) || !(x > 0 && x < 180))
+            return cli_opt_bad(p, "needs degrees in (0, 180), not '%s'", v);
+        o->set.math_angle = x * 3.14159265358979323846 / 180.0;
+        break;
+    case OPT_MAX_RECURSION:
+        if (cli_parse_int(v, 0, 60, &num))
+            return cli_opt_bad(p, "needs an integer in 0..60, not '%s'", v);
+        o->set.math_max_recursion = (size_t)num;
+        break;
+    case OPT_ABS_TOLERANCE:
+    case OPT_TOLERANCE:
+        if (cli_parse_double(v, &x) || !(x > 0))
+            return cli_opt_bad(p, "needs a positive number, not '%s'", v);
+        if (c == OPT_ABS_TOLERANCE) {
+            o->set.abs_tolerance = x;
+            o->have_abs = 1;
+        } else {
+            o->set.pixel_tolerance = x;
+            o->have_px = 1;
+        }
+        break;
+    case OPT_VIEWPORT:
+        if (parse_viewport(v, &o->set.viewport_w, &o->set.viewport_h))
+            return cli_opt_bad(p, "needs WxH with positive numbers, e.g. 1000x800, not '%s'", v);
+        break;
+    case OPT_POINTS:
+    case OPT_MAX_POINTS:
+        if (cli_parse_int(v, 2, LONG_MAX, &num))
+            return cli_opt_bad(p, "needs an integer >= 2, not '%s'", v);
+        if (c == OPT_POINTS) {
+            o->set.points = (size_t)num;
+            o->have_points = 1;
+        } else {
+            o->set.max_points = (size_t)num;
+        }
+        break;
+    case OPT_MAX_KNOTS:
+        if (cli_parse_int(v, 0, LONG_MAX, &num))
+            return cli_opt_bad(p, "needs an integer >= 0, not '%s'", v);
+        o->set.max_knots = (size_t)num;
+        break;
+    case OPT_MAX_ITERATIONS:
+        if (cli_parse_int(v, 1, LONG_MAX, &num))
+            return cli_opt_bad(p, "needs an integer >= 1, not '%s'", v);
+        o->set.max_iterations = (size_t)num;
+        break;
+    case OPT_MAX_CTRL:
+        if (cli_parse_int(v, 1, (long)CONICA_BSPLINE_MAX_CTRL, &num))
+            return cli_opt_bad(p, "needs an integer in 1..%zu, not '%s'",
+                               (size_t)CONICA_BSPLINE_MAX_CTRL, v);
+        o->read.max_ctrl = (size_t)num;
+        break;
+    case OPT_MAX_DEGREE:
+        if (cli_parse_int(v, 1, CONICA_BSPLINE_MAX_DEGREE, &num))
+            return cli_opt_bad(p, "needs an integer in 1..%d, not '%s'", CONICA_BSPLINE_MAX_DEGREE,
+                               v);
+        o->read.max_degree = (int)num;
+        break;
+    case 'o':
+        o->out = v;
+        break;
+    default:
+        return cli_opt_bad(p, "is not handled"); /* a table entry without a case */
+    }
+    return -1;
+}
+
 /* Returns -1 to go on, or an exit status. */
 static int parse_args(int argc, char **argv, options *o)
 {
-    int positional_only = 0;
+    int first, rc;
     o->set = conica_plot_defaults();
     o->read = conica_bspline_parse_limits_defaults();
     o->stats = o->have_abs = o->have_px = o->have_points = o->have_budget = 0;
     o->in = o->out = NULL;
-    for (int i = 1; i < argc; i++) {
-        const char *a = argv[i], *v;
-        long num;
-        double x;
-        if (positional_only || a[0] != '-' || strcmp(a, "-") == 0) {
-            NEED(!o->in, "more than one input file ('%s' and '%s')", o->in, a);
-            o->in = a;
-            continue;
-        }
-        if (strcmp(a, "--") == 0) {
-            positional_only = 1;
-        } else if (strcmp(a, "-h") == 0 || strcmp(a, "--help") == 0) {
-            usage(stdout);
-            return fflush(stdout) == 0 ? CLI_EXIT_OK : CLI_EXIT_ERROR;
-        } else if (strcmp(a, "--stats") == 0) {
-            o->stats = 1;
-        } else if (strcmp(a, "--curve-points") == 0) {
-            o->set.output = CONICA_OUTPUT_CURVE_POINTS;
-        } else if (is_opt(a, "--method")) {
-            v = opt_value(argc, argv, &i, a, 8);
-            int m = conica_plot_method_from_name(v);
-            NEED(m >= 0, "unknown method '%s' (see --help)", v ? v : "");
-            o->set.method = (conica_plot_method)m;
-        } else if (is_opt(a, "--criterion")) {
-            v = opt_value(argc, argv, &i, a, 11);
-            int c = conica_plot_criterion_from_name(v);
-            NEED(c >= 0, "unknown criterion '%s' (see --help)", v ? v : "");
-            o->set.criterion = (conica_plot_criterion)c;
-        } else if (is_opt(a, "--rule")) {
-            v = opt_value(argc, argv, &i, a, 6);
-            int r = conica_plot_rule_from_name(v);
-            NEED(r >= 0, "unknown rule '%s' (see --help)", v ? v : "");
-            o->set.rule = (conica_plot_rule)r;
-        } else if (is_opt(a, "--stop")) {
-            v = opt_value(argc, argv, &i, a, 6);
-            if (v && strcmp(v, "movement") == 0)
-                o->set.stop = CONICA_STOP_MOVEMENT;
-            else if (v && strcmp(v, "threshold") == 0)
-                o->set.stop = CONICA_STOP_THRESHOLD;
-            else if (v && strcmp(v, "budget") == 0)
-                o->set.stop = CONICA_STOP_BUDGET;
-            else
-                NEED(0, "--stop takes movement, threshold or budget");
-        } else if (is_opt(a, "--knot-budget")) {
-            v = opt_value(argc, argv, &i, a, 13);
-            NEED(v && !cli_parse_int(v, 0, LONG_MAX, &num),
-                 "--knot-budget needs a whole number of knots");
-            o->set.knot_budget = (size_t)num;
-            o->have_budget = 1;
-        } else if (is_opt(a, "--prephase")) {
-            v = opt_value(argc, argv, &i, a, 10);
-            NEED(v && !cli_parse_int(v, 0, LONG_MAX, &num),
-                 "--prephase needs a whole number of knots");
-            o->set.prephase_knots = (size_t)num;
-        } else if (is_opt(a, "--local-weight")) {
-            v = opt_value(argc, argv, &i, a, 14);
-            if (v && strcmp(v, "length") == 0)
-                o->set.local_weight = CONICA_LOCAL_LENGTH;
-            else if (v && strcmp(v, "angle") == 0)
-                o->set.local_weight = CONICA_LOCAL_ANGLE;
-            else if (v && strcmp(v, "both") == 0)
-                o->set.local_weight = CONICA_LOCAL_BOTH;
-            else
-                NEED(0, "--local-weight takes length, angle or both");
-        } else if (is_opt(a, "--angle")) {
-            v = opt_value(argc, argv, &i, a, 7);
-            NEED(v && !cli_parse_double(v, &x) && x > 0 && x < 180,
-                 "--angle needs degrees in (0, 180)");
-            o->set.math_angle = x * 3.14159265358979323846 / 180.0;
-        } else if (is_opt(a, "--max-recursion")) {
-            v = opt_value(argc, argv, &i, a, 15);
-            NEED(v && !cli_parse_int(v, 0, 60, &num), "--max-recursion needs an integer in 0..60");
-            o->set.math_max_recursion = (size_t)num;
-        } else if (is_opt(a, "--abs-tolerance")) {
-            v = opt_value(argc, argv, &i, a, 15);
-            NEED(v && !cli_parse_double(v, &x) && x > 0,
-                 "--abs-tolerance needs a positive number");
-            o->set.abs_tolerance = x;
-            o->have_abs = 1;
-        } else if (is_opt(a, "--tolerance")) {
-            v = opt_value(argc, argv, &i, a, 11);
-            NEED(v && !cli_parse_double(v, &x) && x > 0, "--tolerance needs a positive number");
-            o->set.pixel_tolerance = x;
-            o->have_px = 1;
-        } else if (is_opt(a, "--viewport")) {
-            v = opt_value(argc, argv, &i, a, 10);
-            NEED(v && !parse_viewport(v, &o->set.viewport_w, &o->set.viewport_h),
-                 "--viewport needs WxH with positive numbers, e.g. 1000x800");
-        } else if (is_opt(a, "--points")) {
-            v = opt_value(argc, argv, &i, a, 8);
-            NEED(v && !cli_parse_int(v, 2, LONG_MAX, &num), "--points needs an integer >= 2");
-            o->set.points = (size_t)num;
-            o->have_points = 1;
-        } else if (is_opt(a, "--max-points")) {
-            v = opt_value(argc, argv, &i, a, 12);
-            NEED(v && !cli_parse_int(v, 2, LONG_MAX, &num), "--max-points needs an integer >= 2");
-            o->set.max_points = (size_t)num;
-        } else if (is_opt(a, "--max-knots")) {
-            v = opt_value(argc, argv, &i, a, 11);
-            NEED(v && !cli_parse_int(v, 0, LONG_MAX, &num), "--max-knots needs an integer >= 0");
-            o->set.max_knots = (size_t)num;
-        } else if (is_opt(a, "--max-iterations")) {
-            v = opt_value(argc, argv, &i, a, 16);
-            NEED(v && !cli_parse_int(v, 1, LONG_MAX, &num),
-                 "--max-iterations needs an integer >= 1");
-            o->set.max_iterations = (size_t)num;
-        } else if (is_opt(a, "--max-control-points")) {
-            v = opt_value(argc, argv, &i, a, 20);
-            NEED(v && !cli_parse_int(v, 1, (long)CONICA_BSPLINE_MAX_CTRL, &num),
-                 "--max-control-points needs an integer in 1..%zu",
-                 (size_t)CONICA_BSPLINE_MAX_CTRL);
-            o->read.max_ctrl = (size_t)num;
-        } else if (is_opt(a, "--max-degree")) {
-            v = opt_value(argc, argv, &i, a, 12);
-            NEED(v && !cli_parse_int(v, 1, CONICA_BSPLINE_MAX_DEGREE, &num),
-                 "--max-degree needs an integer in 1..%d", CONICA_BSPLINE_MAX_DEGREE);
-            o->read.max_degree = (int)num;
-        } else if (strncmp(a, "-o", 2) == 0 || is_opt(a, "--output")) {
-            size_t nl = a[1] == '-' ? 8 : 2;
-            v = opt_value(argc, argv, &i, a, nl);
-            NEED(v && *v, "%s needs a file name", a);
-            o->out = v;
-        } else {
-            return cli_usage_error(USAGE_PROG, "unknown option '%s'", a);
-        }
-    }
+    if ((rc = cli_opt_parse(&tool, argc, argv, take_option, o, &first)) >= 0)
+        return rc;
+    if ((rc = cli_opt_one_operand(&tool, argc, argv, first, 1, &o->in)) >= 0)
+        return rc;
     NEED(!(o->have_abs && o->have_px), "give --abs-tolerance or --tolerance, not both");
-    NEED(o->in, "no input file (use `-` for stdin)");
     if (o->have_points && o->set.method == CONICA_PLOT_MATHEMATICA)
         o->set.math_initial_points = o->set.points;
     /* --points is input-controlled too: it must not lift the output cap */

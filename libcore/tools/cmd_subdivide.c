@@ -11,6 +11,7 @@
 #include <time.h>
 
 #include "cli.h"
+#include "cli_opt.h"
 #include "conica/curve.h"
 #include "conica/subdiv.h"
 
@@ -23,50 +24,78 @@
 /* Default number of levels when -k is not given (the reference's examples use 5). */
 #define DEFAULT_LEVELS 5
 
-static void usage(FILE *f)
-{
-    fprintf(f,
-            "usage: conica subdivide [-k LEVELS] [--open|--closed] [--precise]\n"
-            "                        [--estimate-normals] [--normals area|circle]\n"
-            "                        [--reference-compatible] [--max-points N]\n"
-            "                        [--max-input-points N] [--threads N] [--time]\n"
-            "                        [-o OUT] [IN]\n"
-            "\n"
-            "Refine a point-normal curve with conic-preserving interpolatory subdivision\n"
-            "(the CONIS scheme of Bügel, Romani and Kosinka): every level keeps the old\n"
-            "points and inserts one point per edge.\n"
-            "\n"
-            "Input: `v x y` lines, then optional `vn nx ny` lines paired with the points by\n"
-            "order; `#`/`%%` lines and blank lines are ignored. IN of `-` or none: stdin.\n"
-            "Output: `v x y` lines, then `vn nx ny` lines (unit normals), to OUT or stdout.\n"
-            "\n"
-            "options:\n"
-            "  -k, --levels LEVELS     subdivision levels, 0..%d (default %d)\n"
-            "      --open              the curve is open (n points -> 2n-1 per level)\n"
-            "      --closed            the curve is closed (default; n -> 2n per level)\n"
-            "      --precise           read, compute and write in long double (input\n"
-            "                          correctly rounded to long double, output %%.21Lg)\n"
-            "      --estimate-normals  ignore `vn` lines and estimate normals\n"
-            "      --normals METHOD    how to estimate normals (input without `vn`, or\n"
-            "                          --estimate-normals): area (default, area-weighted\n"
-            "                          edge normals) or circle (circle through neighbours)\n"
-            "      --reference-compatible  fit in absolute coordinates with the SVD, as the\n"
-            "                          reference implementation does (for comparisons)\n"
-            "      --max-points N      refuse outputs of more than N points (default %zu)\n"
-            "      --max-input-points N  refuse inputs of more than N points (default %zu;\n"
-            "                          the input file size is capped by the environment\n"
-            "                          variable CONICA_MAX_INPUT_BYTES, default %zu bytes)\n"
-            "      --threads N         worker threads (results are bit-identical for any N)\n"
-            "      --time              print `subdivide: N edge points in S s (U us/point)` on\n"
-            "                          stderr: the subdivision alone, best of %d runs\n"
-            "  -o, --output OUT        write to OUT (`-` = stdout) via a temporary file\n"
-            "  -h, --help              show this help\n"
-            "\n"
-            "exit status: 0 success, 1 error (bad input, I/O; nothing is written),\n"
-            "2 usage error.\n",
-            CONICA_SUBDIV_MAX_LEVELS, DEFAULT_LEVELS, (size_t)CONICA_SUBDIV_DEFAULT_MAX_POINTS,
-            (size_t)CONICA_CURVE_MAX_INPUT_POINTS, (size_t)CLI_DEFAULT_MAX_INPUT, TIME_RUNS);
-}
+enum {
+    OPT_OPEN = CLI_OPT_LONG,
+    OPT_CLOSED,
+    OPT_PRECISE,
+    OPT_ESTIMATE,
+    OPT_NORMALS,
+    OPT_REFCOMPAT,
+    OPT_MAX_POINTS,
+    OPT_MAX_INPUT,
+    OPT_THREADS,
+    OPT_TIME,
+};
+
+static const cli_opt opts[] = {
+    {'k', "levels", CLI_ARG_REQUIRED, "K", NULL, "subdivision levels, 0..%.0f (default %.0f)",
+     {CONICA_SUBDIV_MAX_LEVELS, DEFAULT_LEVELS, 0}},
+    {OPT_OPEN, "open", CLI_ARG_NONE, NULL, NULL, "the curve is open (n points -> 2n-1 per level)",
+     {0, 0, 0}},
+    {OPT_CLOSED, "closed", CLI_ARG_NONE, NULL, NULL,
+     "the curve is closed (default; n -> 2n per level)", {0, 0, 0}},
+    {OPT_PRECISE, "precise", CLI_ARG_NONE, NULL, NULL,
+     "read, compute and write in long double (input\n"
+     "correctly rounded to long double, output %%.21Lg)",
+     {0, 0, 0}},
+    {OPT_ESTIMATE, "estimate-normals", CLI_ARG_NONE, NULL, NULL,
+     "ignore `vn` lines and estimate normals", {0, 0, 0}},
+    {OPT_NORMALS, "normals", CLI_ARG_REQUIRED, "METHOD", "area|circle",
+     "how to estimate normals (input without `vn`, or\n"
+     "--estimate-normals): area (default, area-weighted\n"
+     "edge normals) or circle (circle through neighbours)",
+     {0, 0, 0}},
+    {OPT_REFCOMPAT, "reference-compatible", CLI_ARG_NONE, NULL, NULL,
+     "fit in absolute coordinates with the SVD, as the\n"
+     "reference implementation does (for comparisons)",
+     {0, 0, 0}},
+    {OPT_MAX_POINTS, "max-points", CLI_ARG_REQUIRED, "N", NULL,
+     "refuse outputs of more than N points\n(default %.0f)",
+     {(double)CONICA_SUBDIV_DEFAULT_MAX_POINTS, 0, 0}},
+    {OPT_MAX_INPUT, "max-input-points", CLI_ARG_REQUIRED, "N", NULL,
+     "refuse inputs of more than N points (default %.0f;\n"
+     "the input file size is capped by the environment\n"
+     "variable CONICA_MAX_INPUT_BYTES, default %.0f)",
+     {(double)CONICA_CURVE_MAX_INPUT_POINTS, (double)CLI_DEFAULT_MAX_INPUT, 0}},
+    {OPT_THREADS, "threads", CLI_ARG_REQUIRED, "N", NULL,
+     "worker threads, 1..%.0f (results are bit-identical\nfor any N)", {MAX_THREADS, 0, 0}},
+    {OPT_TIME, "time", CLI_ARG_NONE, NULL, NULL,
+     "print `subdivide: N edge points in S s\n"
+     "(U us/point)` on stderr: the subdivision alone,\n"
+     "best of %.0f runs",
+     {TIME_RUNS, 0, 0}},
+    {'o', "output", CLI_ARG_REQUIRED, "OUT", "file",
+     "write to OUT (`-` = stdout) via a temporary file", {0, 0, 0}},
+    {0, NULL, 0, NULL, NULL, NULL, {0, 0, 0}},
+};
+
+static const cli_tool tool = {
+    USAGE_PROG,
+    "[OPTION]... [IN]",
+    "Refine a point-normal curve with conic-preserving interpolatory subdivision\n"
+    "(the CONIS scheme of Bügel, Romani and Kosinka): every level keeps the old\n"
+    "points and inserts one point per edge.\n"
+    "\n"
+    "Input: `v x y` lines, then optional `vn nx ny` lines paired with the points by\n"
+    "order; `#`/`%` lines and blank lines are ignored. IN of `-` or none: stdin.\n"
+    "Output: `v x y` lines, then `vn nx ny` lines (unit normals), to OUT or stdout.\n",
+    opts,
+    "Exit status: 0 success, 1 error (bad input, I/O; nothing is written),\n"
+    "2 usage error.\n",
+    "file",
+    0,
+    NULL,
+};
 
 typedef struct options {
     long levels;
@@ -77,23 +106,57 @@ typedef struct options {
     const char *in, *out;
 } options;
 
-/* Value of an option given as "--name VALUE", "--name=VALUE" or "-kVALUE".
- * Returns NULL (after a usage message) when it is missing. */
-static const char *opt_value(int argc, char **argv, int *i, const char *arg, size_t name_len)
+/* One option's value into *o; returns -1 to go on, or an exit status. */
+static int take_option(cli_parser *p, int c, void *ctx)
 {
-    if (arg[name_len] == '=')
-        return arg + name_len + 1;
-    if (arg[name_len] != '\0' && arg[1] != '-') /* -k5 */
-        return arg + name_len;
-    if (*i + 1 >= argc)
-        return NULL;
-    return argv[++*i];
+    options *o = ctx;
+    const char *v = p->arg;
+    long num;
+    switch (c) {
+    case OPT_OPEN: o->open = 1; break;
+    case OPT_CLOSED: o->open = 0; break;
+    case OPT_PRECISE: o->precise = 1; break;
+    case OPT_ESTIMATE: o->estimate = 1; break;
+    case OPT_REFCOMPAT: o->refcompat = 1; break;
+    case OPT_TIME: o->time = 1; break;
+    case 'k':
+        if (cli_parse_int(v, 0, CONICA_SUBDIV_MAX_LEVELS, &num))
+            return cli_opt_bad(p, "needs an integer in 0..%d, not '%s'", CONICA_SUBDIV_MAX_LEVELS,
+                               v);
+        o->levels = num;
+        break;
+    case 'o':
+        o->out = v;
+        break;
+    case OPT_NORMALS:
+        if (strcmp(v, "area") == 0)
+            o->method = CONICA_NORMALS_AREA;
+        else if (strcmp(v, "circle") == 0)
+            o->method = CONICA_NORMALS_CIRCLE;
+        else
+            return cli_opt_bad(p, "takes 'area' or 'circle', not '%s'", v);
+        break;
+    case OPT_MAX_POINTS:
+    case OPT_MAX_INPUT:
+        if (cli_parse_int(v, 1, LONG_MAX, &num))
+            return cli_opt_bad(p, "needs a positive integer, not '%s'", v);
+        *(c == OPT_MAX_POINTS ? &o->max_points : &o->max_input_points) = (size_t)num;
+        break;
+    case OPT_THREADS:
+        if (cli_parse_int(v, 1, MAX_THREADS, &num))
+            return cli_opt_bad(p, "needs an integer in 1..%d, not '%s'", MAX_THREADS, v);
+        o->threads = (int)num;
+        break;
+    default:
+        return cli_opt_bad(p, "is not handled"); /* a table entry without a case */
+    }
+    return -1;
 }
 
 /* Returns -1 to go on, or an exit status. */
 static int parse_args(int argc, char **argv, options *o)
 {
-    int i, positional_only = 0;
+    int first, rc;
     o->levels = DEFAULT_LEVELS;
     o->open = o->precise = o->estimate = o->refcompat = o->time = 0;
     o->method = CONICA_NORMALS_AREA;
@@ -103,85 +166,9 @@ static int parse_args(int argc, char **argv, options *o)
     o->in = NULL;
     o->out = NULL;
 
-    for (i = 1; i < argc; i++) {
-        const char *a = argv[i], *v;
-        long num;
-        if (positional_only || a[0] != '-' || strcmp(a, "-") == 0) {
-            if (o->in)
-                return cli_usage_error(USAGE_PROG, "more than one input file ('%s' and '%s')",
-                                       o->in, a);
-            o->in = a;
-            continue;
-        }
-        if (strcmp(a, "--") == 0) {
-            positional_only = 1;
-        } else if (strcmp(a, "-h") == 0 || strcmp(a, "--help") == 0) {
-            usage(stdout);
-            return fflush(stdout) == 0 ? CLI_EXIT_OK : CLI_EXIT_ERROR;
-        } else if (strcmp(a, "--open") == 0) {
-            o->open = 1;
-        } else if (strcmp(a, "--closed") == 0) {
-            o->open = 0;
-        } else if (strcmp(a, "--precise") == 0) {
-            o->precise = 1;
-        } else if (strcmp(a, "--estimate-normals") == 0) {
-            o->estimate = 1;
-        } else if (strcmp(a, "--reference-compatible") == 0) {
-            o->refcompat = 1;
-        } else if (strcmp(a, "--time") == 0) {
-            o->time = 1;
-        } else if (strncmp(a, "-k", 2) == 0 || strncmp(a, "--levels", 8) == 0) {
-            size_t nl = a[1] == '-' ? 8 : 2;
-            if (a[1] == '-' && a[nl] != '\0' && a[nl] != '=')
-                return cli_usage_error(USAGE_PROG, "unknown option '%s'", a);
-            v = opt_value(argc, argv, &i, a, nl);
-            if (!v)
-                return cli_usage_error(USAGE_PROG, "%s needs a number of levels", a);
-            if (cli_parse_int(v, 0, CONICA_SUBDIV_MAX_LEVELS, &num))
-                return cli_usage_error(USAGE_PROG, "levels must be an integer in 0..%d, not '%s'",
-                                       CONICA_SUBDIV_MAX_LEVELS, v);
-            o->levels = num;
-        } else if (strncmp(a, "-o", 2) == 0 || strncmp(a, "--output", 8) == 0) {
-            size_t nl = a[1] == '-' ? 8 : 2;
-            if (a[1] == '-' && a[nl] != '\0' && a[nl] != '=')
-                return cli_usage_error(USAGE_PROG, "unknown option '%s'", a);
-            v = opt_value(argc, argv, &i, a, nl);
-            if (!v || !*v)
-                return cli_usage_error(USAGE_PROG, "%s needs a file name", a);
-            o->out = v;
-        } else if (strncmp(a, "--normals", 9) == 0 && (a[9] == '\0' || a[9] == '=')) {
-            v = opt_value(argc, argv, &i, a, 9);
-            if (v && strcmp(v, "area") == 0)
-                o->method = CONICA_NORMALS_AREA;
-            else if (v && strcmp(v, "circle") == 0)
-                o->method = CONICA_NORMALS_CIRCLE;
-            else
-                return cli_usage_error(USAGE_PROG, "--normals takes 'area' or 'circle'%s%s%s",
-                                       v ? ", not '" : "", v ? v : "", v ? "'" : "");
-        } else if (strncmp(a, "--max-points", 12) == 0 && (a[12] == '\0' || a[12] == '=')) {
-            v = opt_value(argc, argv, &i, a, 12);
-            if (!v || cli_parse_int(v, 1, LONG_MAX, &num))
-                return cli_usage_error(USAGE_PROG, "--max-points needs a positive integer%s%s%s",
-                                       v ? ", not '" : "", v ? v : "", v ? "'" : "");
-            o->max_points = (size_t)num;
-        } else if (strncmp(a, "--max-input-points", 18) == 0 && (a[18] == '\0' || a[18] == '=')) {
-            v = opt_value(argc, argv, &i, a, 18);
-            if (!v || cli_parse_int(v, 1, LONG_MAX, &num))
-                return cli_usage_error(USAGE_PROG,
-                                       "--max-input-points needs a positive integer%s%s%s",
-                                       v ? ", not '" : "", v ? v : "", v ? "'" : "");
-            o->max_input_points = (size_t)num;
-        } else if (strncmp(a, "--threads", 9) == 0 && (a[9] == '\0' || a[9] == '=')) {
-            v = opt_value(argc, argv, &i, a, 9);
-            if (!v || cli_parse_int(v, 1, MAX_THREADS, &num))
-                return cli_usage_error(USAGE_PROG, "--threads needs an integer in 1..%d%s%s%s",
-                                       MAX_THREADS, v ? ", not '" : "", v ? v : "", v ? "'" : "");
-            o->threads = (int)num;
-        } else {
-            return cli_usage_error(USAGE_PROG, "unknown option '%s'", a);
-        }
-    }
-    return -1;
+    if ((rc = cli_opt_parse(&tool, argc, argv, take_option, o, &first)) >= 0)
+        return rc;
+    return cli_opt_one_operand(&tool, argc, argv, first, 0, &o->in);
 }
 
 static double now_seconds(void)

@@ -30,23 +30,6 @@ int plotsvg_load_curve(const char *prog, const char *path, int closed, conica_cu
     return 0;
 }
 
-int plotsvg_common_arg(const char *usage_prog, const char *a, int has_next,
-                       int *closed, const char **in_path)
-{
-    if (!strcmp(a, "--open"))
-        *closed = 0;
-    else if (!strcmp(a, "--closed"))
-        *closed = 1;
-    else if (a[0] == '-' && a[1] != '\0')
-        return cli_usage_error(usage_prog, "unknown option '%s'%s", a,
-                               has_next ? "" : " (or missing value)");
-    else if (*in_path)
-        return cli_usage_error(usage_prog, "one input file only ('%s', '%s')", *in_path, a);
-    else
-        *in_path = a;
-    return 0;
-}
-
 /* ------------------------------------------------------------ curvature */
 
 double plotsvg_curvature(const double a[2], const double b[2], const double c[2])

@@ -35,13 +35,6 @@
  * Returns 0, or 1 after printing an error. */
 int plotsvg_load_curve(const char *prog, const char *path, int closed, conica_curve *c);
 
-/* The arguments `conica combs` and `conica errors` share: --open, --closed
- * and the one input file; anything else starting with '-' is an unknown
- * option ("-" alone is standard input). Returns 0, or 2 after printing a
- * usage error as usage_prog ("conica combs"). */
-int plotsvg_common_arg(const char *usage_prog, const char *a, int has_next,
-                       int *closed, const char **in_path);
-
 /* ------------------------------------------------------------ curvature */
 
 /* Curvature 1/R of the circle through a, b, c (seed 000, Code 3, in

@@ -40,7 +40,7 @@ for t in svgsmooth scadprofile; do
     check_grep "^$t: usage error: " "$tmp/$t.err" "$t: the usage error names $t"
     check_grep "'$t --help'" "$tmp/$t.err" "$t: it points at '$t --help'"
 done
-"$conica" --no-such-command >/dev/null 2>"$tmp/top.err"
+"$conica" no-such-command >/dev/null 2>"$tmp/top.err"
 check_grep "^conica: usage error: unknown command" "$tmp/top.err" "conica: an unknown command is a usage error of conica"
 
 begin_case "every subcommand that reads a file reads - as standard input"

@@ -50,7 +50,7 @@ valid_svg "$tmp/stdout.svg"
 check "reads stdin" sh -c "'$conica' combs -k 2 - <'$tmp/circle.txt'"
 check_grep '<svg ' "$out" "SVG from stdin input"
 check_exit 0 "--help" "$conica" combs --help
-check_grep 'usage: conica combs' "$out" "usage text"
+check_grep '^Usage: conica combs' "$out" "usage text"
 
 begin_case "combs: errors"
 printf 'v 1 2\nv 3 x\n' >"$tmp/bad.txt"

@@ -251,14 +251,21 @@ if command -v mandoc >/dev/null 2>&1; then
     done
 fi
 
-begin_case "manual pages: the same --flags as each tool's --help"
+# table_flags [all]: the --long-flags of the option table in stdin (a
+# tool's --dump-options, which --help is made from), --help and --version
+# left out unless "all".
+table_flags() {
+    awk -F '\t' -v all="${1:-}" '$1 == "opt" && $3 != "-" && (all != "" || ($3 != "help" && $3 != "version")) { print "--" $3 }' | sort -u
+}
+
+begin_case "manual pages: the same --flags as each tool's option table (--help)"
 for tool in svgsmooth scadprofile; do
-    "$build/bin/$tool" --help 2>&1 | flags >"$tmp/$tool.help"
+    "$build/bin/$tool" --dump-options 2>&1 | table_flags all >"$tmp/$tool.help"
     flags <"docs/man/$tool.1" >"$tmp/$tool.page"
     check_true "$tool --help lists flags" test -s "$tmp/$tool.help"
     check "$tool(1) and $tool --help name the same flags" same_flags "$tmp/$tool.help" "$tmp/$tool.page"
 done
-subcommands=$("$build/bin/conica" --help 2>&1 | awk '/^commands:/ { on = 1; next } on && /^  [a-z]/ { print $1 } on && /^$/ { on = 0 }')
+subcommands=$("$build/bin/conica" --help 2>&1 | awk '/^Commands:/ { on = 1; next } on && /^  [a-z]/ { print $1 } on && /^$/ { on = 0 }')
 check_true "conica --help lists its commands" test -n "$subcommands"
 names=""
 : >"$tmp/conica.allhelp"
@@ -266,7 +273,7 @@ for c in $subcommands; do
     names="$names|conica $c"
     section "conica $c" docs/man/conica.1 >"$tmp/conica-$c.sec"
     check_true "conica(1) has a section .SS \"conica $c\"" test -s "$tmp/conica-$c.sec"
-    "$build/bin/conica" "$c" --help 2>&1 | flags >"$tmp/conica-$c.help"
+    "$build/bin/conica" "$c" --dump-options 2>&1 | table_flags >"$tmp/conica-$c.help"
     cat "$tmp/conica-$c.help" >>"$tmp/conica.allhelp"
     flags <"$tmp/conica-$c.sec" >"$tmp/conica-$c.page"
     check "conica(1) section 'conica $c' and conica $c --help name the same flags" \
@@ -274,7 +281,7 @@ for c in $subcommands; do
 done
 # The rest of the page: conica --help's own flags appear in it; any flag it
 # names is one some command's --help names.
-"$build/bin/conica" --help 2>&1 | flags >"$tmp/conica.tophelp"
+"$build/bin/conica" --dump-options 2>&1 | awk '$1 == "tool" { n++ } n == 1' | table_flags all >"$tmp/conica.tophelp"
 (IFS='|'; set -f; outside_sections docs/man/conica.1 $names) | flags >"$tmp/conica.toppage"
 sort -u "$tmp/conica.allhelp" "$tmp/conica.tophelp" -o "$tmp/conica.allhelp"
 check_true "conica(1) names every flag of conica --help" \

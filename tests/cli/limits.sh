@@ -28,7 +28,7 @@ printf 'v 0 0\nv 4 0\nv 4 3\nv 0 3\n' >"$tmp/square.txt"
 printf 'degree 2\nknots 0 0 0 1 2 3 3 3\nc 0 0\nc 4 0\nc 6 3\nc 3 6\nc 0 3\n' >"$tmp/open.spl"
 
 begin_case "subdivision levels: 0..30, more is a usage error"
-refused 2 'levels must be an integer in 0\.\.30' "$tmp/o.txt" \
+refused 2 '-k needs an integer in 0\.\.30' "$tmp/o.txt" \
     "$conica" subdivide -k 31 -o "$tmp/o.txt" "$ex/ellipse.txt"
 refused 2 '0\.\.30' "$tmp/o.svg" "$conica" combs -k 31 -o "$tmp/o.svg" "$ex/ellipse.txt"
 refused 2 '0\.\.20' "$tmp/o.txt" "$conica" errors -k 21 "$ex/ellipse.txt"
@@ -95,9 +95,9 @@ if ! "$conica" plot --help >/dev/null 2>&1; then
     skip_case "this conica has no plot command"
 else
     check "--help documents --max-knots and --max-iterations" "$conica" plot --help
-    check_grep '--max-knots N .*default' "$out"
-    check_grep '--max-iterations N .*trial' "$out"
-    check_grep '^ +steps \(default 20000000\)' "$out"
+    check_grep '--max-knots=N +limit: refuse to insert more than N knots' "$out"
+    check_grep '--max-iterations=N +limit: refuse to run more than N plotter' "$out"
+    check_grep 'trial steps \(default 20000000\)' "$out"
     # pre-phase 5 + loop budget 5 = 10 knots under a cap of 5: the loop hits it
     refused 1 'open\.spl: more than 5 knots inserted \(max_knots\); raise the cap with --max-knots N' \
         "$tmp/o.txt" "$conica" plot --method adaptive --stop budget --prephase 5 --knot-budget 5 \
@@ -137,7 +137,8 @@ check "--max-input-points 12 lets the 12 points of ellipse.txt through" \
 refused 2 '--max-input-points needs a positive integer' "$tmp/o.txt" \
     "$conica" subdivide --max-input-points 0 -o "$tmp/o.txt" "$ex/ellipse.txt"
 check "conica subdivide --help documents --max-input-points" "$conica" subdivide --help
-check_grep '--max-input-points N +refuse inputs of more than N points \(default 16777216' "$out"
+check_grep '--max-input-points=N' "$out"
+check_grep '^ +refuse inputs of more than N points \(default 16777216' "$out"
 if "$conica" plot --help >/dev/null 2>&1; then
     refused 1 'open\.spl:7: more than 4 control points \(max_ctrl\); raise the cap with --max-control-points N' \
         "$tmp/o.txt" "$conica" plot --max-control-points 4 -o "$tmp/o.txt" "$tmp/open.spl"

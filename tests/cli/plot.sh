@@ -26,7 +26,7 @@ printf 'degree 2\nknots 0 0 0 1 1 1\nc 0 0\nc 1 1\nc 2 0\nw 1 -1 1\n' >"$tmp/bad
 begin_case "conica plot is built and documented"
 check_true "$conica exists" test -x "$conica"
 check "--help" "$conica" plot --help
-check_grep '^usage: conica plot' "$out"
+check_grep '^Usage: conica plot' "$out"
 for opt in --method --criterion --rule --stop --knot-budget --curve-points --abs-tolerance \
     --tolerance --viewport --points --max-points --stats -o --prephase --local-weight --angle \
     --max-recursion; do

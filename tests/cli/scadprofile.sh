@@ -330,6 +330,6 @@ check "--max-input-bytes overrides CONICA_MAX_INPUT_BYTES" \
     env CONICA_MAX_INPUT_BYTES=10 "$bin" --max-input-bytes 100000 --levels 1 -o "$tmp/lim2.scad" "$tmp/ellipse.txt"
 check "nothing written by the refused runs" test ! -e "$tmp/lim.scad"
 check "a bad value is a usage error" fails_with 2 "--max-depth needs a whole number" "$bin" --max-depth 0 "$tmp/plate.svg"
-check "--help lists the limit flags" sh -c "'$bin' --help | grep -c -E '^ +--max-(depth|elements|path-bytes|input-bytes) ' | grep -qx 4"
+check "--help lists the limit flags" sh -c "'$bin' --help | grep -c -E '^ +--max-(depth|elements|path-bytes|input-bytes)=N( |$)' | grep -qx 4"
 
 finish

@@ -166,7 +166,7 @@ if has_openscad; then
     check "the --extrude file renders alone" openscad_clean "$tmp/ext.stl" "$tmp/ext.scad"
 fi
 check "--help documents --demo-call, --no-demo-call, --fit and the interface" sh -c \
-    "'$bin' --help > '$tmp/help.txt' && grep -q -- '--demo-call ' '$tmp/help.txt' && grep -q -- '--no-demo-call' '$tmp/help.txt' && grep -q -- '--fit F' '$tmp/help.txt' && grep -q 'NAME_bbox()' '$tmp/help.txt' && grep -q 'include <OUT.scad>' '$tmp/help.txt'"
+    "'$bin' --help > '$tmp/help.txt' && grep -q -- '--demo-call ' '$tmp/help.txt' && grep -q -- '--no-demo-call' '$tmp/help.txt' && grep -q -- '--fit=F' '$tmp/help.txt' && grep -q 'NAME_bbox()' '$tmp/help.txt' && grep -q 'include <OUT.scad>' '$tmp/help.txt'"
 
 begin_case "--module defaults to the file name"
 check "bracket.svg: module bracket, no warning" "$bin" -o "$tmp/m1.scad" "$tmp/bracket.svg"

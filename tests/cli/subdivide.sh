@@ -37,10 +37,10 @@ check_true "$conica exists" test -x "$conica"
 
 begin_case "--help exits 0 and describes every option"
 check "--help" "$conica" subdivide --help
-check_grep '^usage: conica subdivide' "$out"
+check_grep '^Usage: conica subdivide' "$out"
 for opt in -k --open --closed --precise --estimate-normals --reference-compatible --time -o \
     --max-points --normals --threads; do
-    check_grep "(^| )$opt( |,|$)" "$out" "--help mentions $opt"
+    check_grep "(^| )$opt( |,|=|$)" "$out" "--help mentions $opt"
 done
 
 begin_case "circle round trip: -k 3 gives 8*2^3 points on the circle with unit normals"

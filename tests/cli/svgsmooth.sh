@@ -119,7 +119,7 @@ check "--help" "$svgsmooth" --help
 for opt in --levels --tolerance --corner-angle --flatten --precision --select \
            --convert-shapes --stats --in-place -o --max-input-bytes --max-depth \
            --max-elements --max-path-bytes --max-points --version; do
-    check_grep "^ +$opt" "$out" "--help mentions $opt"
+    check_grep "^ +(-[a-z], )?$opt" "$out" "--help mentions $opt"
 done
 check "--version" "$svgsmooth" --version
 check_grep '^svgsmooth \(Conica\) [0-9]' "$out"
