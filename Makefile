@@ -63,7 +63,7 @@ CORE_SONAME := libconica.so.0
 $(BUILD)/obj/libcore/src/%.o: CPPFLAGS += -Ilibcore/src -DCONICA_BUILDING
 
 # Shared helpers of every command-line tool (not part of the public library).
-CLI_SRCS := libcore/tools/cli.c libcore/tools/cli_batch.c libcore/tools/cli_opt.c libcore/tools/plotsvg.c
+CLI_SRCS := libcore/tools/cli.c libcore/tools/cli_batch.c libcore/tools/cli_opt.c libcore/tools/cli_progress.c libcore/tools/plotsvg.c
 CLI_OBJS := $(CLI_SRCS:%.c=$(BUILD)/obj/%.o)
 CLI_A    := $(BUILD)/lib/libconica_cli.a
 

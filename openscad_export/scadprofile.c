@@ -74,6 +74,7 @@ typedef struct options {
     int jobs;           /* -j N, 0: not given */
     char **argv0;       /* the command line in the order typed */
     int out_attached;   /* -o's value is part of its argument (-oDIR/, --output=DIR/) */
+    cli_progress_mode progress; /* -q, --progress */
 } options;
 
 typedef struct stats {
@@ -99,6 +100,7 @@ enum {
     OPT_FLATTEN_ONLY,
     OPT_FORCE,
     OPT_STATS,
+    OPT_PROGRESS,
     OPT_LIMITS, /* CONICA_SVG_CLI_LIMIT_COUNT ids from here */
 };
 
@@ -176,6 +178,13 @@ static const cli_opt opts[] = {
      "all the same)",
      {0, 0, 0}},
     {OPT_STATS, "stats", CLI_ARG_NONE, NULL, NULL, "figures on stderr", {0, 0, 0}},
+    {'q', "quiet", CLI_ARG_NONE, NULL, NULL,
+     "no progress line (errors and the summary still print)", {0, 0, 0}},
+    {OPT_PROGRESS, "progress", CLI_ARG_NONE, NULL, NULL,
+     "several inputs: a progress line on stderr (count,\n"
+     "rate, ETA) even when it is not a terminal (default:\n"
+     "only on a terminal)",
+     {0, 0, 0}},
     {'o', "output", CLI_ARG_REQUIRED, "FILE", "file",
      "output (default stdout; written via a temporary\n"
      "file); a name ending in '/' (or several inputs): a\n"
@@ -298,6 +307,8 @@ static int take_option(cli_parser *p, int c, void *ctx)
     case OPT_FLATTEN_ONLY: o->flatten_only = 1; break;
     case OPT_FORCE: o->force = 1; break;
     case OPT_STATS: o->stats = 1; break;
+    case 'q': o->progress = CLI_PROGRESS_OFF; break;
+    case OPT_PROGRESS: o->progress = CLI_PROGRESS_ON; break;
     case 'o':
         o->out = v;
         /* which argument holds the value: the header of each file of a
@@ -1351,6 +1362,7 @@ int main(int argc, char **argv)
         bc.argc = argc;
         bc.argv = o.argv0;
         cli_batch_init(&b);
+        b.progress = o.progress;
         rc = cli_batch_plan(PROG, o.inputs, o.ninputs, &spec, &b);
         if (rc == 0)
             rc = cli_batch_run(PROG, &b, o.jobs ? o.jobs : cli_batch_default_jobs(),

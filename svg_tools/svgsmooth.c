@@ -29,6 +29,7 @@ enum {
     OPT_IN_PLACE,
     OPT_MAX_INPUT,
     OPT_MAX_POINTS,
+    OPT_PROGRESS,
     OPT_LIMITS, /* CONICA_SVG_CLI_LIMIT_COUNT ids from here */
 };
 
@@ -88,6 +89,13 @@ static const cli_opt opts[] = {
      "files processed in parallel (1..%.0f, default: the\n"
      "number of processors); each file runs on its own",
      {CLI_BATCH_MAX_JOBS, 0, 0}},
+    {'q', "quiet", CLI_ARG_NONE, NULL, NULL,
+     "no progress line (errors and the summary still print)", {0, 0, 0}},
+    {OPT_PROGRESS, "progress", CLI_ARG_NONE, NULL, NULL,
+     "several files: a progress line on stderr (count,\n"
+     "rate, ETA) even when it is not a terminal (default:\n"
+     "only on a terminal)",
+     {0, 0, 0}},
     {OPT_MAX_INPUT, "max-input-bytes", CLI_ARG_REQUIRED, "N", NULL,
      "document size cap (default 64 MiB)", {0, 0, 0}},
     CONICA_SVG_CLI_LIMIT_OPTS(OPT_LIMITS),
@@ -273,6 +281,7 @@ typedef struct cmdline {
     run_opts *ro;
     const char *out_path, *select;
     int have_levels, have_tol, flatten, in_place, recurse, jobs;
+    cli_progress_mode progress;
 } cmdline;
 
 /* One option's value into *ctx; returns -1 to go on, or an exit status. */
@@ -319,6 +328,8 @@ static int take_option(cli_parser *p, int c, void *ctx)
     case OPT_STATS: cl->ro->want_stats = 1; break;
     case OPT_IN_PLACE: cl->in_place = 1; break;
     case 'r': cl->recurse = 1; break;
+    case 'q': cl->progress = CLI_PROGRESS_OFF; break;
+    case OPT_PROGRESS: cl->progress = CLI_PROGRESS_ON; break;
     case 'j':
         if (cli_parse_int(v, 1, CLI_BATCH_MAX_JOBS, &x))
             return cli_opt_bad(p, "needs a whole number in 1..%d, not '%s'", CLI_BATCH_MAX_JOBS, v);
@@ -425,6 +436,7 @@ int main(int argc, char **argv)
         spec.recurse = recurse;
         spec.ext = ".svg";
         cli_batch_init(&b);
+        b.progress = cl.progress;
         rc = cli_batch_plan(PROG, inputs, nin, &spec, &b);
         if (rc == 0)
             rc = cli_batch_run(PROG, &b, jobs ? jobs : cli_batch_default_jobs(), smooth_file, &ro);

@@ -13,11 +13,13 @@
 #include <unistd.h>
 
 #include "cli.h"
+#include "cli_opt.h"
 
 void cli_batch_init(cli_batch *b)
 {
     b->items = NULL;
     b->n = b->cap = 0;
+    b->progress = CLI_PROGRESS_AUTO;
 }
 
 void cli_batch_free(cli_batch *b)
@@ -353,6 +355,7 @@ int cli_batch_run(const char *prog, const cli_batch *b, int jobs, cli_batch_fn f
     int installed[BATCH_NSIG];
     sigset_t block, held;
     running *run;
+    cli_progress progress;
     size_t next = 0, nrun = 0, written = 0, failed = 0, i, k;
     int stop = 0;
 
@@ -377,6 +380,7 @@ int cli_batch_run(const char *prog, const cli_batch *b, int jobs, cli_batch_fn f
             installed[k] = sigaction(batch_sigs[k], &sa, NULL) == 0;
     }
     fflush(NULL); /* nothing buffered is written twice by the children */
+    cli_progress_start(&progress, prog, "files", b->n, b->progress);
 
     while (next < b->n || nrun > 0) {
         int status;
@@ -448,6 +452,7 @@ int cli_batch_run(const char *prog, const cli_batch *b, int jobs, cli_batch_fn f
                           sig_name(WTERMSIG(status)), WTERMSIG(status));
         }
         run[i] = run[--nrun];
+        cli_progress_update(&progress, written + failed);
         if (batch_stop && !stop) {
             for (i = 0; i < nrun; i++)
                 kill(run[i].pid, (int)batch_stop);
@@ -457,6 +462,7 @@ int cli_batch_run(const char *prog, const cli_batch *b, int jobs, cli_batch_fn f
             break;
     }
     free(run);
+    cli_progress_end(&progress);
     for (k = 0; k < BATCH_NSIG; k++)
         if (installed[k])
             sigaction(batch_sigs[k], &old[k], NULL);
@@ -468,7 +474,7 @@ int cli_batch_run(const char *prog, const cli_batch *b, int jobs, cli_batch_fn f
         raise(s);
         return 128 + s;
     }
-    fprintf(stderr, "%s: %zu file%s written, %zu failed\n", prog, written,
-            written == 1 ? "" : "s", failed);
+    fprintf(stderr, "%s: %zu file%s written, %zu failed\n", prog, written, cli_plural(written),
+            failed);
     return failed ? CLI_EXIT_ERROR : CLI_EXIT_OK;
 }

@@ -19,6 +19,8 @@
 
 #include <stddef.h>
 
+#include "cli_progress.h"
+
 /* Caps (input-controlled counts): files in one call, parallel jobs (-j),
  * directory nesting followed by -r. */
 #define CLI_BATCH_MAX_FILES ((size_t)1 << 20)
@@ -33,6 +35,7 @@ typedef struct cli_batch_item {
 typedef struct cli_batch {
     cli_batch_item *items;
     size_t n, cap;
+    cli_progress_mode progress; /* the progress line of cli_batch_run (default: on a terminal) */
 } cli_batch;
 
 typedef struct cli_batch_spec {

@@ -1,0 +1,34 @@
+/* SPDX-License-Identifier: MIT */
+/* A one-line progress indicator on stderr for the tools' long jobs
+ * (batches of files): `PROG: 120/10000 files, 250 files/s, ETA 40 s`,
+ * redrawn in place at most ten times a second and erased at the end.
+ * Shown when stderr is a terminal, or always / never when the user says so
+ * (--progress, -q/--quiet). Uses libc only. */
+#ifndef CONICA_CLI_PROGRESS_H
+#define CONICA_CLI_PROGRESS_H
+
+#include <stddef.h>
+
+/* When to show it. */
+typedef enum cli_progress_mode {
+    CLI_PROGRESS_AUTO = 0, /* when stderr is a terminal (the default) */
+    CLI_PROGRESS_ON,       /* --progress */
+    CLI_PROGRESS_OFF       /* -q, --quiet */
+} cli_progress_mode;
+
+typedef struct cli_progress {
+    const char *prog, *unit; /* "svgsmooth", "files" */
+    size_t total, done;
+    double start, last;      /* seconds (CLOCK_MONOTONIC) */
+    int on, drawn, ansi;     /* shown; something is on the line; the terminal erases (ESC[K) */
+} cli_progress;
+
+/* Start counting toward total units. */
+void cli_progress_start(cli_progress *p, const char *prog, const char *unit, size_t total,
+                        cli_progress_mode mode);
+/* done units so far (redraws when a tenth of a second has passed). */
+void cli_progress_update(cli_progress *p, size_t done);
+/* Erase the line (the tool's summary follows on a clean line). */
+void cli_progress_end(cli_progress *p);
+
+#endif
