@@ -963,7 +963,8 @@ static char *header_text(int argc, char **argv, const options *o, const char *ki
     if (n < cap) {
         if (o->levels >= 0)
             n += (size_t)snprintf(h + n, cap - n,
-                                  "refinement: %d subdivision levels, every point kept", o->levels);
+                                  "refinement: %d subdivision level%s, every point kept", o->levels,
+                                  cli_plural((size_t)o->levels));
         else if (o->flatten_only)
             n += (size_t)snprintf(h + n, cap - n,
                                   "tolerance: %s %s (curves flattened, input geometry kept)", num, u);
@@ -1267,8 +1268,8 @@ static int profile_file(void *ctx, const char *in, const char *outp)
         for (size_t i = 0; i < lay.npaths; i++)
             pts += use->contours[lay.paths[i].contour].n;
         if (k == IN_SVG)
-            fprintf(stderr, PROG ": input SVG, %zu elements, %zu closed subpaths", sx.elements,
-                    sx.subpaths);
+            fprintf(stderr, PROG ": input SVG, %zu element%s, %zu closed subpath%s", sx.elements,
+                    cli_plural(sx.elements), sx.subpaths, cli_plural(sx.subpaths));
         else
             fprintf(stderr, PROG ": input %s, %zu input points", sx.kind ? sx.kind : "?",
                     sx.input_points);

@@ -265,10 +265,13 @@ static int smooth_file(void *ctx, const char *in, const char *out_path)
     t_io += now() - t0;
     if (ro->want_stats)
         fprintf(stderr,
-                "svgsmooth: stats: %zu elements, %zu subpaths, %zu input vertices, %zu output "
-                "points, %.3f s (XML+path I/O %.3f s, geometry %.3f s)\n",
-                stats.elements, stats.subpaths, stats.in_vertices, stats.out_points,
-                now() - t_start, t_io + stats.io_seconds, stats.geometry_seconds);
+                "svgsmooth: stats: %zu element%s, %zu subpath%s, %zu input vert%s, %zu output "
+                "point%s, %.3f s (XML+path I/O %.3f s, geometry %.3f s)\n",
+                stats.elements, cli_plural(stats.elements), stats.subpaths,
+                cli_plural(stats.subpaths), stats.in_vertices,
+                stats.in_vertices == 1 ? "ex" : "ices", stats.out_points,
+                cli_plural(stats.out_points), now() - t_start, t_io + stats.io_seconds,
+                stats.geometry_seconds);
     rc = 0;
 done:
     conica_svg_doc_free(doc);

@@ -164,6 +164,18 @@ done <<EOF
 $commands
 EOF
 
+begin_case "manual pages name every short option with its long one, as the tables do"
+# (docs.sh compares the long options of each page or section with the table)
+for t in conica svgsmooth scadprofile; do
+    "$bindir/$t" --dump-options | awk -F '\t' '$1 == "opt" && $2 != "-" && $3 != "-" { print $2, $3 }' |
+        sort -u >"$tmp/$t.pairs"
+    check_true "$t: its tables have short options" test -s "$tmp/$t.pairs"
+    sed 's/\\-/-/g' "docs/man/$t.1" >"$tmp/$t.man"
+    while read -r s l; do
+        check_true "$t.1 names -$s with --$l" grep -q -e "-$s \", \" --$l\( \|\$\)" "$tmp/$t.man"
+    done <"$tmp/$t.pairs"
+done
+
 begin_case "conica itself: --help, --version, unknown options and commands"
 check "conica --help" "$build/bin/conica" --help
 check_grep '^Usage: conica COMMAND' "$out"
@@ -185,6 +197,15 @@ check_exit 2 "conica subdivide --max=3" "$build/bin/conica" subdivide --max=3 "$
 check_grep "option '--max' is ambiguous \\(--max-points, --max-input-points\\)" "$err"
 check_exit 2 "a flag given a value: conica subdivide --open=1" "$build/bin/conica" subdivide --open=1 "$ex/ellipse.txt"
 check_grep "option '--open' takes no value" "$err"
+
+begin_case "counts of one are singular"
+printf '<svg xmlns="http://www.w3.org/2000/svg"><path d="M0 0L10 0L10 10z"/></svg>\n' >"$tmp/one.svg"
+check "svgsmooth --stats on one element" "$bindir/svgsmooth" --stats -o "$tmp/one.out.svg" "$tmp/one.svg"
+check_grep "stats: 1 element, 1 subpath, 3 input vertices, 3 output points" "$err"
+check "scadprofile --stats on one element" "$bindir/scadprofile" --stats -o "$tmp/one.scad" "$tmp/one.svg"
+check_grep "input SVG, 1 element, 1 closed subpath;" "$err"
+check "svgsmooth on one file of a batch" "$bindir/svgsmooth" -o "$tmp/onedir/" "$tmp/one.svg"
+check_grep "^svgsmooth: 1 file written, 0 failed" "$err"
 
 begin_case "a progress line on a terminal only; -q and --progress force it"
 mkdir -p "$tmp/many"
