@@ -4,8 +4,25 @@
 #   make test       every suite (installs missing Debian packages first)
 #   make demo       the main job on bundled example data
 #   make bench      benchmark tables
-#   make install    PREFIX=/usr/local DESTDIR=
+#   make install    PREFIX=/usr/local DESTDIR= (also BINDIR, LIBDIR, INCLUDEDIR,
+#                   DATADIR, MANDIR); make uninstall removes what it wrote
+#   make WERROR=1   warnings are errors (make test and .ci/run set it)
+# Works from any directory (make -f /src/Makefile [BUILD=DIR]): the outputs
+# go to BUILD, relative to the directory make was called from.
 .DEFAULT_GOAL := all
+SRCDIR := $(patsubst %/,%,$(dir $(abspath $(firstword $(MAKEFILE_LIST)))))
+ifneq ($(CURDIR),$(SRCDIR))
+# Called from elsewhere: run again in the source tree with BUILD absolute.
+BUILD ?= build
+OUTER_GOAL := $(firstword $(MAKECMDGOALS) all)
+# goals under BUILD (make -f /src/Makefile BUILD=b b/bin/conica) made absolute too
+OUTER_GOALS := $(foreach g,$(MAKECMDGOALS),$(if $(filter $(BUILD)/%,$(g)),$(abspath $(g)),$(g)))
+$(OUTER_GOAL):
+	@$(MAKE) --no-print-directory -C $(SRCDIR) BUILD=$(abspath $(BUILD)) $(OUTER_GOALS)
+$(filter-out $(OUTER_GOAL),$(MAKECMDGOALS)):
+	@:
+.PHONY: $(OUTER_GOAL) $(MAKECMDGOALS)
+else
 .SUFFIXES:
 .DELETE_ON_ERROR:
 # Fragments may list $$(ALL_LIBS) as prerequisites: expanded once every
@@ -13,7 +30,19 @@
 .SECONDEXPANSION:
 
 BUILD   ?= build
-PREFIX  ?= /usr/local
+# GNU installation directories (DESTDIR is prepended to each when installing).
+PREFIX      ?= /usr/local
+EXEC_PREFIX ?= $(PREFIX)
+BINDIR      ?= $(EXEC_PREFIX)/bin
+LIBDIR      ?= $(EXEC_PREFIX)/lib
+INCLUDEDIR  ?= $(PREFIX)/include
+DATAROOTDIR ?= $(PREFIX)/share
+DATADIR     ?= $(DATAROOTDIR)
+MANDIR      ?= $(DATAROOTDIR)/man
+PKGCONFIGDIR ?= $(LIBDIR)/pkgconfig
+# Where bash-completion and zsh look for completions under PREFIX.
+BASHCOMPDIR ?= $(DATADIR)/bash-completion/completions
+ZSHCOMPDIR  ?= $(DATADIR)/zsh/site-functions
 DESTDIR ?=
 CC      ?= gcc
 CXX     ?= g++
@@ -31,13 +60,16 @@ VERSION := 0.1.0
 # glibc's fma() is exact either way, only slower without it.
 ARCH ?= $(shell grep -qw fma /proc/cpuinfo 2>/dev/null && echo -mfma)
 OPT  ?= -O2
+# -Werror only where asked (WERROR=1: developers, make test, CI), never
+# forced on a packager's build.
+WERROR ?=
 WARN := -std=c11 -Wall -Wextra -Wpedantic -Wshadow -Wstrict-prototypes \
-        -Wmissing-prototypes -Wconversion -Werror
-CXXWARN := -std=c++17 -Wall -Wextra -Wshadow -Werror
+        -Wmissing-prototypes -Wconversion $(if $(filter 1,$(WERROR)),-Werror)
+CXXWARN := -std=c++17 -Wall -Wextra -Wshadow $(if $(filter 1,$(WERROR)),-Werror)
 SAN  ?=
 # CFLAGS, CXXFLAGS and LDFLAGS are the user's (`make CFLAGS=-O3` replaces the
 # optimisation and debug flags); the project's own are appended with
-# `override`, so no command line can drop the warning set, -Werror, -fPIC,
+# `override`, so no command line can drop the warning set, -fPIC,
 # hidden visibility or the sanitizer flags. Extra CPPFLAGS go through the
 # environment (`CPPFLAGS=-DX make`): on the command line they would replace
 # the include paths.
@@ -125,8 +157,8 @@ $(BUILD)/bin/conica: $(CONICA_OBJS) $(ALL_LIBS)
 
 $(BUILD)/obj/libcore/tools/conica.o: $(CMD_DEF)
 
-# conica.pc is rewritten whenever PREFIX changes (and only then).
-PC_TEXT := \# SPDX-License-Identifier: MIT\nprefix=$(PREFIX)\nlibdir=$${prefix}/lib\nincludedir=$${prefix}/include\n\nName: conica\nDescription: Conic-preserving curve subdivision and adaptive spline plotting\nVersion: $(VERSION)\nLibs: -L$${libdir} -lconica\nLibs.private: $(CORE_LIBS)\nCflags: -I$${includedir}\n
+# conica.pc is rewritten whenever PREFIX, LIBDIR or INCLUDEDIR changes (and only then).
+PC_TEXT := \# SPDX-License-Identifier: MIT\nprefix=$(PREFIX)\nlibdir=$(patsubst $(PREFIX)/%,$${prefix}/%,$(LIBDIR))\nincludedir=$(patsubst $(PREFIX)/%,$${prefix}/%,$(INCLUDEDIR))\n\nName: conica\nDescription: Conic-preserving curve subdivision and adaptive spline plotting\nVersion: $(VERSION)\nLibs: -L$${libdir} -lconica\nLibs.private: $(CORE_LIBS)\nCflags: -I$${includedir}\n
 $(shell mkdir -p $(BUILD) && { printf '$(PC_TEXT)' | cmp -s - $(BUILD)/conica.pc || printf '$(PC_TEXT)' > $(BUILD)/conica.pc; })
 
 # ---------------------------------------------------------------- tests
@@ -166,9 +198,9 @@ NPROC := $(shell nproc 2>/dev/null || echo 2)
 
 test: deps
 	@start=$$(date +%s); \
-	$(MAKE) --no-print-directory -j$(NPROC) tests && \
+	$(MAKE) --no-print-directory -j$(NPROC) WERROR=1 tests && \
 	echo "build: $$(( $$(date +%s) - start )) s" && \
-	$(MAKE) --no-print-directory -j$(NPROC) test-san && \
+	$(MAKE) --no-print-directory -j$(NPROC) WERROR=1 test-san && \
 	echo "sanitizer build: $$(( $$(date +%s) - start )) s since the start" && \
 	CONICA_TEST_START=$$start scripts/run-tests.sh $(BUILD)
 
@@ -188,23 +220,48 @@ demo:
 	scripts/demo.sh $(BUILD)
 
 # ---------------------------------------------------------------- install
-# Manual pages of the tools (docs/man/*.1) go to $(PREFIX)/share/man/man1.
+# Manual pages of the tools (docs/man/*.1) go to MANDIR/man1; bash and zsh
+# completions made from the tools' option tables (scripts/completions.sh)
+# to BASHCOMPDIR and ZSHCOMPDIR. INSTALLED lists every file install
+# writes (modules add theirs): uninstall removes exactly those.
 MAN1 := $(wildcard docs/man/*.1)
-install: $(CORE_A) $(CORE_SO) $(BINS) $(BUILD)/conica.pc
-	install -d $(DESTDIR)$(PREFIX)/lib/pkgconfig $(DESTDIR)$(PREFIX)/include/conica $(DESTDIR)$(PREFIX)/bin
-	install -d $(DESTDIR)$(PREFIX)/share/man/man1
-	install -m 644 libcore/include/conica/*.h $(DESTDIR)$(PREFIX)/include/conica/
-	install -m 644 $(CORE_A) $(DESTDIR)$(PREFIX)/lib/
-	install -m 755 $(CORE_SO).$(VERSION) $(DESTDIR)$(PREFIX)/lib/
-	ln -sf libconica.so.$(VERSION) $(DESTDIR)$(PREFIX)/lib/$(CORE_SONAME)
-	ln -sf libconica.so.$(VERSION) $(DESTDIR)$(PREFIX)/lib/libconica.so
-	install -m 755 $(BINS) $(DESTDIR)$(PREFIX)/bin/
-	install -m 644 $(BUILD)/conica.pc $(DESTDIR)$(PREFIX)/lib/pkgconfig/
-	install -m 644 $(MAN1) $(DESTDIR)$(PREFIX)/share/man/man1/
+HEADERS := $(wildcard libcore/include/conica/*.h)
+TOOLS := $(notdir $(BINS))
+COMPLETIONS := $(TOOLS:%=$(BUILD)/completions/bash/%) $(TOOLS:%=$(BUILD)/completions/zsh/_%)
+
+$(COMPLETIONS) &: $(BINS) scripts/completions.sh
+	sh scripts/completions.sh $(BUILD)/bin $(BUILD)/completions
+completions: $(COMPLETIONS)
+
+INSTALLED += $(HEADERS:libcore/include/%=$(INCLUDEDIR)/%) \
+    $(LIBDIR)/libconica.a $(LIBDIR)/libconica.so.$(VERSION) $(LIBDIR)/$(CORE_SONAME) \
+    $(LIBDIR)/libconica.so $(TOOLS:%=$(BINDIR)/%) $(PKGCONFIGDIR)/conica.pc \
+    $(MAN1:docs/man/%=$(MANDIR)/man1/%) $(TOOLS:%=$(BASHCOMPDIR)/%) $(TOOLS:%=$(ZSHCOMPDIR)/_%)
+# Directories of our own, removed by uninstall when empty.
+INSTALLED_DIRS += $(INCLUDEDIR)/conica
+
+install: $(CORE_A) $(CORE_SO) $(BINS) $(BUILD)/conica.pc $(COMPLETIONS)
+	install -d $(DESTDIR)$(PKGCONFIGDIR) $(DESTDIR)$(INCLUDEDIR)/conica $(DESTDIR)$(BINDIR) \
+	  $(DESTDIR)$(LIBDIR) $(DESTDIR)$(MANDIR)/man1 $(DESTDIR)$(BASHCOMPDIR) $(DESTDIR)$(ZSHCOMPDIR)
+	install -m 644 $(HEADERS) $(DESTDIR)$(INCLUDEDIR)/conica/
+	install -m 644 $(CORE_A) $(DESTDIR)$(LIBDIR)/
+	install -m 755 $(CORE_SO).$(VERSION) $(DESTDIR)$(LIBDIR)/
+	ln -sf libconica.so.$(VERSION) $(DESTDIR)$(LIBDIR)/$(CORE_SONAME)
+	ln -sf libconica.so.$(VERSION) $(DESTDIR)$(LIBDIR)/libconica.so
+	install -m 755 $(BINS) $(DESTDIR)$(BINDIR)/
+	install -m 644 $(BUILD)/conica.pc $(DESTDIR)$(PKGCONFIGDIR)/
+	install -m 644 $(MAN1) $(DESTDIR)$(MANDIR)/man1/
+	install -m 644 $(TOOLS:%=$(BUILD)/completions/bash/%) $(DESTDIR)$(BASHCOMPDIR)/
+	install -m 644 $(TOOLS:%=$(BUILD)/completions/zsh/_%) $(DESTDIR)$(ZSHCOMPDIR)/
+
+uninstall:
+	rm -f $(addprefix $(DESTDIR),$(INSTALLED))
+	rmdir $(addprefix $(DESTDIR),$(INSTALLED_DIRS)) 2>/dev/null || true
 
 clean:
 	rm -rf $(BUILD)
 
-.PHONY: all tests test test-san deps bench demo install clean
+.PHONY: all tests test test-san deps bench demo install uninstall completions clean
 
 -include $(shell find $(BUILD)/obj -name '*.d' 2>/dev/null)
+endif

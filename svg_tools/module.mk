@@ -37,10 +37,14 @@ $(INKSCAPE_ZIP): $(INKSCAPE_EXT)
 inkscape-extension: $(INKSCAPE_ZIP)
 TEST_EXTRA += $(INKSCAPE_ZIP)
 
+INKSCAPE_DIR ?= $(DATADIR)/inkscape/extensions/conica
+INSTALLED += $(INKSCAPE_EXT:svg_tools/inkscape/%=$(INKSCAPE_DIR)/%)
+INSTALLED_DIRS += $(INKSCAPE_DIR)
+
 install-inkscape: $(INKSCAPE_EXT)
-	install -d $(DESTDIR)$(PREFIX)/share/inkscape/extensions/conica
-	install -m 644 svg_tools/inkscape/*.inx $(DESTDIR)$(PREFIX)/share/inkscape/extensions/conica/
-	install -m 755 svg_tools/inkscape/conica_smooth.py $(DESTDIR)$(PREFIX)/share/inkscape/extensions/conica/
+	install -d $(DESTDIR)$(INKSCAPE_DIR)
+	install -m 644 svg_tools/inkscape/*.inx $(DESTDIR)$(INKSCAPE_DIR)/
+	install -m 755 svg_tools/inkscape/conica_smooth.py $(DESTDIR)$(INKSCAPE_DIR)/
 
 install: install-inkscape
 .PHONY: inkscape-extension install-inkscape
