@@ -20,11 +20,18 @@ $(BUILD)/bin/svgsmooth: $(SVGSMOOTH_OBJS) $(SVG_A) $(CLI_A) $(CORE_A)
 
 BINS += $(BUILD)/bin/svgsmooth
 
-# The Inkscape 1.x extension (svg_tools/inkscape/): `make install` puts it
-# where an Inkscape installed under the same PREFIX finds system extensions
-# (PREFIX/share/inkscape/extensions/conica/); `make inkscape-extension`
-# makes a zip to unpack into the user's extension directory
-# (~/.config/inkscape/extensions/, Edit > Preferences > System).
+# The Inkscape 1.x extension (svg_tools/inkscape/).
+#   make install-inkscape   for the user: INKSCAPE_USER_DIR (the directory
+#                           `inkscape --user-data-directory` names, made when
+#                           missing: a fresh profile works), no root needed
+#   make install            system-wide: INKSCAPE_DIR, for PREFIX /usr or
+#                           /usr/local the extensions directory of the
+#                           installed Inkscape (its --system-data-directory;
+#                           Debian's 1.2 searches /usr/share/inkscape only,
+#                           not /usr/local), else DATADIR/inkscape
+#   make inkscape-extension a zip to unpack by hand
+# Both installs write svgsmooth.path (BINDIR/svgsmooth) beside the script,
+# so the extension finds the installed svgsmooth without PATH.
 INKSCAPE_EXT := svg_tools/inkscape/conica_smooth.inx svg_tools/inkscape/conica_flatten.inx \
                 svg_tools/inkscape/conica_smooth.py
 INKSCAPE_ZIP := $(BUILD)/conica-inkscape.zip
@@ -37,14 +44,33 @@ $(INKSCAPE_ZIP): $(INKSCAPE_EXT)
 inkscape-extension: $(INKSCAPE_ZIP)
 TEST_EXTRA += $(INKSCAPE_ZIP)
 
-INKSCAPE_DIR ?= $(DATADIR)/inkscape/extensions/conica
-INSTALLED += $(INKSCAPE_EXT:svg_tools/inkscape/%=$(INKSCAPE_DIR)/%)
+INKSCAPE ?= inkscape
+# (a system prefix: Inkscape's own directory; another prefix, such as
+# ~/.local, keeps to DATADIR: use install-inkscape for the user there)
+INKSCAPE_DIR ?= $(if $(filter /usr /usr/local,$(PREFIX)),$(or $(shell $(INKSCAPE) --system-data-directory 2>/dev/null),$(DATADIR)/inkscape),$(DATADIR)/inkscape)/extensions/conica
+INKSCAPE_USER_DIR ?= $(or $(shell $(INKSCAPE) --user-data-directory 2>/dev/null),$(or $(XDG_CONFIG_HOME),$(HOME)/.config)/inkscape)/extensions/conica
+INKSCAPE_FILES := $(notdir $(INKSCAPE_EXT)) svgsmooth.path
+INSTALLED += $(INKSCAPE_FILES:%=$(INKSCAPE_DIR)/%)
 INSTALLED_DIRS += $(INKSCAPE_DIR)
 
-install-inkscape: $(INKSCAPE_EXT)
-	install -d $(DESTDIR)$(INKSCAPE_DIR)
-	install -m 644 svg_tools/inkscape/*.inx $(DESTDIR)$(INKSCAPE_DIR)/
-	install -m 755 svg_tools/inkscape/conica_smooth.py $(DESTDIR)$(INKSCAPE_DIR)/
+# install-inkscape-to DIR: the extension and svgsmooth.path into DIR (made)
+define install-inkscape-to
+	install -d $(1)
+	install -m 644 svg_tools/inkscape/*.inx $(1)/
+	install -m 755 svg_tools/inkscape/conica_smooth.py $(1)/
+	printf '%s\n' '$(BINDIR)/svgsmooth' >$(1)/svgsmooth.path
+endef
 
-install: install-inkscape
-.PHONY: inkscape-extension install-inkscape
+install-inkscape-system: $(INKSCAPE_EXT)
+	$(call install-inkscape-to,$(DESTDIR)$(INKSCAPE_DIR))
+
+install-inkscape: $(INKSCAPE_EXT)
+	$(call install-inkscape-to,$(INKSCAPE_USER_DIR))
+	@echo "Conica's extension is in $(INKSCAPE_USER_DIR): restart Inkscape, then Extensions > Modify Path"
+
+uninstall-inkscape:
+	rm -f $(INKSCAPE_FILES:%=$(INKSCAPE_USER_DIR)/%)
+	rmdir $(INKSCAPE_USER_DIR) 2>/dev/null || true
+
+install: install-inkscape-system
+.PHONY: inkscape-extension install-inkscape install-inkscape-system uninstall-inkscape

@@ -13,8 +13,14 @@ the guaranteed adaptive plotter (Dahl, "Adaptive plotting of splines").
 
 svgsmooth is looked for, in this order: the extension's "svgsmooth program"
 field, the environment variable CONICA_SVGSMOOTH, the extension's own
-directory, PREFIX/bin when the extension is installed under
-PREFIX/share/inkscape/extensions, then PATH.
+directory, the program named in svgsmooth.path beside this script (written
+by `make install`: BINDIR/svgsmooth), PREFIX/bin when the extension is
+installed under PREFIX/share/inkscape/extensions, then PATH.
+
+When it cannot run, the extension says why in Inkscape's one error dialog.
+In a `inkscape --batch-process` run no one would close that dialog and
+Inkscape would wait for ever: there the message goes to Inkscape's own
+standard error and the document is left unchanged.
 """
 import os
 import shutil
@@ -36,6 +42,11 @@ def find_svgsmooth(preference):
     if os.environ.get("CONICA_SVGSMOOTH"):
         candidates.append(("CONICA_SVGSMOOTH", os.environ["CONICA_SVGSMOOTH"]))
     candidates.append(("the extension directory", os.path.join(SCRIPT_DIR, "svgsmooth")))
+    try:
+        with open(os.path.join(SCRIPT_DIR, "svgsmooth.path"), encoding="utf-8") as f:
+            candidates.append(("svgsmooth.path", f.read().strip()))
+    except OSError:
+        pass
     # PREFIX/share/inkscape/extensions/conica -> PREFIX/bin
     for up in (3, 4):
         prefix = os.path.normpath(os.path.join(SCRIPT_DIR, *([os.pardir] * up)))
@@ -44,7 +55,7 @@ def find_svgsmooth(preference):
         tried.append(f"{path} ({where})")
         if os.path.isfile(path) and os.access(path, os.X_OK):
             return path
-        if where != "the extension directory" and where != "the install prefix":
+        if where not in ("the extension directory", "svgsmooth.path", "the install prefix"):
             # an explicit choice that does not work is an error, not a hint
             raise inkex.AbortExtension(
                 f"Conica: svgsmooth not found at {path} ({where}): no executable file there."
@@ -57,6 +68,49 @@ def find_svgsmooth(preference):
         "that svgsmooth is on PATH, or enter its full path in the extension's "
         "'svgsmooth program' field. Looked at: " + "; ".join(tried) + "; PATH"
     )
+
+
+def batch_stderr():
+    """Inkscape's own standard error when it runs with --batch-process (a
+    dialog there would wait for a click that never comes), else None.
+    Inkscape spawns the script detached (its parent is init), so Inkscape is
+    found as the process that holds the other end of our stderr pipe."""
+    try:
+        mine = os.readlink("/proc/self/fd/2")
+    except OSError:
+        return None
+    if not mine.startswith("pipe:"):
+        return None
+    me = str(os.getpid())
+    for pid in os.listdir("/proc"):
+        if not pid.isdigit() or pid == me:
+            continue
+        try:
+            holds = any(os.readlink(f"/proc/{pid}/fd/{fd}") == mine
+                        for fd in os.listdir(f"/proc/{pid}/fd"))
+            if not holds:
+                continue
+            with open(f"/proc/{pid}/cmdline", "rb") as f:
+                args = f.read().split(b"\0")
+        except OSError:
+            continue
+        if b"--batch-process" in args:
+            return f"/proc/{pid}/fd/2"
+    return None
+
+
+def to_batch_log(text):
+    """In a --batch-process run, write text to Inkscape's standard error and
+    return True; otherwise (a dialog can show it) return False."""
+    where = batch_stderr()
+    if where is None:
+        return False
+    try:
+        with open(where, "a", encoding="utf-8") as f:
+            f.write(text + "\n")
+    except OSError:
+        pass
+    return True
 
 
 def has_flag(exe, flag):
@@ -84,7 +138,7 @@ class ConicaSmooth(inkex.EffectExtension):
         pars.add_argument("--tab", default="")
         pars.add_argument("--mode", choices=("smooth", "flatten"), default="smooth")
         pars.add_argument("--method", choices=("levels", "tolerance"), default="levels")
-        pars.add_argument("--levels", type=int, default=3)
+        pars.add_argument("--levels", type=int, default=4)  # svgsmooth's default
         pars.add_argument("--tolerance", type=float, default=0.1)
         pars.add_argument("--corner_angle", type=float, default=40.0)
         pars.add_argument("--simplify", type=float, default=0.0)
@@ -132,6 +186,15 @@ class ConicaSmooth(inkex.EffectExtension):
         return args
 
     def effect(self):
+        try:
+            self.smooth()
+        except inkex.AbortExtension as err:
+            if not to_batch_log(str(err)):
+                raise  # Inkscape shows it in one dialog
+            self.result = None  # the document unchanged, no dialog
+
+    def smooth(self):
+        """Run svgsmooth; the result in self.result, or AbortExtension."""
         exe = find_svgsmooth(self.options.svgsmooth)
         args = self.svgsmooth_args(exe)
         # the document exactly as Inkscape wrote it (not re-serialised)
@@ -151,7 +214,7 @@ class ConicaSmooth(inkex.EffectExtension):
             raise inkex.AbortExtension(
                 messages or f"Conica: {exe} failed (exit status {res.returncode})."
             )
-        if messages:
+        if messages and not to_batch_log(messages):
             self.msg(messages)  # svgsmooth's warnings
         self.result = res.stdout
         self.document = res.stdout

@@ -77,8 +77,8 @@ check_grep 'needs-live-preview="true"' "$tmp/ext/conica/conica_smooth.inx" "Coni
 check_grep '<submenu name="Modify Path"/>' "$tmp/ext/conica/conica_flatten.inx" "Flatten to Tolerance is under Modify Path"
 
 begin_case "inkscape: Conic Smooth on one selected path of three changes only it, as svgsmooth --select"
-check "extension, path2 selected" ink sel --mode=smooth --method=levels --levels=3 --corner_angle=40 --id=path2
-check "svgsmooth --select path2" "$svgsmooth" --levels 3 --corner-angle 40.0 --select path2 -o "$tmp/ref.svg" "$tmp/doc.svg"
+check "extension, path2 selected" ink sel --mode=smooth --method=levels --levels=4 --corner_angle=40 --id=path2
+check "svgsmooth --select path2" "$svgsmooth" --levels 4 --corner-angle 40.0 --select path2 -o "$tmp/ref.svg" "$tmp/doc.svg"
 check_true "the extension's document is svgsmooth's, byte for byte" cmp -s "$tmp/sel.svg" "$tmp/ref.svg"
 for id in path1 path3; do
     check_true "$id unchanged" test "$(dval "$tmp/sel.svg" $id)" = "$(dval "$tmp/doc.svg" $id)"
@@ -116,7 +116,7 @@ check_grep 'has no --simplify option' "$tmp/old.err" "the message says why"
 check_true "no document written" test ! -s "$tmp/old.svg"
 if "$svgsmooth" --help | grep -q '^ *--simplify '; then
     check "Simplify 0.5 with this svgsmooth" ink simp --simplify=0.5 --id=path2
-    check "svgsmooth --simplify" "$svgsmooth" --levels 3 --corner-angle 40.0 --simplify 0.5 --select path2 -o "$tmp/ref-simp.svg" "$tmp/doc.svg"
+    check "svgsmooth --simplify" "$svgsmooth" --levels 4 --corner-angle 40.0 --simplify 0.5 --select path2 -o "$tmp/ref-simp.svg" "$tmp/doc.svg"
     check_true "the same document" cmp -s "$tmp/simp.svg" "$tmp/ref-simp.svg"
 else
     check "Simplify 0 never asks for --simplify" ink simp0 --simplify=0 --svgsmooth="$tmp/old-svgsmooth" --id=path2
@@ -139,7 +139,7 @@ mkdir -p "$tmp/prefix/bin" "$tmp/prefix/share/inkscape/extensions"
 cp "$svgsmooth" "$tmp/prefix/bin/"
 cp -r "$tmp/ext/conica" "$tmp/prefix/share/inkscape/extensions/"
 PYTHONPATH=$inkex_dir PATH=$tmp/emptybin "$py" "$tmp/prefix/share/inkscape/extensions/conica/conica_smooth.py" \
-    --levels=3 --id=path2 "$tmp/doc.svg" >"$tmp/prefixed.svg" 2>"$tmp/prefixed.err"
+    --levels=4 --id=path2 "$tmp/doc.svg" >"$tmp/prefixed.svg" 2>"$tmp/prefixed.err"
 check_true "runs without svgsmooth on PATH" test $? -eq 0
 check_true "the same result" cmp -s "$tmp/prefixed.svg" "$tmp/ref.svg"
 
@@ -149,11 +149,18 @@ if [ "$inkex_ok" -eq 0 ]; then
 elif ! command -v inkscape >/dev/null 2>&1 || ! command -v xvfb-run >/dev/null 2>&1; then
     skip_case "inkscape or xvfb-run not installed (Inkscape 1.2 offers extension actions only with its GUI; scripts/deps.sh test installs both)"
 else
-    mkdir -p "$tmp/profile/extensions"
-    cp -r "$tmp/ext/conica" "$tmp/profile/extensions/"
+    # a fresh profile and the documented step: make install-inkscape
+    mkdir -p "$tmp/home"
+    check "make install-inkscape into a fresh HOME" env HOME="$tmp/home" XDG_CONFIG_HOME= \
+        make --no-print-directory BUILD="$build" BINDIR="$bin" install-inkscape
+    check_true "the extension is in ~/.config/inkscape/extensions/conica" \
+        test -f "$tmp/home/.config/inkscape/extensions/conica/conica_smooth.py"
+    check_grep "^$bin/svgsmooth\$" "$tmp/home/.config/inkscape/extensions/conica/svgsmooth.path" \
+        "svgsmooth.path names the installed svgsmooth"
     # Inkscape runs the script with the first python3 on PATH: the system
-    # one, which has lxml and cssselect; a timeout in case an error dialog waits
-    INKSCAPE_PROFILE_DIR=$tmp/profile PATH=$bin:/usr/bin:$PATH \
+    # one, which has lxml and cssselect; svgsmooth is not on that PATH (the
+    # extension finds it through svgsmooth.path); a timeout in case a dialog waits
+    HOME=$tmp/home XDG_CONFIG_HOME= PATH=/usr/bin:/bin \
         timeout 120 xvfb-run -a inkscape --with-gui --batch-process \
         --actions="select-by-id:path2;org.conica.smooth.noprefs;export-filename:$tmp/gui.svg;export-plain-svg;export-do" \
         "$tmp/doc.svg" >"$tmp/gui.log" 2>&1
@@ -162,7 +169,18 @@ else
     for id in path1 path3; do
         check_true "$id unchanged" test "$(dval "$tmp/gui.svg" $id)" = "$(dval "$tmp/doc.svg" $id)"
     done
-    check_true "path2 as svgsmooth --select path2 (the .inx defaults: levels 3, corner 40)" \
+    check_true "path2 as svgsmooth --select path2 (the .inx defaults: levels 4 as svgsmooth's, corner 40)" \
         test "$(dval "$tmp/gui.svg" path2)" = "$(dval "$tmp/ref.svg" path2)"
+
+    # svgsmooth missing: the message goes to Inkscape's log, no dialog waits
+    printf '%s\n' "$tmp/nowhere/svgsmooth" >"$tmp/home/.config/inkscape/extensions/conica/svgsmooth.path"
+    HOME=$tmp/home XDG_CONFIG_HOME= PATH=/usr/bin:/bin \
+        timeout 120 xvfb-run -a inkscape --with-gui --batch-process \
+        --actions="select-by-id:path2;org.conica.smooth.noprefs;export-filename:$tmp/gui2.svg;export-plain-svg;export-do" \
+        "$tmp/doc.svg" >"$tmp/gui2.log" 2>&1
+    st=$?
+    check_true "svgsmooth missing: Inkscape ends by itself (status $st; 124: killed by the timeout)" test "$st" -ne 124
+    check_grep 'Conica: .*svgsmooth' "$tmp/gui2.log" "the message is in Inkscape's output"
+    check_true "the document is written unchanged" test "$(dval "$tmp/gui2.svg" path2)" = "$(dval "$tmp/doc.svg" path2)"
 fi
 finish
