@@ -109,14 +109,16 @@ def cmd_links(files):
     sys.exit(1 if bad else 0)
 
 def following_text(blocks, k, lines):
-    """The ```text block right after block k (only blank lines between)."""
+    """The ```text block right after block k: only blank lines between, or
+    at most two lines that introduce it (ending in ':', as `Output:`)."""
     if k + 1 >= len(blocks):
         return None
     end = blocks[k][3]
     start, info, body, _ = blocks[k + 1]
     if info.split()[:1] != ['text']:
         return None
-    if any(lines[i].strip() for i in range(end, start - 1)):
+    between = [lines[i].strip() for i in range(end, start - 1) if lines[i].strip()]
+    if len(between) > 2 or any(not b.endswith(':') for b in between):
         return None
     return body
 
@@ -412,12 +414,53 @@ if [ "$san" -eq 0 ]; then
         "$PY" "$tmp/docs.py" cblocks "$doc" "$cdir" >"$cdir/list" || continue
         while read -r name line file; do
             check_true "$doc:$line: the block equals $file" cmp -s "$cdir/$name.block" "$file"
+            # a C example shows its output, and the output is what it prints
+            check_true "$doc:$line: an output block follows $file" test -f "$cdir/$name.expected"
             if [ -f "$cdir/$name.expected" ]; then
                 check "$doc: the output below $file is what it prints" \
                     "$PY" "$tmp/docs.py" compare "$cdir/$name.expected" "$tmp/example-$name.out"
             fi
         done <"$cdir/list"
     done
+
+    begin_case "the comparison fails on a changed output (shown here)"
+    # a document whose block prints 42 under a text block that says 43
+    mkdir -p "$tmp/fail/blocks"
+    cat >"$tmp/fail/doc.md" <<'DOC'
+The answer:
+
+```sh runnable
+echo 42
+```
+
+Output:
+
+```text
+43
+```
+DOC
+    "$PY" "$tmp/docs.py" blocks "$tmp/fail/doc.md" "$tmp/fail/blocks" >/dev/null
+    sh "$tmp/fail/blocks/001.sh" >"$tmp/fail/001.out" 2>&1
+    check_true "the block's text block is found (through an 'Output:' line)" test -f "$tmp/fail/blocks/001.expected"
+    check_exit 1 "echo 42 against a shown 43: the comparison fails" \
+        "$PY" "$tmp/docs.py" compare "$tmp/fail/blocks/001.expected" "$tmp/fail/001.out"
+    # docs/library.md's path.c output with its first digit changed
+    "$PY" - docs/library.md "$tmp/fail/library.md" <<'PY'
+import re, sys
+text = open(sys.argv[1], encoding='utf-8').read()
+at = text.index('```c docs/examples/path.c')
+out = text.index('```text', text.index('\n```\n', at))
+digit = re.search(r'[0-9]', text[out:])
+k = out + digit.start()
+changed = text[:k] + str((int(text[k]) + 1) % 10) + text[k + 1:]
+open(sys.argv[2], 'w', encoding='utf-8').write(changed)
+print('changed line: ' + changed[k - changed[:k][::-1].index('\n'):changed.index('\n', k)])
+PY
+    mkdir -p "$tmp/fail/c"
+    "$PY" "$tmp/docs.py" cblocks "$tmp/fail/library.md" "$tmp/fail/c" >/dev/null
+    check_exit 1 "docs/library.md with one digit of path.c's output changed: the comparison fails" \
+        "$PY" "$tmp/docs.py" compare "$tmp/fail/c/path.expected" "$tmp/example-path.out"
+    check_grep "^expected \(" "$out" "the failure shows the expected lines"
 fi
 
 finish
