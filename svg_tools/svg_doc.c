@@ -18,6 +18,7 @@
 
 #include "conica/subdiv.h"
 #include "numparse.h"
+#include "svg_encoding.h"
 
 #define SVG_NS "http://www.w3.org/2000/svg"
 /* Internal entities that are short plain text (Illustrator's
@@ -46,6 +47,7 @@ struct conica_svg_doc {
     char *src;                   /* the input's bytes, which a save splices into */
     size_t srclen;
     int rewritten; /* conica_svg_process() changed the tree */
+    conica_svg__enc enc; /* the input's encoding: src is its UTF-8 form, saves convert back */
 };
 
 conica_svg_limits conica_svg_limits_defaults(void)
@@ -469,10 +471,10 @@ out:
     return verdict;
 }
 
-/* conica_svg_doc_load(); with `take` (== buf) the document keeps buf
- * itself instead of a copy once the load succeeded. */
-static conica_code doc_load(const char *buf, size_t len, const conica_svg_limits *lim,
-                            conica_svg_doc **out, char *take, conica_status *st)
+/* doc_load() on UTF-8 bytes; `converted`: they were converted from the
+ * encoding the declaration names, which libxml2 must then not switch to. */
+static conica_code doc_parse(const char *buf, size_t len, const conica_svg_limits *lim,
+                             conica_svg_doc **out, char *take, int converted, conica_status *st)
 {
     conica_svg_limits def = conica_svg_limits_defaults();
     xmlParserCtxtPtr ctxt;
@@ -507,6 +509,8 @@ static conica_code doc_load(const char *buf, size_t len, const conica_svg_limits
     huge = lim->max_depth > (size_t)xmlParserMaxDepth;
     if (huge)
         opts |= XML_PARSE_HUGE;
+    if (converted)
+        opts |= XML_PARSE_IGNORE_ENC;
     /* The push parser, fed in chunks: it lets go of consumed input, so
      * large documents parse without XML_PARSE_HUGE. */
     {
@@ -632,6 +636,50 @@ static conica_code doc_load(const char *buf, size_t len, const conica_svg_limits
     return CONICA_OK;
 }
 
+/* conica_svg_doc_load(); with `take` (== buf) the document keeps buf
+ * itself instead of a copy once the load succeeded. A document in another
+ * encoding than UTF-8 is parsed, scanned for the caps and spliced as its
+ * UTF-8 form (the caps count what the document holds, not its bytes: a
+ * UTF-16 document's attributes like its UTF-8 twin's) and saved back in
+ * its own encoding (svg_encoding.h). */
+static conica_code doc_load(const char *buf, size_t len, const conica_svg_limits *lim,
+                            conica_svg_doc **out, char *take, conica_status *st)
+{
+    conica_svg_limits def = conica_svg_limits_defaults();
+    conica_svg__enc enc;
+    char *u8 = NULL, why[256];
+    size_t u8len = 0, line = 0;
+    int nomem = 0;
+    conica_code rc;
+    if ((!buf && len) || !out)
+        return conica__fail(st, CONICA_ERR_ARG, 0, 0, "conica_svg_doc_load: NULL argument");
+    if (!lim)
+        lim = &def;
+    if (len > lim->max_bytes) /* before any conversion */
+        return doc_parse(buf, len, lim, out, take, 0, st);
+    if (conica_svg__enc_decode(buf, len, lim->max_bytes, &enc, &u8, &u8len, why, sizeof why,
+                               &line, &nomem))
+        return conica__fail(st,
+                            nomem ? CONICA_ERR_NOMEM
+                                  : strstr(why, "larger than the limit") ? CONICA_ERR_LIMIT
+                                                                          : CONICA_ERR_PARSE,
+                            line, 0, "%s", why);
+    if (!u8) {
+        rc = doc_parse(buf, len, lim, out, take, 0, st);
+        if (rc == CONICA_OK)
+            (*out)->enc = enc;
+        return rc;
+    }
+    rc = doc_parse(u8, u8len, lim, out, u8, 1, st);
+    if (rc != CONICA_OK) {
+        free(u8);
+        return rc;
+    }
+    (*out)->enc = enc;
+    free(take); /* the document keeps its UTF-8 form instead */
+    return CONICA_OK;
+}
+
 conica_code conica_svg_doc_load(const char *buf, size_t len, const conica_svg_limits *lim,
                                 conica_svg_doc **out, conica_status *st)
 {
@@ -663,10 +711,14 @@ typedef struct save_sink {
     int skip_decl;
     char last;     /* previous byte while skipping ("?>" may straddle two writes) */
     char last_out; /* last byte written (the file ends with a newline) */
+    conica_svg__encoder enc; /* UTF-8 to the document's encoding */
+    int enc_failed;          /* a character the encoding cannot hold */
 } save_sink;
 
-static void sink_put(save_sink *k, const char *data, size_t n)
+/* Bytes in the document's encoding to the file or the buffer. */
+static void sink_raw(void *ctx, const char *data, size_t n)
 {
+    save_sink *k = ctx;
     if (!n || k->failed)
         return;
     if (k->f) {
@@ -676,7 +728,48 @@ static void sink_put(save_sink *k, const char *data, size_t n)
         conica_svg__buf_put(&k->b, data, n);
         k->failed = k->b.oom;
     }
+}
+
+static void sink_put(save_sink *k, const char *data, size_t n)
+{
+    if (!n || k->failed)
+        return;
+    if (conica_svg__encoder_put(&k->enc, data, n, sink_raw, k) != 0)
+        k->failed = k->enc_failed = 1;
     k->last_out = data[n - 1];
+}
+
+/* A sink into f (NULL: memory) for doc: its byte-order mark first, then
+ * everything through the encoder. Returns 0, or 1 with st filled. */
+static int sink_begin(save_sink *k, const conica_svg_doc *doc, FILE *f, conica_status *st)
+{
+    memset(k, 0, sizeof *k);
+    k->f = f;
+    if (conica_svg__encoder_open(&k->enc, &doc->enc) != 0) {
+        conica__fail(st, CONICA_ERR_UNSUPPORTED, 0, 0,
+                     "cannot write the document's encoding '%s'", doc->enc.name);
+        return 1;
+    }
+    sink_raw(k, (const char *)doc->enc.bom, doc->enc.bomlen);
+    return 0;
+}
+
+/* The end of a save: a stateful encoding's final shift; rc as it was, or
+ * the write error. */
+static conica_code sink_end(save_sink *k, const conica_svg_doc *doc, conica_code rc,
+                            conica_status *st)
+{
+    if (rc == CONICA_OK && !k->failed &&
+        conica_svg__encoder_put(&k->enc, NULL, 0, sink_raw, k) != 0)
+        k->failed = k->enc_failed = 1;
+    if (rc == CONICA_OK && k->failed)
+        rc = conica__fail(st, CONICA_ERR_IO, 0, 0, "%s",
+                          k->enc_failed ? "a character the document's encoding cannot hold"
+                          : k->f        ? "write error"
+                                        : "out of memory");
+    (void)doc;
+    conica_svg__encoder_close(&k->enc);
+    return rc;
 }
 
 static int save_write(void *ctx, const char *data, int len)
@@ -1098,7 +1191,9 @@ static conica_code save_to(const conica_svg_doc *doc, save_sink *k, conica_statu
     /* no declared encoding means UTF-8: keep non-ASCII text as it was
      * instead of turning it into character references */
     sc = xmlSaveToIO(save_write, save_close, k,
-                     doc->xml->encoding ? (const char *)doc->xml->encoding : "UTF-8", opts);
+                     doc->xml->encoding && !doc->enc.name[0] ? (const char *)doc->xml->encoding
+                                                             : "UTF-8",
+                     opts);
     if (!sc)
         return conica__fail(st, CONICA_ERR_IO, 0, 0, "cannot serialise the document");
     r = xmlSaveDoc(sc, doc->xml);
@@ -1125,8 +1220,9 @@ conica_code conica_svg_doc_save(const conica_svg_doc *doc, char **buf, size_t *l
     conica_code rc;
     if (!doc || !buf || !len)
         return conica__fail(st, CONICA_ERR_ARG, 0, 0, "conica_svg_doc_save: NULL argument");
-    memset(&k, 0, sizeof k);
-    rc = save_to(doc, &k, st);
+    if (sink_begin(&k, doc, NULL, st))
+        return CONICA_ERR_UNSUPPORTED;
+    rc = sink_end(&k, doc, save_to(doc, &k, st), st);
     if (rc != CONICA_OK) {
         free(k.b.s);
         return rc;
@@ -1146,9 +1242,9 @@ conica_code conica_svg_doc_write(const conica_svg_doc *doc, FILE *f, conica_stat
     save_sink k;
     if (!doc || !f)
         return conica__fail(st, CONICA_ERR_ARG, 0, 0, "conica_svg_doc_write: NULL argument");
-    memset(&k, 0, sizeof k);
-    k.f = f;
-    return save_to(doc, &k, st);
+    if (sink_begin(&k, doc, f, st))
+        return CONICA_ERR_UNSUPPORTED;
+    return sink_end(&k, doc, save_to(doc, &k, st), st);
 }
 
 void conica_svg_buffer_free(char *buf)
@@ -2223,10 +2319,10 @@ conica_code conica_svg_process_write(conica_svg_doc *doc, const conica_svg_setti
             return rc;
         return conica_svg_doc_write(doc, f, st);
     }
-    memset(&k, 0, sizeof k);
-    k.f = f;
+    if (sink_begin(&k, doc, f, st))
+        return CONICA_ERR_UNSUPPORTED;
     splicer_init(&sp, doc, &k, 0);
     rc = process(doc, s, stats, &sp, st);
     free(sp.open);
-    return rc;
+    return sink_end(&k, doc, rc, st);
 }

@@ -120,8 +120,11 @@ static int run_child(const char *target, const char *errpath, int signo, int ign
 TEST_CASE("a signal while the temporary exists removes it and ends the tool with 128+signo",
           "[cli][signals]")
 {
-    static const int sigs[] = {SIGINT, SIGTERM, SIGHUP, SIGPIPE, SIGXFSZ};
-    static const char *names[] = {"SIGINT", "SIGTERM", "SIGHUP", "SIGPIPE", "SIGXFSZ"};
+    static const int sigs[] = {SIGINT, SIGTERM, SIGHUP, SIGPIPE, SIGXFSZ, SIGQUIT,
+                               SIGUSR1, SIGUSR2, SIGALRM, SIGVTALRM, SIGXCPU, SIGABRT};
+    static const char *names[] = {"SIGINT",  "SIGTERM", "SIGHUP",  "SIGPIPE",
+                                  "SIGXFSZ", "SIGQUIT", "SIGUSR1", "SIGUSR2",
+                                  "SIGALRM", "SIGVTALRM", "SIGXCPU", "SIGABRT"};
     size_t i;
     for (i = 0; i < sizeof sigs / sizeof sigs[0]; i++) {
         char dir[512], target[600], errpath[600], before[4096], after[4096], want[700];
@@ -179,12 +182,16 @@ TEST_CASE("the temporary is a hidden file named after the target, beside it", "[
     REQUIRE(sigaction(SIGINT, NULL, &int0) == 0);
     make_dir(dir, sizeof dir);
     snprintf(target, sizeof target, "%s/out.txt", dir);
-    snprintf(prefix, sizeof prefix, "%s/.out.txt.conica-tmp.", dir);
+    snprintf(prefix, sizeof prefix, ".out.txt.conica-tmp.");
     list_dir(dir, before, sizeof before);
     REQUIRE(cli_output_open("tool", target, &out) == 0);
     REQUIRE(out.tmp != NULL);
+    /* the name in the directory handle's directory (the one it gets at
+     * the latest at the commit, with O_TMPFILE) */
     CHECK(strncmp(out.tmp, prefix, strlen(prefix)) == 0);
     CHECK_EQ_U(strlen(out.tmp), strlen(prefix) + 6);
+    CHECK(out.dirfd >= 0);
+    CHECK_STR_EQ(out.base, "out.txt");
     /* while it exists the handler is installed, after the commit it is not */
     REQUIRE(sigaction(SIGTERM, NULL, &sa) == 0);
     CHECK(sa.sa_handler != term0.sa_handler);

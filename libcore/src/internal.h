@@ -3,6 +3,9 @@
 #ifndef CONICA_INTERNAL_H
 #define CONICA_INTERNAL_H
 
+#include <stddef.h>
+#include <stdint.h>
+
 #include "conica/common.h"
 
 #define CONICA_VERSION_STRING "0.1.0"
@@ -41,5 +44,48 @@ double conica__orient2d_approx(const double *a, const double *b, const double *c
  * plot_guaranteed.c. */
 void conica__bern_range(const double *s, int p, double u0, double u1, double *lo, double *ulo,
                         double *hi, double *uhi);
+
+/* Checked size arithmetic: every size computed from input goes through
+ * these (one place for the overflow rule). Each stores the result in *r and
+ * returns 0, or returns 1 and leaves *r alone when the exact value does not
+ * fit a size_t. */
+static inline int conica__mul_size(size_t a, size_t b, size_t *r)
+{
+    if (b != 0 && a > SIZE_MAX / b)
+        return 1;
+    *r = a * b;
+    return 0;
+}
+static inline int conica__add_size(size_t a, size_t b, size_t *r)
+{
+    if (a > SIZE_MAX - b)
+        return 1;
+    *r = a + b;
+    return 0;
+}
+/* A double to size_t, truncated toward zero: 1 for NaN, a negative value
+ * or one at or above 2^64 (the conversion would be undefined, C11
+ * 6.3.1.4), *r untouched then. SIZE_MAX itself rounds up to 2^64 as a
+ * double, so the bound is the power of two, compared exactly. */
+static inline int conica__size_from_double(double x, size_t *r)
+{
+    if (!(x >= 0) || !(x < 18446744073709551616.0))
+        return 1;
+    if (SIZE_MAX < UINT64_MAX && x > (double)SIZE_MAX)
+        return 1; /* a 32-bit size_t */
+    *r = (size_t)x;
+    return 0;
+}
+/* The same clamped to [0, hi]: NaN and negatives give 0, anything above
+ * hi (Inf included) gives hi. */
+static inline size_t conica__size_clamp(double x, size_t hi)
+{
+    size_t r;
+    if (!(x > 0))
+        return 0;
+    if (conica__size_from_double(x, &r) || r > hi)
+        return hi;
+    return r;
+}
 
 #endif

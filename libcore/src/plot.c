@@ -386,6 +386,10 @@ static conica_code check_settings(const conica_plot_settings *set, conica_status
     if (set->points > set->max_points)
         return conica__fail(st, CONICA_ERR_LIMIT, 0, 0, "%zu points exceed max_points %zu",
                             set->points, set->max_points);
+    if (set->method == CONICA_PLOT_MATHEMATICA && set->math_initial_points > set->max_points)
+        return conica__fail(st, CONICA_ERR_LIMIT, 0, 0,
+                            "%zu initial points (Mathematica N0) exceed max_points %zu",
+                            set->math_initial_points, set->max_points);
     if (set->knot_budget > set->max_knots || set->prephase_knots > set->max_knots)
         return conica__fail(st, CONICA_ERR_LIMIT, 0, 0,
                             "knot budget %zu / pre-phase %zu exceed max_knots %zu",

@@ -39,7 +39,7 @@ static size_t share(const conica__pieces *pc, size_t k, size_t n)
     /* mine / total first: n * mine overflows for knots near 1e308, and an
      * infinite or NaN share must not reach the size_t cast (fuzz_plot) */
     double v = total > 0 ? (double)n * (mine / total) : (double)n;
-    size_t r = v >= 0 && v <= (double)n ? (size_t)(v + 0.5) : n;
+    size_t r = conica__size_clamp(v + 0.5, n); /* (double)SIZE_MAX is 2^64 */
     return r < 2 ? 2 : r;
 }
 
@@ -157,7 +157,7 @@ static conica_code local_uniform(const conica__pieces *pc, const conica_plot_set
             /* eq. (3.18) (omega = 1: (3.10), omega = 0: (3.17)) */
             double wl = Lbar > 0 ? L[idx] / Lbar : 1.0, wa = Abar > 0 ? A[idx] / Abar : 1.0;
             double v = floor(Nbar * (om * wl + (1 - om) * wa));
-            size_t Ni = v > (double)set->max_points ? set->max_points : (size_t)(v > 0 ? v : 0);
+            size_t Ni = conica__size_clamp(v, set->max_points);
             if (Ni < set->local_min_points)
                 Ni = set->local_min_points;
             idx++;
@@ -274,8 +274,11 @@ static conica_code mathematica_piece(const conica_bspline *s, const conica_plot_
 {
     int d = conica_bspline_point_dim(s);
     double a = s->knots[s->degree], b = s->knots[s->n];
-    size_t n = n0 < 2 ? 2 : n0, cap = n;
-    msamp *v = malloc(cap * sizeof *v);
+    size_t n = n0 < 2 ? 2 : n0, cap = n, bytes;
+    if (conica__mul_size(cap, sizeof(msamp), &bytes))
+        return conica__fail(st, CONICA_ERR_LIMIT, 0, 0, "%zu initial points exceed max_points",
+                            n0);
+    msamp *v = malloc(bytes);
     if (!v)
         return conica__fail(st, CONICA_ERR_NOMEM, 0, 0, "out of memory");
     for (size_t i = 0; i < n; i++) {

@@ -18,6 +18,9 @@
 #include "plot_internal.h"
 
 #define GRID_MAX 1024
+/* Samples of one measure: per chord (local) or in all (global); above it
+ * CONICA_ERR_LIMIT, never a wrapped allocation size. */
+#define DEVIATION_MAX_SAMPLES ((size_t)1 << 26)
 #define GOLDEN_STEPS 30
 
 typedef struct grid {
@@ -229,6 +232,10 @@ static conica_code deviation_local(const conica_bspline *s, const conica_polylin
                                    conica_status *st)
 {
     size_t d = (size_t)pl->dim, S = samples < 2 ? 2 : samples;
+    if (S > DEVIATION_MAX_SAMPLES)
+        return conica__fail(st, CONICA_ERR_LIMIT, 0, 0,
+                            "%zu samples per chord exceed the limit of %zu", samples,
+                            (size_t)DEVIATION_MAX_SAMPLES);
     double *ts = malloc((S + 1) * sizeof *ts), *pts = malloc((S + 1) * 3 * sizeof *pts);
     if (!ts || !pts) {
         free(ts);
@@ -291,8 +298,10 @@ conica_code conica_plot_deviation(const conica_bspline *s, const conica_polyline
     if (pl->t)
         return deviation_local(s, pl, samples, curve_to_poly, poly_to_curve, st);
     size_t p = (size_t)s->degree, spans = conica_bspline_bezier_count(s);
-    if (samples > ((size_t)1 << 26) / (spans + 1))
-        return conica__fail(st, CONICA_ERR_LIMIT, 0, 0, "too many samples");
+    if (samples > DEVIATION_MAX_SAMPLES / (spans + 1))
+        return conica__fail(st, CONICA_ERR_LIMIT, 0, 0,
+                            "%zu samples on each of %zu pieces exceed the limit of %zu", samples,
+                            spans, (size_t)DEVIATION_MAX_SAMPLES);
     size_t total = spans * samples + 1, d = (size_t)pl->dim;
     double *pts = malloc(total * 3 * sizeof *pts), *ts = malloc(total * sizeof *ts);
     size_t nseg_cap = pl->n;

@@ -421,9 +421,31 @@ static double surf_diag(const conica_bspline_surface *s)
     return sqrt(d2);
 }
 
+/* The least tolerance a surface plot takes, in units of the net's largest
+ * coordinate: twice the certified grid's rounding slack (CERT_ROUND_SLACK,
+ * below). A finer tolerance asks for differences the coordinates cannot
+ * resolve (no bound can certify it, and the cell counts that chase it
+ * overflow), so it is refused at once, as the Blender add-on's float32
+ * rule (conica_path_float32_precision) refuses digits a float cannot hold. */
+#define SURF_MIN_REL_TOLERANCE (128 * DBL_EPSILON)
+
+/* Largest |coordinate| of the net's points (projected when rational). */
+static double surf_max_abs(const conica_bspline_surface *s)
+{
+    double m = 0;
+    for (size_t k = 0; k < s->nu * s->nv; k++) {
+        double hp[4];
+        net_point(s, k / s->nv, k % s->nv, hp);
+        for (int x = 0; x < 3; x++)
+            m = fmax(m, fabs(hp[x] / hp[3]));
+    }
+    return m;
+}
+
 /* The arguments every surface plotter checks, and the absolute tolerance
  * of the settings for s: abs_tolerance, else the pixel tolerance scaled
- * from the viewport diagonal to the net's extent. */
+ * from the viewport diagonal to the net's extent; never below what the
+ * coordinates resolve (SURF_MIN_REL_TOLERANCE). */
 static conica_code surf_args(const conica_bspline_surface *s, const conica_plot_settings *set,
                              const conica_quadgrid *out, double *tol, conica_status *st)
 {
@@ -439,6 +461,12 @@ static conica_code surf_args(const conica_bspline_surface *s, const conica_plot_
     }
     if (!(*tol > 0) || !isfinite(*tol))
         return conica__fail(st, CONICA_ERR_ARG, 0, 0, "tolerance must be positive");
+    double floor_tol = SURF_MIN_REL_TOLERANCE * surf_max_abs(s);
+    if (!(*tol >= floor_tol))
+        return conica__fail(st, CONICA_ERR_LIMIT, 0, 0,
+                            "tolerance %g is below what the coordinates resolve: at least %g "
+                            "(128 ulp of the largest coordinate, %g)",
+                            *tol, floor_tol, floor_tol / SURF_MIN_REL_TOLERANCE);
     return CONICA_OK;
 }
 
@@ -991,6 +1019,13 @@ static void cert_grid_free(cert_grid *G)
     free(G->wc);
 }
 
+/* nu x nv grid points within max (the product checked, never wrapped). */
+static int grid_fits(size_t nu, size_t nv, size_t max)
+{
+    size_t n;
+    return !conica__mul_size(nu, nv, &n) && n <= max;
+}
+
 conica_code conica_plot_surface_certified(const conica_bspline_surface *s,
                                           const conica_plot_settings *set, conica_quadgrid *out,
                                           conica_plot_stats *stats, conica_status *st)
@@ -1006,13 +1041,7 @@ conica_code conica_plot_surface_certified(const conica_bspline_surface *s,
     G.B.s = s;
     G.B.p = p;
     G.B.q = q;
-    for (size_t k = 0; k < s->nu * s->nv; k++) {
-        double hp[4];
-        net_point(s, k / s->nv, k % s->nv, hp);
-        for (int x = 0; x < 3; x++)
-            G.B.slack = fmax(G.B.slack, fabs(hp[x] / hp[3]));
-    }
-    G.B.slack *= CERT_ROUND_SLACK;
+    G.B.slack = CERT_ROUND_SLACK * surf_max_abs(s);
     G.B.net = malloc(np * 4 * sizeof(double));
     G.B.row = malloc(np * 4 * sizeof(double));
     G.B.h = malloc(np * 4 * sizeof(double));
@@ -1077,8 +1106,8 @@ conica_code conica_plot_surface_certified(const conica_bspline_surface *s,
         if (!(wb > tol))
             break;
         size_t nlu = sum_sz(G.cu, G.nsu) + 1, nlv = sum_sz(G.cv, G.nsv) + 1;
-        if (rounds >= CERT_MAX_ROUNDS || (nlu + 1) * nlv > set->max_points ||
-            nlu * (nlv + 1) > set->max_points) {
+        if (rounds >= CERT_MAX_ROUNDS || !grid_fits(nlu + 1, nlv, set->max_points) ||
+            !grid_fits(nlu, nlv + 1, set->max_points)) {
             rc = conica__fail(st, CONICA_ERR_LIMIT, 0, 0,
                               "quad grid %zu x %zu within %g exceeds %zu points (max_points)",
                               nlu, nlv, tol, set->max_points);
@@ -1093,16 +1122,16 @@ conica_code conica_plot_surface_certified(const conica_bspline_surface *s,
         /* far from the tolerance, several cells at once (CERT_JUMP) */
         double jump = CERT_JUMP * (sqrt(wb / tol) - 1);
         if (gu > gv || (gu == gv && bu <= bv)) {
-            size_t k = (size_t)(jump * (double)G.cu[wi]);
+            size_t k = conica__size_clamp(jump * (double)G.cu[wi], set->max_points);
             k = k < 1 ? 1 : k;
-            while (k > 1 && (nlu + k) * nlv > set->max_points)
+            while (k > 1 && !grid_fits(nlu + k, nlv, set->max_points))
                 k /= 2;
             G.cu[wi] += k;
             column_bounds(&G, wi);
         } else {
-            size_t k = (size_t)(jump * (double)G.cv[wj]);
+            size_t k = conica__size_clamp(jump * (double)G.cv[wj], set->max_points);
             k = k < 1 ? 1 : k;
-            while (k > 1 && nlu * (nlv + k) > set->max_points)
+            while (k > 1 && !grid_fits(nlu, nlv + k, set->max_points))
                 k /= 2;
             G.cv[wj] += k;
             row_bounds(&G, wj);

@@ -1,10 +1,13 @@
 /* SPDX-License-Identifier: MIT */
 /* realpath() is XSI, outside the POSIX base the build asks for. */
 #define _XOPEN_SOURCE 700
+/* O_TMPFILE, SIGSTKFLT and SIGPWR are Linux extensions. */
+#define _GNU_SOURCE
 
 #include "cli.h"
 
 #include <errno.h>
+#include <fcntl.h>
 #include <limits.h>
 #include <math.h>
 #include <signal.h>
@@ -12,6 +15,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
+#include <time.h>
 #include <unistd.h>
 
 #include "conica/curve.h"
@@ -132,26 +136,73 @@ int cli_read_file(const char *prog, const char *path, size_t max_bytes, char **b
 
 /* ------------------------------------------------------------ signals */
 
-/* The signals that remove the temporary before the tool dies: the terminal
- * and session ones (Ctrl-C, kill, timeout(1), a closed terminal), a broken
- * pipe, and the file-size limit (ulimit -f) that writing the temporary can
- * hit. SIGKILL cannot be caught: it leaves the hidden temporary. */
-static const int cli_sig_list[] = {SIGINT, SIGTERM, SIGHUP, SIGPIPE, SIGXFSZ};
-static const char *const cli_sig_names[] = {"SIGINT", "SIGTERM", "SIGHUP", "SIGPIPE",
-                                            "SIGXFSZ (file size limit exceeded)"};
+/* Every signal whose default action ends the process (POSIX's "T" and "A"
+ * signals, and Linux's own), so that none of them can leave the temporary:
+ * the terminal's and the session's (Ctrl-C, Ctrl-\, a closed terminal),
+ * kill's and timeout(1)'s, the timers (SIGALRM, SIGVTALRM, SIGPROF), the
+ * resource limits (ulimit -t: SIGXCPU, ulimit -f: SIGXFSZ), a broken pipe,
+ * the user signals, abort() and the faults of a crash. The real-time
+ * signals (their default ends the process too) are caught as well
+ * (cli_sig_each). SIGKILL and SIGSTOP cannot be caught; a temporary made
+ * with O_TMPFILE has no name until the commit, so even SIGKILL leaves
+ * nothing then. */
+static const struct {
+    int no;
+    const char *name;
+    int fault; /* a synchronous fault: re-run by the kernel after the handler */
+} cli_sig_list[] = {
+    {SIGHUP, "SIGHUP", 0},     {SIGINT, "SIGINT", 0},       {SIGQUIT, "SIGQUIT", 0},
+    {SIGILL, "SIGILL", 1},     {SIGTRAP, "SIGTRAP", 1},     {SIGABRT, "SIGABRT", 0},
+    {SIGBUS, "SIGBUS", 1},     {SIGFPE, "SIGFPE", 1},       {SIGUSR1, "SIGUSR1", 0},
+    {SIGSEGV, "SIGSEGV", 1},   {SIGUSR2, "SIGUSR2", 0},     {SIGPIPE, "SIGPIPE", 0},
+    {SIGALRM, "SIGALRM", 0},   {SIGTERM, "SIGTERM", 0},     {SIGXCPU, "SIGXCPU", 0},
+    {SIGXFSZ, "SIGXFSZ (file size limit exceeded)", 0},
+    {SIGVTALRM, "SIGVTALRM", 0}, {SIGPROF, "SIGPROF", 0},   {SIGSYS, "SIGSYS", 1},
+#ifdef SIGSTKFLT
+    {SIGSTKFLT, "SIGSTKFLT", 0},
+#endif
+#ifdef SIGPOLL
+    {SIGPOLL, "SIGPOLL", 0},
+#endif
+#ifdef SIGPWR
+    {SIGPWR, "SIGPWR", 0},
+#endif
+};
 #define CLI_NSIG (sizeof cli_sig_list / sizeof cli_sig_list[0])
+/* Slots for the real-time signals after the fixed list. */
+#define CLI_NSIG_RT 64
+#define CLI_NSIG_ALL (CLI_NSIG + CLI_NSIG_RT)
 
 /* The one piece of global state of the tools (STYLE.md allows it for a
  * signal handler): what the handler needs to remove the open temporary and
  * say so, and the dispositions to restore. Set and cleared with the
  * signals blocked; the handler only reads it. One output at a time. */
 static struct {
-    const char *volatile tmp; /* the temporary to unlink, NULL when none */
-    const char *prog;         /* for the message */
-    const char *target;       /* the output it stands for */
-    struct sigaction old[CLI_NSIG];
-    int installed[CLI_NSIG];
+    volatile int armed;     /* a temporary is open */
+    int dirfd;              /* its directory (the handle, not the path) */
+    const char *tmp;        /* its name in dirfd, NULL when it has none (O_TMPFILE) */
+    const char *prog;       /* for the message */
+    const char *target;     /* the output it stands for */
+    int no[CLI_NSIG_ALL];   /* the signals caught, 0 for an unused slot */
+    struct sigaction old[CLI_NSIG_ALL];
+    int installed[CLI_NSIG_ALL];
 } cli_sig;
+
+/* Fill cli_sig.no: the fixed list, then SIGRTMIN..SIGRTMAX. */
+static size_t cli_sig_each(void)
+{
+    size_t i, n = 0;
+    for (i = 0; i < CLI_NSIG; i++)
+        cli_sig.no[n++] = cli_sig_list[i].no;
+#if defined(SIGRTMIN) && defined(SIGRTMAX)
+    {
+        int r;
+        for (r = SIGRTMIN; r <= SIGRTMAX && n < CLI_NSIG_ALL; r++)
+            cli_sig.no[n++] = r;
+    }
+#endif
+    return n;
+}
 
 static void cli_sig_write(const char *s)
 {
@@ -165,19 +216,43 @@ static void cli_sig_write(const char *s)
     }
 }
 
-/* Async-signal-safe only: unlink, write, sigaction, sigprocmask, raise, _exit. */
-static void cli_sig_handler(int signo)
+/* The signal's name, or "signal N" written into buf (async-signal-safe). */
+static const char *cli_sig_name(int signo, int *fault, char *buf, size_t cap)
 {
-    const char *tmp = cli_sig.tmp;
-    const char *name = "a signal";
-    size_t i;
-    int saved = errno;
+    size_t i, k = 0;
+    char digits[12];
+    int v = signo;
+    *fault = 0;
     for (i = 0; i < CLI_NSIG; i++)
-        if (cli_sig_list[i] == signo)
-            name = cli_sig_names[i];
-    if (tmp) {
-        cli_sig.tmp = NULL;
-        unlink(tmp);
+        if (cli_sig_list[i].no == signo) {
+            *fault = cli_sig_list[i].fault;
+            return cli_sig_list[i].name;
+        }
+    do {
+        digits[k++] = (char)('0' + v % 10);
+        v /= 10;
+    } while (v > 0 && k < sizeof digits);
+    memcpy(buf, "signal ", 7);
+    for (i = 0; i < k && 7 + i + 1 < cap; i++)
+        buf[7 + i] = digits[k - 1 - i];
+    buf[7 + i] = '\0';
+    return buf;
+}
+
+/* Async-signal-safe only: unlinkat, write, sigaction, sigprocmask, raise,
+ * _exit. The temporary goes through the directory handle, so a directory
+ * renamed while the tool wrote does not strand it. */
+static void cli_sig_handler(int signo, siginfo_t *info, void *uc)
+{
+    char buf[24];
+    int fault, saved = errno;
+    size_t i;
+    const char *name = cli_sig_name(signo, &fault, buf, sizeof buf);
+    (void)uc;
+    if (cli_sig.armed) {
+        cli_sig.armed = 0;
+        if (cli_sig.tmp)
+            unlinkat(cli_sig.dirfd, cli_sig.tmp, 0);
         cli_sig_write(cli_sig.prog);
         cli_sig_write(": error: ");
         cli_sig_write(cli_sig.target);
@@ -188,8 +263,20 @@ static void cli_sig_handler(int signo)
     errno = saved;
     if (signo == SIGXFSZ)
         _exit(128 + signo); /* its default action would dump core */
-    /* Die of the signal itself, so a calling shell sees what happened
-     * (a loop in a script stops at Ctrl-C): status 128 + signo. */
+    /* A fault the kernel raised (a crash) goes back to what handled it
+     * before (the default action, or a sanitizer's report) and comes back
+     * by itself when the instruction runs again. Any other signal is
+     * raised again with its default action, unblocked, so a calling shell
+     * sees the tool die of it (a loop in a script stops at Ctrl-C):
+     * status 128 + signo. */
+    if (fault && info && info->si_code > 0) {
+        for (i = 0; i < CLI_NSIG_ALL; i++)
+            if (cli_sig.no[i] == signo && cli_sig.installed[i]) {
+                sigaction(signo, &cli_sig.old[i], NULL);
+                cli_sig.installed[i] = 0;
+            }
+        return;
+    }
     {
         struct sigaction dfl;
         sigset_t set;
@@ -208,34 +295,32 @@ static void cli_sig_handler(int signo)
 static void cli_sig_block(sigset_t *old)
 {
     sigset_t set;
-    size_t i;
-    sigemptyset(&set);
-    for (i = 0; i < CLI_NSIG; i++)
-        sigaddset(&set, cli_sig_list[i]);
+    sigfillset(&set);
     sigprocmask(SIG_BLOCK, &set, old);
 }
 
-/* Register tmp (signals blocked by the caller) and catch the signals,
- * except those the tool was started with ignored (nohup, a background
- * job's SIGINT): they stay ignored. */
-static void cli_sig_arm(const char *prog, const char *target, const char *tmp)
+/* Register the temporary (signals blocked by the caller) and catch the
+ * signals, except those the tool was started with ignored (nohup, a
+ * background job's SIGINT): they stay ignored. */
+static void cli_sig_arm(const char *prog, const char *target, int dirfd, const char *tmp)
 {
     struct sigaction sa;
-    size_t i;
+    size_t i, n = cli_sig_each();
     memset(&sa, 0, sizeof sa);
-    sa.sa_handler = cli_sig_handler;
-    sigemptyset(&sa.sa_mask);
-    for (i = 0; i < CLI_NSIG; i++)
-        sigaddset(&sa.sa_mask, cli_sig_list[i]); /* one handler runs at a time */
+    sa.sa_sigaction = cli_sig_handler;
+    sa.sa_flags = SA_SIGINFO;
+    sigfillset(&sa.sa_mask); /* one handler runs at a time */
     cli_sig.prog = prog;
     cli_sig.target = target;
+    cli_sig.dirfd = dirfd;
     cli_sig.tmp = tmp;
-    for (i = 0; i < CLI_NSIG; i++) {
+    cli_sig.armed = 1;
+    for (i = 0; i < n; i++) {
         cli_sig.installed[i] = 0;
-        if (sigaction(cli_sig_list[i], NULL, &cli_sig.old[i]) != 0 ||
+        if (sigaction(cli_sig.no[i], NULL, &cli_sig.old[i]) != 0 ||
             cli_sig.old[i].sa_handler == SIG_IGN)
             continue;
-        cli_sig.installed[i] = sigaction(cli_sig_list[i], &sa, NULL) == 0;
+        cli_sig.installed[i] = sigaction(cli_sig.no[i], &sa, NULL) == 0;
     }
 }
 
@@ -243,34 +328,159 @@ static void cli_sig_arm(const char *prog, const char *target, const char *tmp)
 static void cli_sig_disarm(void)
 {
     size_t i;
+    cli_sig.armed = 0;
     cli_sig.tmp = NULL;
-    for (i = 0; i < CLI_NSIG; i++)
+    for (i = 0; i < CLI_NSIG_ALL; i++)
         if (cli_sig.installed[i]) {
-            sigaction(cli_sig_list[i], &cli_sig.old[i], NULL);
+            sigaction(cli_sig.no[i], &cli_sig.old[i], NULL);
             cli_sig.installed[i] = 0;
         }
 }
 
 /* ------------------------------------------------------------ output */
 
-/* The temporary beside target: ".NAME.conica-tmp.XXXXXX" in the same
- * directory (rename() within one file system is atomic), hidden so that
- * the one that SIGKILL or a crash can leave behind does not show up in
- * listings and globs, and named so that it says what it is. */
-static char *temp_name(const char *target)
+/* The temporary's name in the target's directory: ".NAME.conica-tmp.XXXXXX"
+ * (rename() within one directory is atomic), hidden so that one that a
+ * crash can leave behind does not show up in listings and globs, and named
+ * so that it says what it is. NAME is cut to what keeps the whole within
+ * the directory's name limit (a valid 250-byte output name works). */
+#define CLI_TMP_SUFFIX ".conica-tmp."
+#define CLI_TMP_RANDOM 6
+static char *temp_name(const char *base, long name_max)
 {
-    static const char suffix[] = ".conica-tmp.XXXXXX";
-    const char *slash = strrchr(target, '/');
-    size_t dlen = slash ? (size_t)(slash - target) + 1 : 0;
-    size_t blen = strlen(target + dlen);
-    char *t = malloc(dlen + 1 + blen + sizeof suffix);
+    size_t blen = strlen(base), room, fixed = 1 + strlen(CLI_TMP_SUFFIX) + CLI_TMP_RANDOM;
+    char *t;
+    if (name_max <= 0)
+        name_max = 255;
+    room = (size_t)name_max > fixed ? (size_t)name_max - fixed : 0;
+    if (blen > room)
+        blen = room;
+    t = malloc(fixed + blen + 1);
     if (!t)
         return NULL;
-    memcpy(t, target, dlen);
-    t[dlen] = '.';
-    memcpy(t + dlen + 1, target + dlen, blen);
-    memcpy(t + dlen + 1 + blen, suffix, sizeof suffix);
+    t[0] = '.';
+    memcpy(t + 1, base, blen);
+    memcpy(t + 1 + blen, CLI_TMP_SUFFIX, strlen(CLI_TMP_SUFFIX));
+    memset(t + 1 + blen + strlen(CLI_TMP_SUFFIX), 'X', CLI_TMP_RANDOM);
+    t[fixed + blen] = '\0';
     return t;
+}
+
+/* Replace the trailing X's of name by letters and digits from a mix of
+ * the clock, the process id and a counter (like mkstemp; the name need not
+ * be secret: O_EXCL makes its creation safe). */
+static void temp_fill(char *name, unsigned long long *state)
+{
+    static const char set[] = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789";
+    size_t n = strlen(name), i;
+    unsigned long long x;
+    *state = *state * 6364136223846793005ULL + 1442695040888963407ULL;
+    x = *state ^ (*state >> 29);
+    for (i = n - CLI_TMP_RANDOM; i < n; i++) {
+        name[i] = set[x % (sizeof set - 1)];
+        x /= sizeof set - 1;
+    }
+}
+
+/* Create the temporary in dirfd: an unnamed O_TMPFILE file where the
+ * file system has them and /proc can name it for linkat (nothing to leave
+ * behind, even after SIGKILL), else a fresh name made with O_EXCL. Returns
+ * the descriptor, *named 1 when the name in tmp is in use; -1 with errno. */
+static int temp_create(int dirfd, char *tmp, int *named)
+{
+    struct timespec ts;
+    unsigned long long state;
+    int fd, tries;
+    *named = 0;
+#ifdef O_TMPFILE
+    const char *mode = getenv(CLI_TMPFILE_ENV);
+    if (!(mode && strcmp(mode, "named") == 0) && access("/proc/self/fd", X_OK) == 0) {
+        fd = openat(dirfd, ".", O_TMPFILE | O_WRONLY | O_CLOEXEC, 0600);
+        if (fd >= 0)
+            return fd;
+    }
+#endif
+    clock_gettime(CLOCK_REALTIME, &ts);
+    state = (unsigned long long)ts.tv_nsec ^ ((unsigned long long)ts.tv_sec << 20) ^
+            ((unsigned long long)getpid() << 40);
+    for (tries = 0; tries < 1000; tries++) {
+        temp_fill(tmp, &state);
+        fd = openat(dirfd, tmp, O_CREAT | O_EXCL | O_WRONLY | O_CLOEXEC, 0600);
+        if (fd >= 0) {
+            *named = 1;
+            return fd;
+        }
+        if (errno != EEXIST)
+            return -1;
+    }
+    return -1;
+}
+
+/* Give an unnamed temporary the name in tmp (fresh, retried on EEXIST).
+ * Returns 0, or -1 with errno. */
+static int temp_link(int fd, int dirfd, char *tmp)
+{
+    char proc[64];
+    unsigned long long state = (unsigned long long)getpid() * 2654435761ULL;
+    int tries;
+    snprintf(proc, sizeof proc, "/proc/self/fd/%d", fd);
+    for (tries = 0; tries < 1000; tries++) {
+        temp_fill(tmp, &state);
+        if (linkat(AT_FDCWD, proc, dirfd, tmp, AT_SYMLINK_FOLLOW) == 0)
+            return 0;
+        if (errno != EEXIST)
+            return -1;
+    }
+    return -1;
+}
+
+/* The directory part of target (".", or up to its last slash) opened as a
+ * handle, and a copy of its last component in *base. -1 with errno. */
+static int open_dir_of(const char *target, const char **base)
+{
+    const char *slash = strrchr(target, '/');
+    char *dir;
+    int fd;
+    if (!slash) {
+        *base = target;
+        return open(".", O_RDONLY | O_DIRECTORY | O_CLOEXEC);
+    }
+    *base = slash + 1;
+    dir = malloc((size_t)(slash - target) + 2);
+    if (!dir) {
+        errno = ENOMEM;
+        return -1;
+    }
+    if (slash == target) {
+        dir[0] = '/';
+        dir[1] = '\0';
+    } else {
+        memcpy(dir, target, (size_t)(slash - target));
+        dir[slash - target] = '\0';
+    }
+    fd = open(dir, O_RDONLY | O_DIRECTORY | O_CLOEXEC);
+    free(dir);
+    return fd;
+}
+
+static void output_reset(cli_output *out)
+{
+    out->f = NULL;
+    out->path = NULL;
+    out->tmp = NULL;
+    out->base = NULL;
+    out->mode = 0;
+    out->dirfd = -1;
+    out->named = 0;
+}
+
+static char *copy_str(const char *s)
+{
+    size_t n = strlen(s) + 1;
+    char *c = malloc(n);
+    if (c)
+        memcpy(c, s, n);
+    return c;
 }
 
 int cli_output_open(const char *prog, const char *path, cli_output *out)
@@ -278,12 +488,10 @@ int cli_output_open(const char *prog, const char *path, cli_output *out)
     struct stat sb, lsb;
     char *target = NULL;
     sigset_t held;
-    int fd, e;
+    int fd, e, named;
+    long name_max;
 
-    out->f = NULL;
-    out->path = NULL;
-    out->tmp = NULL;
-    out->mode = 0;
+    output_reset(out);
     if (path == NULL || strcmp(path, "-") == 0) {
         out->f = stdout;
         return 0;
@@ -292,9 +500,16 @@ int cli_output_open(const char *prog, const char *path, cli_output *out)
         if (S_ISDIR(sb.st_mode))
             return cli_error(prog, path, "is a directory");
         if (!S_ISREG(sb.st_mode)) {
+            out->path = copy_str(path); /* named in a write error */
+            if (!out->path)
+                return cli_error(prog, path, "out of memory");
             out->f = fopen(path, "wb");
-            if (!out->f)
-                return cli_error(prog, path, "cannot open output: %s", strerror(errno));
+            if (!out->f) {
+                e = errno;
+                free(out->path);
+                out->path = NULL;
+                return cli_error(prog, path, "cannot open output: %s", strerror(e));
+            }
             return 0;
         }
         /* An existing regular file: the replacement gets the permissions
@@ -308,6 +523,9 @@ int cli_output_open(const char *prog, const char *path, cli_output *out)
                 return cli_error(prog, path, "cannot resolve the symbolic link: %s",
                                  strerror(errno));
         }
+    } else if (errno == ELOOP) {
+        return cli_error(prog, path, "too many levels of symbolic links (a symbolic link "
+                         "loop?); not replacing the link");
     } else if (lstat(path, &lsb) == 0 && S_ISLNK(lsb.st_mode)) {
         /* rename() would replace the link itself with a regular file */
         return cli_error(prog, path, "is a symbolic link to a missing file; "
@@ -318,30 +536,44 @@ int cli_output_open(const char *prog, const char *path, cli_output *out)
         out->mode = (unsigned)(0666 & ~mask);
     }
     if (!target) {
-        target = malloc(strlen(path) + 1);
+        target = copy_str(path);
         if (!target)
             return cli_error(prog, path, "out of memory");
-        memcpy(target, path, strlen(path) + 1);
     }
     out->path = target;
-    out->tmp = temp_name(target);
-    if (!out->tmp) {
+    /* The temporary is made and renamed through a handle on the target's
+     * directory (openat/renameat): a directory renamed while the tool
+     * writes takes the temporary with it, and the rename and any unlink
+     * still find it. */
+    out->dirfd = open_dir_of(target, &out->base);
+    if (out->dirfd < 0) {
+        e = errno;
         free(out->path);
-        out->path = NULL;
+        output_reset(out);
+        return cli_error(prog, path, "cannot open the output's directory: %s", strerror(e));
+    }
+    name_max = fpathconf(out->dirfd, _PC_NAME_MAX);
+    out->tmp = temp_name(out->base, name_max);
+    if (!out->tmp) {
+        close(out->dirfd);
+        free(out->path);
+        output_reset(out);
         return cli_error(prog, path, "out of memory");
     }
-    /* The temporary lives beside the (resolved) target so rename() is
-     * atomic; from its creation on, a signal removes it (cli_sig_*). */
+    /* from its creation on, a signal removes it (cli_sig_*) */
     cli_sig_block(&held);
-    fd = mkstemp(out->tmp);
+    fd = temp_create(out->dirfd, out->tmp, &named);
     e = errno;
-    if (fd >= 0)
-        cli_sig_arm(prog, out->path, out->tmp);
+    if (fd >= 0) {
+        out->named = named;
+        cli_sig_arm(prog, out->path, out->dirfd, named ? out->tmp : NULL);
+    }
     sigprocmask(SIG_SETMASK, &held, NULL);
     if (fd < 0) {
+        close(out->dirfd);
         free(out->path);
         free(out->tmp);
-        out->path = out->tmp = NULL;
+        output_reset(out);
         return cli_error(prog, path, "cannot create output: %s", strerror(e));
     }
     out->f = fdopen(fd, "wb");
@@ -371,62 +603,78 @@ int cli_output_commit(const char *prog, cli_output *out)
         }
         out->f = NULL;
         if (bad)
-            return cli_error(prog, is_stdout ? "<stdout>" : "<output>", "write error: %s",
-                             strerror(err));
-        return 0;
+            cli_error(prog, is_stdout ? "<stdout>" : out->path, "write error: %s",
+                      err ? strerror(err) : "the stream reported an error");
+        free(out->path);
+        out->path = NULL;
+        return bad;
     }
+    errno = 0;
     if (fflush(out->f) != 0 || ferror(out->f) || fsync(fileno(out->f)) != 0) {
         failed = 1;
         e = errno;
     }
-    /* mkstemp made the temporary 0600: give it the old file's mode (or a
-     * new file's 0666 & ~umask) before it becomes visible. A file system
-     * without permissions may refuse; the file then stays 0600, the safe
-     * side, so that is not an error. */
+    /* the temporary is 0600: give it the old file's mode (or a new file's
+     * 0666 & ~umask) before it becomes visible. A file system without
+     * permissions may refuse; the file then stays 0600, the safe side, so
+     * that is not an error. */
     if (!failed)
         (void)fchmod(fileno(out->f), (mode_t)out->mode);
-    if (fclose(out->f) != 0 && !failed) {
-        failed = 1;
-        e = errno;
-    }
-    out->f = NULL;
     {
-        /* rename or unlink, and forget the temporary, with the signals
-         * held: a handler then never removes a name already renamed */
+        /* name (O_TMPFILE), rename or unlink, and forget the temporary,
+         * with the signals held: a handler then never removes a name
+         * already renamed */
         sigset_t mask;
         cli_sig_block(&mask);
-        if (!failed && rename(out->tmp, out->path) != 0) {
+        if (!failed && !out->named) {
+            if (temp_link(fileno(out->f), out->dirfd, out->tmp) != 0) {
+                failed = 1;
+                e = errno;
+            } else {
+                out->named = 1;
+            }
+        }
+        if (fclose(out->f) != 0 && !failed) {
             failed = 1;
             e = errno;
         }
-        if (failed)
-            unlink(out->tmp);
+        out->f = NULL;
+        if (!failed && renameat(out->dirfd, out->tmp, out->dirfd, out->base) != 0) {
+            failed = 1;
+            e = errno;
+        }
+        if (failed && out->named)
+            unlinkat(out->dirfd, out->tmp, 0);
         cli_sig_disarm();
         sigprocmask(SIG_SETMASK, &mask, NULL);
     }
     if (failed)
-        cli_error(prog, out->path, "cannot write output: %s", strerror(e));
+        cli_error(prog, out->path, "cannot write output: %s",
+                  e ? strerror(e) : "the stream reported an error");
+    close(out->dirfd);
     free(out->tmp);
     free(out->path);
-    out->tmp = out->path = NULL;
+    output_reset(out);
     return failed;
 }
 
 void cli_output_abort(cli_output *out)
 {
+    sigset_t mask;
     if (out->f && out->f != stdout)
         fclose(out->f);
     if (out->tmp) {
-        sigset_t mask;
         cli_sig_block(&mask);
-        unlink(out->tmp);
+        if (out->named)
+            unlinkat(out->dirfd, out->tmp, 0);
         cli_sig_disarm();
         sigprocmask(SIG_SETMASK, &mask, NULL);
     }
+    if (out->dirfd >= 0)
+        close(out->dirfd);
     free(out->tmp);
     free(out->path);
-    out->f = NULL;
-    out->tmp = out->path = NULL;
+    output_reset(out);
 }
 
 int cli_ends_with_ci(const char *s, const char *suffix)

@@ -76,19 +76,34 @@ int cli_read_file(const char *prog, const char *path, size_t max_bytes, char **b
  * Not kept: the owner (only root could), hard links (rename makes a new
  * inode), extended attributes.
  *
- * The temporary is `.NAME.conica-tmp.XXXXXX` beside the target (hidden,
- * and saying what it is). While it exists SIGINT, SIGTERM, SIGHUP, SIGPIPE
- * and SIGXFSZ (a write past `ulimit -f`) remove it, print `prog: error:
- * target: stopped by SIG...; output not written ...` and end the tool with
- * status 128 + signo (by the signal itself, SIGXFSZ by _exit: its default
- * would dump core); signals the tool was started with ignored stay
- * ignored. SIGKILL leaves the hidden temporary and the target untouched.
- * One output open at a time (the handler knows one temporary). */
+ * The temporary is made in the target's directory through a handle on it
+ * (openat, linkat, renameat: a directory renamed during the write takes the
+ * temporary with it and the commit still finds it). Where the file system
+ * has O_TMPFILE it has no name until the commit; else it is
+ * `.NAME.conica-tmp.XXXXXX` (hidden, saying what it is; NAME cut so the
+ * whole stays within the directory's name limit). While it exists every
+ * catchable signal whose default action ends the process (SIGINT, SIGTERM,
+ * SIGHUP, SIGQUIT, SIGPIPE, SIGUSR1/2, SIGALRM, SIGVTALRM, SIGPROF,
+ * SIGXCPU, SIGXFSZ, the faults, the real-time signals, ...) removes it,
+ * prints `prog: error: target: stopped by SIG...; output not written ...`
+ * and is raised again with its default action, so the tool ends with
+ * status 128 + signo (SIGXFSZ by _exit: its default would dump core; a
+ * fault the kernel raised goes back to the handler before it, e.g. a
+ * sanitizer's report); signals the tool was started with ignored stay ignored.
+ * SIGKILL leaves at most the named temporary (none with O_TMPFILE) and
+ * the target untouched. One output open at a time (the handler knows one
+ * temporary). The environment variable CONICA_TMPFILE=named makes the
+ * tools use the named temporary even where O_TMPFILE works (the tests
+ * exercise the fallback that way). */
+#define CLI_TMPFILE_ENV "CONICA_TMPFILE"
 typedef struct cli_output {
     FILE *f;          /* where to write */
     char *path;       /* final path (symlinks resolved), NULL for stdout */
-    char *tmp;        /* temporary path, NULL for stdout and devices */
+    char *tmp;        /* the temporary's name in dirfd, NULL for stdout and devices */
+    const char *base; /* the target's name in dirfd (points into path) */
     unsigned mode;    /* permission bits the committed file gets */
+    int dirfd;        /* the target's directory, -1 when none */
+    int named;        /* tmp names the temporary (0 while an O_TMPFILE has no name) */
 } cli_output;
 
 /* Returns 0, or 1 after printing an error. */

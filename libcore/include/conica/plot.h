@@ -121,7 +121,7 @@ typedef struct conica_plot_settings {
     size_t local_min_points;         /**< N_min of eq. (3.10) (2) */
     conica_plot_local_weight local_weight;
     double local_omega;              /**< omega of eq. (3.18) (0.5) */
-    size_t math_initial_points;      /**< Mathematica N0 (PlotPoints, 50) */
+    size_t math_initial_points;      /**< Mathematica N0 (PlotPoints, 50), at most max_points */
     double math_angle;               /**< Mathematica angle threshold, radians (5 degrees) */
     size_t math_max_recursion;       /**< Mathematica MaxRecursion (6) */
 
@@ -222,6 +222,9 @@ CONICA_API double conica_plot_tolerance(const conica_bspline *s, const conica_pl
  * `samples` is per chord instead and each chord is compared with the curve
  * between its end parameters only (both values can only be over-estimated).
  * Either output may be NULL.
+ * @return CONICA_OK; CONICA_ERR_ARG (NULL, samples 0, an empty polyline,
+ *         dimensions differ); CONICA_ERR_LIMIT when the samples pass 2^26
+ *         (per chord, or in all over the knot intervals); CONICA_ERR_NOMEM.
  */
 CONICA_API conica_code conica_plot_deviation(const conica_bspline *s, const conica_polyline *pl,
         size_t samples, double *curve_to_poly, double *poly_to_curve, conica_status *st);
