@@ -237,6 +237,7 @@ conica_code conica_svg__path_polylines(const conica_svg_path *p, const conica_sv
     conica_path_settings ps = conica_path_defaults();
     conica_code rc = CONICA_OK;
     size_t i;
+    double geom_share;
     (void)line;
     conica_path_init(&cp);
     conica_path_result_init(&r);
@@ -244,8 +245,12 @@ conica_code conica_svg__path_polylines(const conica_svg_path *p, const conica_sv
     ps.precision = precision;
     ps.max_points = *budget;
     ps.rough_t = 1; /* SVG has no use for the points' parameters */
+    /* digits from the tolerance (precision 0): the geometry keeps
+     * CONICA_SVG_ROUNDING_SHARE of it for the rounding of what is written */
+    geom_share = s->precision == 0 ? 1.0 - CONICA_SVG_ROUNDING_SHARE : 1.0;
     if (s->mode == CONICA_SVG_SMOOTH) {
-        ps.tolerance = s->fidelity;
+        ps.tolerance = s->fidelity * geom_share;
+        ps.rel_tolerance *= geom_share;
         ps.levels = s->levels;
         ps.level_tolerance = s->tolerance;
     }
@@ -276,7 +281,7 @@ conica_code conica_svg__path_polylines(const conica_svg_path *p, const conica_sv
         return conica__fail(st, rc, 0, 0, "%s: %s", what, why);
     }
     if (s->mode == CONICA_SVG_FLATTEN) {
-        ps.tolerance = s->tolerance;
+        ps.tolerance = s->tolerance * geom_share;
         ps.fit = (conica_path_fit)s->fit;
         rc = conica_path_flatten(&cp, &ps, &r, st);
     } else if (s->mode == CONICA_SVG_SMOOTH) {

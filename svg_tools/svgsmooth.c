@@ -46,7 +46,10 @@ static const char usage_text[] =
     "                      every vertex; corners kept\n"
     "  --flatten           flatten curves within --tolerance (required) with the\n"
     "                      guaranteed adaptive plotter; straight segments stay\n"
-    "  --precision N       significant digits written (1..17, default 7)\n"
+    "  --precision N       significant digits written (1..17); by default enough\n"
+    "                      that rounding takes at most 1% of the tolerance\n"
+    "                      (--tolerance with --flatten, else the fidelity);\n"
+    "                      fewer digits can put the output outside it\n"
     "  --select IDS        only the elements with these ids or inside groups with\n"
     "                      these ids (comma separated)\n"
     "  --convert-shapes    also rect, circle, ellipse, line (rewritten as paths)\n"
@@ -231,6 +234,7 @@ int main(int argc, char **argv)
 
     memset(&ro, 0, sizeof ro);
     ro.set = conica_svg_defaults();
+    ro.set.precision = 0; /* digits from the tolerance unless --precision */
     /* the input names, in order: at most argc of them */
     inputs = malloc((size_t)argc * sizeof *inputs);
     if (!inputs)
