@@ -185,6 +185,57 @@ static conica_code add_samples(conica_path *cp, const conica_svg_path *p, size_t
     return rc;
 }
 
+/* A subpath of straight segments [a, b) simplified as a polygon (its
+ * edges stay straight): the fewest of its vertices whose polygon passes
+ * within `simplify` of every vertex (conica_simplify() judging at 0
+ * levels: Douglas-Peucker seeds, corners kept), the drawn start kept (a
+ * closed one is simplified as the open polyline from its start round to
+ * it again). Within the tolerance both ways: every dropped vertex is
+ * within it of the chord that replaces its run, and that run, a path from
+ * the chord's one end to the other inside the band, passes within it of
+ * every point of the chord. */
+static conica_code add_simplified_lines(conica_path *cp, const conica_svg_path *p, size_t a,
+                                        size_t b, int closed, double simplify,
+                                        const conica_path_settings *ps, conica_status *st)
+{
+    size_t i, n = 0;
+    double *xy = malloc(2 * (b - a + 2) * sizeof *xy);
+    conica_path_settings flat = *ps;
+    conica_code rc = CONICA_OK;
+    if (!xy)
+        return conica__fail(st, CONICA_ERR_NOMEM, 0, 0, "out of memory");
+    for (i = a; i < b; i++) {
+        const conica_svg_seg *g = &p->seg[i];
+        if (g->type == CONICA_SVG_SEG_CLOSE)
+            continue;
+        if (n == 0 && g->type != CONICA_SVG_SEG_MOVE) {
+            xy[0] = g->x0;
+            xy[1] = g->y0;
+            n = 1;
+        }
+        xy[2 * n] = g->x1;
+        xy[2 * n + 1] = g->y1;
+        n++;
+    }
+    if (closed && n > 1 && (xy[2 * n - 2] != xy[0] || xy[2 * n - 1] != xy[1])) {
+        xy[2 * n] = xy[0]; /* round to the start again */
+        xy[2 * n + 1] = xy[1];
+        n++;
+    }
+    flat.levels = 0;
+    flat.level_tolerance = 0;
+    rc = simplify_samples(xy, &n, 0, simplify, &flat, st);
+    if (rc == CONICA_OK)
+        rc = conica_path_move_to(cp, xy[0], xy[1], a, st);
+    for (i = 1; i < n && rc == CONICA_OK; i++)
+        if (!(closed && i + 1 == n)) /* the closing edge is the close's */
+            rc = conica_path_line_to(cp, xy[2 * i], xy[2 * i + 1], a, st);
+    if (rc == CONICA_OK && closed)
+        rc = conica_path_close(cp, st);
+    free(xy);
+    return rc;
+}
+
 /* Segments [a, b) as drawn: one subpath. */
 static conica_code add_drawn(conica_path *cp, const conica_svg_path *p, size_t a, size_t b,
                              int close, conica_status *st)
@@ -267,9 +318,11 @@ conica_code conica_svg__path_polylines(const conica_svg_path *p, const conica_sv
             p->seg[j - 1].x0 == p->seg[j - 1].x1 && p->seg[j - 1].y0 == p->seg[j - 1].y1)
             (*in_vertices)--; /* it returned to its start: that vertex is the first */
         if (kind == 1 || kind == 2 ||
-            (lines && (s->lines_as_samples || s->simplify > 0) && s->mode == CONICA_SVG_SMOOTH))
+            (lines && s->lines_as_samples && s->mode == CONICA_SVG_SMOOTH))
             rc = add_samples(&cp, p, i, j, closed,
                              s->mode == CONICA_SVG_SMOOTH ? s->simplify : 0.0, &ps, st);
+        else if (lines && s->simplify > 0 && s->mode == CONICA_SVG_SMOOTH)
+            rc = add_simplified_lines(&cp, p, i, j, closed, s->simplify, &ps, st);
         else
             rc = add_drawn(&cp, p, i, j, closed, st);
         i = j;

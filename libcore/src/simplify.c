@@ -222,14 +222,13 @@ static conica_code measure(sctx *c, size_t from, size_t cnt, int closed, size_t 
         if (b <= a)
             b += m; /* check_near's window of a closed curve wraps */
         size_t pa = c->pos[t], pb = c->pos[t + 1 < cnt ? t + 1 : 0];
-        size_t worst = SIZE_MAX;
+        size_t worst = SIZE_MAX, k;
         double wd = c->tol;
         if (pb <= pa)
             pb += L->n; /* a closed polyline may start at any corner */
         for (i = a + 1; i < b; i++) {
             const double *q = c->P + 2 * (i % m);
             double d = HUGE_VAL;
-            size_t k;
             for (k = pa; k < pb; k++)
                 d = fmin(d, seg_dist(q, L->xy + 2 * (k % L->n), L->xy + 2 * ((k + 1) % L->n)));
             c->work += pb - pa + 1;
@@ -237,6 +236,26 @@ static conica_code measure(sctx *c, size_t from, size_t cnt, int closed, size_t 
             if (d > wd) {
                 wd = d;
                 worst = i % m;
+            }
+        }
+        if (worst == SIZE_MAX && b > a + 1) {
+            /* and the other way: the smoothed arc within the tolerance of
+             * the traced polygon it replaces (a long edge must not bulge
+             * out of it); where it strays, the vertex there comes back */
+            for (k = pa; k + 1 < pb && worst == SIZE_MAX; k++) {
+                const double *q = L->xy + 2 * ((k + 1) % L->n);
+                double d = HUGE_VAL;
+                size_t near = a + (b - a) / 2;
+                for (i = a; i < b; i++) {
+                    double e = seg_dist(q, c->P + 2 * (i % m), c->P + 2 * ((i + 1) % m));
+                    if (e < d) {
+                        d = e;
+                        near = i > a ? i : i + 1;
+                    }
+                }
+                c->work += b - a;
+                if (d > c->tol)
+                    worst = near % m;
             }
         }
         c->add[g] = worst;
