@@ -122,6 +122,27 @@ static size_t subpath_end(const conica_svg_path *p, size_t i, int *closed, int *
     return j;
 }
 
+/* The on-curve vertices of segments [a, b) into xy (room for b - a + 1
+ * points); returns how many. */
+static size_t subpath_vertices(const conica_svg_path *p, size_t a, size_t b, double *xy)
+{
+    size_t i, n = 0;
+    for (i = a; i < b; i++) {
+        const conica_svg_seg *g = &p->seg[i];
+        if (g->type == CONICA_SVG_SEG_CLOSE)
+            continue;
+        if (n == 0 && g->type != CONICA_SVG_SEG_MOVE) {
+            xy[0] = g->x0;
+            xy[1] = g->y0;
+            n = 1;
+        }
+        xy[2 * n] = g->x1;
+        xy[2 * n + 1] = g->y1;
+        n++;
+    }
+    return n;
+}
+
 /* Keep only the vertices conica_simplify() chooses (xy[0..2*n) rewritten). */
 static conica_code simplify_samples(double *xy, size_t *n, int closed, double tolerance,
                                     const conica_path_settings *ps, conica_status *st)
@@ -155,24 +176,12 @@ static conica_code add_samples(conica_path *cp, const conica_svg_path *p, size_t
                                int closed, double simplify, const conica_path_settings *ps,
                                conica_status *st)
 {
-    size_t i, n = 0;
+    size_t n;
     double *xy = malloc(2 * (b - a + 1) * sizeof *xy);
     conica_code rc = CONICA_OK;
     if (!xy)
         return conica__fail(st, CONICA_ERR_NOMEM, 0, 0, "out of memory");
-    for (i = a; i < b; i++) {
-        const conica_svg_seg *g = &p->seg[i];
-        if (g->type == CONICA_SVG_SEG_CLOSE)
-            continue;
-        if (n == 0 && g->type != CONICA_SVG_SEG_MOVE) {
-            xy[0] = g->x0;
-            xy[1] = g->y0;
-            n = 1;
-        }
-        xy[2 * n] = g->x1;
-        xy[2 * n + 1] = g->y1;
-        n++;
-    }
+    n = subpath_vertices(p, a, b, xy);
     if (simplify > 0)
         rc = simplify_samples(xy, &n, closed, simplify, ps, st);
     if (rc == CONICA_OK)
@@ -204,19 +213,7 @@ static conica_code add_simplified_lines(conica_path *cp, const conica_svg_path *
     conica_code rc = CONICA_OK;
     if (!xy)
         return conica__fail(st, CONICA_ERR_NOMEM, 0, 0, "out of memory");
-    for (i = a; i < b; i++) {
-        const conica_svg_seg *g = &p->seg[i];
-        if (g->type == CONICA_SVG_SEG_CLOSE)
-            continue;
-        if (n == 0 && g->type != CONICA_SVG_SEG_MOVE) {
-            xy[0] = g->x0;
-            xy[1] = g->y0;
-            n = 1;
-        }
-        xy[2 * n] = g->x1;
-        xy[2 * n + 1] = g->y1;
-        n++;
-    }
+    n = subpath_vertices(p, a, b, xy);
     if (closed && n > 1 && (xy[2 * n - 2] != xy[0] || xy[2 * n - 1] != xy[1])) {
         xy[2 * n] = xy[0]; /* round to the start again */
         xy[2 * n + 1] = xy[1];
