@@ -115,7 +115,7 @@ function writeSvg(file, pts) {
 }
 
 function conica(file, T, extra) {
-    const args = T > 0 ? ['--simplify', String(T)] : ['--lines-as-samples'];
+    const args = T > 0 ? ['--simplify', String(T), '--lines-as-samples'] : ['--lines-as-samples'];
     const out = execFileSync(svgsmooth, args.concat(extra, ['--precision', '12', file]),
                              { encoding: 'utf8' });
     return numbers(/ d="([^"]*)"/.exec(out)[1]);

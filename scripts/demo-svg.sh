@@ -61,7 +61,7 @@ done
 leaf=examples/traced-leaf.svg
 [ -f "$leaf" ] || exit 0
 "$svgsmooth" --lines-as-samples --precision 12 -o "$out/svg-traced-leaf.all.svg" "$leaf"
-"$svgsmooth" --simplify 1 --precision 12 -o "$out/svg-traced-leaf.simplify.svg" "$leaf"
+"$svgsmooth" --simplify 1 --lines-as-samples --precision 12 -o "$out/svg-traced-leaf.simplify.svg" "$leaf"
 conica=$build/bin/conica
 for v in all simplify; do
     # the kept vertices are the output points equal to a traced one (the

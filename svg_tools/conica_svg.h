@@ -295,6 +295,12 @@ typedef enum conica_svg_fill_rule {
 typedef void (*conica_svg_warn_fn)(void *ctx, size_t line, const char *message);
 
 /** Settings; start from conica_svg_defaults(). */
+/** Share of the tolerance the rounding of written numbers may take when
+ *  the digits follow from it (conica_svg_settings.precision 0). */
+#define CONICA_SVG_ROUNDING_SHARE 0.01
+/** Digits written for an element with nothing to keep (lone points). */
+#define CONICA_SVG_DEFAULT_DIGITS 7
+
 typedef struct conica_svg_settings {
     conica_svg_mode mode;
     int levels;             /**< SMOOTH: subdivision levels (default 4) when tolerance <= 0 */
@@ -326,7 +332,10 @@ typedef struct conica_svg_settings {
     int convert_shapes;     /**< non-zero: also rect/circle/ellipse/line (rewritten as paths) */
     const char *const *select; /**< ids of the elements (or of groups: all inside) to process, or NULL for all */
     size_t nselect;
-    int precision;          /**< significant digits when writing (default 7, 1..17) */
+    int precision;          /**< significant digits when writing (1..17, default 7); 0: per
+                                 element, enough that rounding takes at most
+                                 CONICA_SVG_ROUNDING_SHARE of the tolerance at the element's
+                                 largest coordinate, the geometry the rest (svgsmooth's default) */
     conica_svg_limits limits;
     conica_svg_warn_fn warn;/**< optional warning sink */
     void *warn_ctx;

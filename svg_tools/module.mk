@@ -74,3 +74,12 @@ uninstall-inkscape:
 
 install: install-inkscape-system
 .PHONY: inkscape-extension install-inkscape install-inkscape-system uninstall-inkscape
+
+# svgcheck (issue 32): svgsmooth's output measured against its input by the
+# independent checker of tests/support (no svg_tools or libcore code), for
+# tests/cli/svgsmooth_fidelity.sh and scripts/bench-svgsmooth-corpus.sh.
+SVGCHECK := $(BUILD)/tests/svgcheck
+$(SVGCHECK): $(BUILD)/obj/tests/svgcheck/svgcheck.o $(BUILD)/lib/libconica_testsupport.a
+	@mkdir -p $(@D)
+	$(CC) $(LDFLAGS) -o $@ $< $(BUILD)/lib/libconica_testsupport.a -lm
+TEST_EXTRA += $(SVGCHECK)

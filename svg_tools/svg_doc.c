@@ -71,7 +71,7 @@ conica_svg_settings conica_svg_defaults(void)
     s.levels = 4;
     s.tolerance = 0.0;
     s.corner_angle_deg = 40.0;
-    s.precision = 7;
+    s.precision = 7; /* svgsmooth asks for 0: digits from the tolerance */
     s.limits = conica_svg_limits_defaults();
     return s;
 }
@@ -1824,8 +1824,8 @@ static conica_code check_settings(const conica_svg_settings *s, conica_status *s
         return conica__fail(st, CONICA_ERR_ARG, 0, 0, "simplify must be finite and >= 0");
     if (!(s->corner_angle_deg >= 0.0))
         return conica__fail(st, CONICA_ERR_ARG, 0, 0, "corner angle must be >= 0");
-    if (s->precision < 1 || s->precision > 17)
-        return conica__fail(st, CONICA_ERR_ARG, 0, 0, "precision must be in 1..17");
+    if (s->precision < 0 || s->precision > 17)
+        return conica__fail(st, CONICA_ERR_ARG, 0, 0, "precision must be in 1..17 (0: from the tolerance)");
     return CONICA_OK;
 }
 
@@ -2143,6 +2143,43 @@ typedef struct pending {
     conica_svg__buf out;
 } pending;
 
+/* Significant digits for one element's numbers when none are asked for
+ * (precision 0): the rounding of a point, at most sqrt(2)/2 units in the
+ * last digit of its largest coordinate, stays within
+ * CONICA_SVG_ROUNDING_SHARE of the smallest tolerance of its subpaths
+ * (flattening's, or smoothing's fidelity: given, or 1e-3 of the subpath's
+ * extent, conica/path.h), so the written numbers keep the promise the
+ * geometry made. */
+static int element_digits(const conica_svg_settings *s, const conica_svg_subpath *sp, size_t nsp)
+{
+    double big = 0, tol = INFINITY;
+    size_t i, j, k;
+    int e, p;
+    if (s->precision > 0)
+        return s->precision;
+    for (i = 0; i < nsp; i++) {
+        double lo[2] = {INFINITY, INFINITY}, hi[2] = {-INFINITY, -INFINITY}, t;
+        for (j = 0; j < sp[i].n; j++)
+            for (k = 0; k < 2; k++) {
+                double v = sp[i].xy[2 * j + k];
+                big = fmax(big, fabs(v));
+                lo[k] = fmin(lo[k], v);
+                hi[k] = fmax(hi[k], v);
+            }
+        t = s->mode == CONICA_SVG_FLATTEN ? s->tolerance
+            : s->fidelity > 0             ? s->fidelity
+                                          : 1e-3 * hypot(hi[0] - lo[0], hi[1] - lo[1]);
+        if (t > 0 && sp[i].n > 1)
+            tol = fmin(tol, t);
+    }
+    if (!(big > 0) || !isfinite(tol))
+        return CONICA_SVG_DEFAULT_DIGITS; /* points only: nothing to keep */
+    /* unit in the last of p digits: 10^(e + 1 - p) with 10^e <= big */
+    e = (int)floor(log10(big));
+    p = e + 1 - (int)floor(log10(CONICA_SVG_ROUNDING_SHARE * 1.4142135623730951 * tol));
+    return p < 1 ? 1 : p > 17 ? 17 : p;
+}
+
 /* collect()'s hook: write element idx's polylines as its new value and
  * free them, so that the polylines of a large document never all exist at
  * once beside their text (peak memory, and pages touched once less). */
@@ -2156,10 +2193,11 @@ static conica_code format_element(void *ctx, conica_svg_shapes *sh, size_t idx, 
     int ok;
     size_t k;
     pd->out.n = 0;
+    int digits = element_digits(pd->s, sp, el->nsubpaths);
     if (it->kind == 1 || it->kind == 2)
-        ok = format_points(&pd->out, sp, el->nsubpaths, pd->s->precision);
+        ok = format_points(&pd->out, sp, el->nsubpaths, digits);
     else
-        ok = conica_svg__format_path_into(&pd->out, sp, el->nsubpaths, pd->s->precision);
+        ok = conica_svg__format_path_into(&pd->out, sp, el->nsubpaths, digits);
     /* the polylines are written: let them go now (peak memory) */
     for (k = 0; k < el->nsubpaths; k++) {
         free(sp[k].xy);

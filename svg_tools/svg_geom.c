@@ -122,6 +122,27 @@ static size_t subpath_end(const conica_svg_path *p, size_t i, int *closed, int *
     return j;
 }
 
+/* The on-curve vertices of segments [a, b) into xy (room for b - a + 1
+ * points); returns how many. */
+static size_t subpath_vertices(const conica_svg_path *p, size_t a, size_t b, double *xy)
+{
+    size_t i, n = 0;
+    for (i = a; i < b; i++) {
+        const conica_svg_seg *g = &p->seg[i];
+        if (g->type == CONICA_SVG_SEG_CLOSE)
+            continue;
+        if (n == 0 && g->type != CONICA_SVG_SEG_MOVE) {
+            xy[0] = g->x0;
+            xy[1] = g->y0;
+            n = 1;
+        }
+        xy[2 * n] = g->x1;
+        xy[2 * n + 1] = g->y1;
+        n++;
+    }
+    return n;
+}
+
 /* Keep only the vertices conica_simplify() chooses (xy[0..2*n) rewritten). */
 static conica_code simplify_samples(double *xy, size_t *n, int closed, double tolerance,
                                     const conica_path_settings *ps, conica_status *st)
@@ -155,24 +176,12 @@ static conica_code add_samples(conica_path *cp, const conica_svg_path *p, size_t
                                int closed, double simplify, const conica_path_settings *ps,
                                conica_status *st)
 {
-    size_t i, n = 0;
+    size_t n;
     double *xy = malloc(2 * (b - a + 1) * sizeof *xy);
     conica_code rc = CONICA_OK;
     if (!xy)
         return conica__fail(st, CONICA_ERR_NOMEM, 0, 0, "out of memory");
-    for (i = a; i < b; i++) {
-        const conica_svg_seg *g = &p->seg[i];
-        if (g->type == CONICA_SVG_SEG_CLOSE)
-            continue;
-        if (n == 0 && g->type != CONICA_SVG_SEG_MOVE) {
-            xy[0] = g->x0;
-            xy[1] = g->y0;
-            n = 1;
-        }
-        xy[2 * n] = g->x1;
-        xy[2 * n + 1] = g->y1;
-        n++;
-    }
+    n = subpath_vertices(p, a, b, xy);
     if (simplify > 0)
         rc = simplify_samples(xy, &n, closed, simplify, ps, st);
     if (rc == CONICA_OK)
@@ -181,6 +190,45 @@ static conica_code add_samples(conica_path *cp, const conica_svg_path *p, size_t
         /* one point (or one repeated): kept as the point it is */
         rc = conica_path_move_to(cp, xy[0], xy[1], a, st);
     }
+    free(xy);
+    return rc;
+}
+
+/* A subpath of straight segments [a, b) simplified as a polygon (its
+ * edges stay straight): the fewest of its vertices whose polygon passes
+ * within `simplify` of every vertex (conica_simplify() judging at 0
+ * levels: Douglas-Peucker seeds, corners kept), the drawn start kept (a
+ * closed one is simplified as the open polyline from its start round to
+ * it again). Within the tolerance both ways: every dropped vertex is
+ * within it of the chord that replaces its run, and that run, a path from
+ * the chord's one end to the other inside the band, passes within it of
+ * every point of the chord. */
+static conica_code add_simplified_lines(conica_path *cp, const conica_svg_path *p, size_t a,
+                                        size_t b, int closed, double simplify,
+                                        const conica_path_settings *ps, conica_status *st)
+{
+    size_t i, n = 0;
+    double *xy = malloc(2 * (b - a + 2) * sizeof *xy);
+    conica_path_settings flat = *ps;
+    conica_code rc = CONICA_OK;
+    if (!xy)
+        return conica__fail(st, CONICA_ERR_NOMEM, 0, 0, "out of memory");
+    n = subpath_vertices(p, a, b, xy);
+    if (closed && n > 1 && (xy[2 * n - 2] != xy[0] || xy[2 * n - 1] != xy[1])) {
+        xy[2 * n] = xy[0]; /* round to the start again */
+        xy[2 * n + 1] = xy[1];
+        n++;
+    }
+    flat.levels = 0;
+    flat.level_tolerance = 0;
+    rc = simplify_samples(xy, &n, 0, simplify, &flat, st);
+    if (rc == CONICA_OK)
+        rc = conica_path_move_to(cp, xy[0], xy[1], a, st);
+    for (i = 1; i < n && rc == CONICA_OK; i++)
+        if (!(closed && i + 1 == n)) /* the closing edge is the close's */
+            rc = conica_path_line_to(cp, xy[2 * i], xy[2 * i + 1], a, st);
+    if (rc == CONICA_OK && closed)
+        rc = conica_path_close(cp, st);
     free(xy);
     return rc;
 }
@@ -237,6 +285,7 @@ conica_code conica_svg__path_polylines(const conica_svg_path *p, const conica_sv
     conica_path_settings ps = conica_path_defaults();
     conica_code rc = CONICA_OK;
     size_t i;
+    double geom_share;
     (void)line;
     conica_path_init(&cp);
     conica_path_result_init(&r);
@@ -244,8 +293,12 @@ conica_code conica_svg__path_polylines(const conica_svg_path *p, const conica_sv
     ps.precision = precision;
     ps.max_points = *budget;
     ps.rough_t = 1; /* SVG has no use for the points' parameters */
+    /* digits from the tolerance (precision 0): the geometry keeps
+     * CONICA_SVG_ROUNDING_SHARE of it for the rounding of what is written */
+    geom_share = s->precision == 0 ? 1.0 - CONICA_SVG_ROUNDING_SHARE : 1.0;
     if (s->mode == CONICA_SVG_SMOOTH) {
-        ps.tolerance = s->fidelity;
+        ps.tolerance = s->fidelity * geom_share;
+        ps.rel_tolerance *= geom_share;
         ps.levels = s->levels;
         ps.level_tolerance = s->tolerance;
     }
@@ -262,9 +315,11 @@ conica_code conica_svg__path_polylines(const conica_svg_path *p, const conica_sv
             p->seg[j - 1].x0 == p->seg[j - 1].x1 && p->seg[j - 1].y0 == p->seg[j - 1].y1)
             (*in_vertices)--; /* it returned to its start: that vertex is the first */
         if (kind == 1 || kind == 2 ||
-            (lines && (s->lines_as_samples || s->simplify > 0) && s->mode == CONICA_SVG_SMOOTH))
+            (lines && s->lines_as_samples && s->mode == CONICA_SVG_SMOOTH))
             rc = add_samples(&cp, p, i, j, closed,
                              s->mode == CONICA_SVG_SMOOTH ? s->simplify : 0.0, &ps, st);
+        else if (lines && s->simplify > 0 && s->mode == CONICA_SVG_SMOOTH)
+            rc = add_simplified_lines(&cp, p, i, j, closed, s->simplify, &ps, st);
         else
             rc = add_drawn(&cp, p, i, j, closed, st);
         i = j;
@@ -276,7 +331,7 @@ conica_code conica_svg__path_polylines(const conica_svg_path *p, const conica_sv
         return conica__fail(st, rc, 0, 0, "%s: %s", what, why);
     }
     if (s->mode == CONICA_SVG_FLATTEN) {
-        ps.tolerance = s->tolerance;
+        ps.tolerance = s->tolerance * geom_share;
         ps.fit = (conica_path_fit)s->fit;
         rc = conica_path_flatten(&cp, &ps, &r, st);
     } else if (s->mode == CONICA_SVG_SMOOTH) {

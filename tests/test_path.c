@@ -259,9 +259,12 @@ TEST_CASE("rough_t changes only t, and that t stays within the tolerance of its 
             conica_path_result_free(&rough);
             conica_path_free(&p);
         }
-        /* what the setting is for: the feet were not all searched */
+        /* what the setting is for: the feet were not all searched (at
+         * the check's own levels; below its floor every written point is
+         * measured against the curve with its own foot, issue 32) */
         INFO("%d levels", levels);
-        CHECK(rough_differs > 0);
+        if (levels >= 4)
+            CHECK(rough_differs > 0);
     }
     ts_text_free(&t);
 }
@@ -332,7 +335,11 @@ TEST_CASE("conics stay exact: arcs, rational quadratics, a Bezier circle", "[pat
         REQUIRE(conica_path_close(&p, NULL) == CONICA_OK);
         REQUIRE(conica_path_smooth(&p, &s, &r, NULL) == CONICA_OK);
         CHECK_LE(radial(&r, 0, 0, 1, 1), 1e-14);
-        CHECK_EQ_U(r.lines[0].n, 4 * 8); /* four samples, 2^3 each */
+        /* four samples; 2^3 chords each would bulge 1 - cos(5.625 deg) =
+         * 0.0048 off the circle, past the tolerance (1e-3 of the control
+         * points' diagonal, 0.0028): what is written is checked, and
+         * written at 4 levels (issue 32; 2^3 each before) */
+        CHECK_EQ_U(r.lines[0].n, 4 * 16);
         CHECK_LE(r.worst_ratio, 1.0);
     }
     SECTION("a rational NURBS circle (9 control points, degree 2) through conica_path_bspline")

@@ -73,6 +73,15 @@
  * this many times its last level's measured bulge off the tolerance:
  * twice the quarter the next level adds. */
 #define PATH_CHECK_NEXT_BULGE 0.5
+/* Dense points per chord when the polyline that is written is measured
+ * against its segment (check_edge's `written`): its chords may be long
+ * and the curve may turn back between two dense points (a hook's tip).
+ * A dense point lies within 1/32 of a chord from the chord's farthest
+ * point, which under-states a bulge by at most 1 - (2/32)^2 = 0.4 %; the
+ * written polyline must pass at PATH_WRITTEN_FRACTION of the tolerance,
+ * which covers that and the rounding of the written digits (1 %). */
+#define PATH_WRITTEN_DENSE 16
+#define PATH_WRITTEN_FRACTION 0.985
 /* Newton steps when projecting a point onto a segment, and the step (a
  * fraction of the search interval) after which it has settled. */
 #define PATH_NEWTON_STEPS 6
@@ -970,6 +979,8 @@ static void join_normal(const join *J, double n[2])
 
 static double bulge(const conica_path *p, size_t s, double ta, double tb, const double a[2],
                     const double n[2], int sign);
+static double chord_line_dev(const conica_path *p, size_t s, double ta, double tb,
+                             const double a[2], const double b[2], double stop);
 
 
 /* The four directions of the bounding box: +x, -x, +y, -y. */
@@ -1160,10 +1171,46 @@ static double seg_max_along(const conica_path *p, size_t s, double ta, double tb
 
 
 
-/* Largest distance of segment s on [ta, tb] from the chord a b (both
- * sides of its line). */
+/* How far segment s on [ta, tb] reaches past the ends of the chord a b
+ * along its direction u (|b - a| = len): a hook's tip or a hairpin beyond
+ * the chord's end, which the distance from the chord's line misses. */
+static double chord_overshoot(const conica_path *p, size_t s, double ta, double tb,
+                              const double a[2], const double u[2], double len)
+{
+    const double *q = seg_pts(p, s);
+    int d = p->seg[s].degree;
+    double vmax, tmax, vmin, tmin, m[2] = {-u[0], -u[1]}, h = (tb - ta) / PATH_FIT_SAMPLES;
+    if (!seg_range(q, d, ta, tb, a, u, &vmax, &tmax, &vmin, &tmin)) {
+        vmin = -vmin;
+        golden_max(q, d, fmax(ta, tmax - h), fmin(tb, tmax + h), a, u, PATH_CHORD_GOLDEN,
+                   INFINITY, &vmax, &tmax);
+        golden_max(q, d, fmax(ta, tmin - h), fmin(tb, tmin + h), a, m, PATH_CHORD_GOLDEN,
+                   INFINITY, &vmin, &tmin);
+        vmin = -vmin;
+    }
+    return fmax(0.0, fmax(vmax - len, -vmin));
+}
+
+/* Largest distance of segment s on [ta, tb] from the chord segment a b:
+ * the distance from its line (both sides), and where the curve reaches
+ * past an end, sqrt(line^2 + overshoot^2), which bounds the distance from
+ * the segment with its end caps from above. */
 static double chord_dev(const conica_path *p, size_t s, double ta, double tb, const double a[2],
                         const double b[2], double stop)
+{
+    double line = chord_line_dev(p, s, ta, tb, a, b, stop), u[2], len, over;
+    if (!(line <= stop) || !unit2(b[0] - a[0], b[1] - a[1], u) || p->seg[s].degree == 1 ||
+        !(tb > ta))
+        return line;
+    len = hypot(b[0] - a[0], b[1] - a[1]);
+    over = chord_overshoot(p, s, ta, tb, a, u, len);
+    return over > 0 ? hypot(line, over) : line;
+}
+
+/* Largest distance of segment s on [ta, tb] from the chord a b's line
+ * (both sides). */
+static double chord_line_dev(const conica_path *p, size_t s, double ta, double tb,
+                             const double a[2], const double b[2], double stop)
 {
     /* both sides from one set of samples; the golden section only on a
      * side the curve reaches, and not once the answer is known to exceed
@@ -1794,18 +1841,23 @@ static double feet_bound(const double *tau, const double *F, size_t m, double d2
  * parameter, instead of Newton's foot, and get Newton's only when the bound
  * does not do. The verdict against the tolerance and the largest value
  * over a piece are those of the full search.
+ *
+ * written: v is the polyline that is written (not a limit polyline that
+ * stands for the limit curve): PATH_WRITTEN_DENSE dense points per chord,
+ * and no limit-curve bulge added, so the figure is the distance of the
+ * polyline itself (its chords, end caps included) from the segment.
  */
 static double check_edge(const double *q, int d, double ta, double tb, const double *v, size_t m,
-                         double *tau, size_t keep, double need)
+                         double *tau, size_t keep, double need, int written)
 {
-    size_t M = 2 * m, i, j, prev, nskip = 0;
+    size_t per = written ? PATH_WRITTEN_DENSE : 2, M = per * m, i, j, prev, nskip = 0;
     double worst2 = 0, wb2 = 0, sag = 0, *heap = NULL, span = (tb - ta) / (double)M;
     double dense[2 * (2 * PATH_CHECK_STACK + 1)], chord[3 * PATH_CHECK_STACK],
            foot[PATH_CHECK_STACK + 1], *D = dense, *E = chord, *F = foot;
     size_t nearest[PATH_CHECK_STACK + 1], *N = nearest;
     seg_fn f = seg_fn_of(q, d);
     int bounded = f.poly && need < INFINITY;
-    if (m > PATH_CHECK_STACK) {
+    if (m > PATH_CHECK_STACK || M > 2 * PATH_CHECK_STACK) {
         heap = malloc((2 * (M + 1) + 3 * m + m + 1) * sizeof *heap + (m + 1) * sizeof *N);
         if (!heap)
             return INFINITY;
@@ -1822,7 +1874,7 @@ static double check_edge(const double *q, int d, double ta, double tb, const dou
      * previous point's (the correspondence is monotone), the window doubled
      * while the best lies on its edge */
     for (i = 1, prev = 0; i < m; i++) {
-        size_t w = PATH_WINDOW_DENSE, lo, hi, bj;
+        size_t w = PATH_WINDOW_DENSE * per / 2, lo, hi, bj;
         double bd, dist, t0, tlo, thi, sx, sy;
         for (;;) {
             lo = prev > w ? prev - w : 0;
@@ -1885,7 +1937,7 @@ static double check_edge(const double *q, int d, double ta, double tb, const dou
         seg_fn_point(&f, tb, c);
         F[m] = sqrt(dist2(c, v + 2 * m));
         for (;;) {
-            double bound = feet_bound(tau, F, m, d2max, sag, worst2);
+            double bound = feet_bound(tau, F, m, d2max, written ? 0.0 : sag, worst2);
             if (bound * PATH_BOUND_MARGIN <= need) {
                 free(heap);
                 return bound;
@@ -1957,7 +2009,7 @@ static double check_edge(const double *q, int d, double ta, double tb, const dou
      * at most the chord's bulge (|second difference| / 8); the dense
      * points' own bulge is a quarter of it */
     {
-        double wb = sqrt(wb2) + 1.6 * 0.125 * sqrt(sag), wa = sqrt(worst2);
+        double wb = sqrt(wb2) + (written ? 0.0 : 1.6 * 0.125 * sqrt(sag)), wa = sqrt(worst2);
         return wb > wa ? wb : wa;
     }
 }
@@ -2123,11 +2175,25 @@ static const double *edge_points(const conica_curve *o, size_t a, size_t b, doub
     return *buf;
 }
 
+/* Whether the written polyline v[0..m] of one sample edge stays within the
+ * tolerance of the segment on [ta, tb] both ways (tau as check_edge's,
+ * every point's when want); *deviation grows to the figure when it does. */
+static int written_fits(const ctx *c, const double *q, int d, double ta, double tb,
+                        const double *v, size_t m, double *tau, unsigned want, double *deviation)
+{
+    double lim = PATH_WRITTEN_FRACTION * c->tol;
+    double e = check_edge(q, d, ta, tb, v, m, tau, want, fmin(lim, *deviation), 1);
+    if (!(e <= lim))
+        return 0;
+    *deviation = e > *deviation ? e : *deviation;
+    return 1;
+}
+
 /* Append a piece smoothed (its first point is there already). */
 static conica_code smooth_piece(ctx *c, const piece *P, double *deviation)
 {
     int ok = 0, round, lev, L = 0, d, low = 0, low_failed = 0;
-    size_t ns = 0, cap, i, k, ne, *idx = NULL, ninfl = 0, step = 1, keep = 1;
+    size_t ns = 0, cap, i, k, ne, *idx = NULL, *fidx = NULL, ninfl = 0, step = 1, keep = 1;
     smp *S = NULL;
     double *T = NULL; /* parameters of the check output's points */
     const double *q;
@@ -2255,6 +2321,8 @@ static conica_code smooth_piece(ctx *c, const piece *P, double *deviation)
             L = lev;
             low = 1;
         }
+        if (lev > L)
+            L = lev; /* more levels written than the floor: checked as written */
         conica_curve_free(&out);
         rc = run_subdiv(c, c->sxy, c->snxy, ns, P->closed, L, 0.0, &out, &ninfl);
         if (rc == CONICA_ERR_LIMIT || rc == CONICA_ERR_NOMEM)
@@ -2305,7 +2373,7 @@ static conica_code smooth_piece(ctx *c, const piece *P, double *deviation)
             /* tau[idx[i] + j]: parameters of the edge's points (its end
              * point's is overwritten by the next edge's start) */
             e = check_edge(q, d, t0, t1, v, idx[i + 1] - idx[i], T + idx[i], keep,
-                           fmin(strict, fmax(*deviation, worst)));
+                           fmin(strict, fmax(*deviation, worst)), 0);
             free(buf);
             if (!(e <= strict)) {
                 if (low)
@@ -2379,65 +2447,140 @@ static conica_code smooth_piece(ctx *c, const piece *P, double *deviation)
          * no inflection point inserted the level-lev points are every
          * 2^(L - lev)-th of the check output: no second subdivision. */
         step = (size_t)1 << (L - lev);
-        fin = out;
-        conica_curve_init(&out);
     } else if (lev != L) {
+        /* fewer levels with inflection points inserted (the levels do not
+         * nest): a subdivision of its own, each edge measured below */
         rc = run_subdiv(c, c->sxy, c->snxy, ns, P->closed, lev, 0.0, &fin, NULL);
-        if (rc == CONICA_OK && !locate(c->sxy, ns, &fin, idx))
+        if (rc == CONICA_OK && !(fidx = malloc((ns + 1) * sizeof *fidx)))
+            rc = fail_nomem(c);
+        if (rc == CONICA_OK && !locate(c->sxy, ns, &fin, fidx))
             rc = conica__fail(c->st, CONICA_ERR_NUMERIC, 0, c->subpath,
                               "subpath %zu: the subdivision lost a sample", c->subpath + 1);
-        idx[ns] = fin.n;
-        free(T);
-        T = NULL; /* parameters to be found again */
-    } else {
-        fin = out;
-        conica_curve_init(&out);
+        if (rc == CONICA_OK)
+            fidx[ns] = fin.n;
     }
-    if (rc == CONICA_OK)
-        rc = take(c, (fin.n - (P->closed ? 0 : 1)) / step);
+    /* What is written is measured (check_edge's `written`): where a chord
+     * at the written level strays beyond the tolerance (it cuts more of
+     * the curve than the limit polyline checked above does), it is split
+     * at the next level's point between its ends, down to the check's
+     * own level, which passed. Level 0 is the samples' polygon as asked. */
     for (i = 0; i < ne && rc == CONICA_OK; i++) {
-        size_t kk, m = idx[i + 1] - idx[i], j;
-        double t0, t1, tau_stack[1025], *tau, *buf;
-        const double *v = edge_points(&fin, idx[i], idx[i + 1], &buf);
+        size_t kk, m = idx[i + 1] - idx[i], ms = 0, j, es = 1, *sel = NULL;
+        const conica_curve *src = &out;
+        const size_t *sidx = idx;
+        const double *tt = NULL;
+        double t0, t1, *tau = NULL, *buf = NULL;
+        const double *v;
+        /* every written point's foot (Newton): the figures, and so the
+         * verdicts, do not depend on rough_t */
+        unsigned want = 1u;
         edge_range(S, ns, P->closed, i, &kk, &t0, &t1);
         q = piece_q(c, P, kk, &d);
-        tau = T ? T + idx[i] : m < 1025 ? tau_stack : malloc((m + 1) * sizeof *tau);
-        if (!tau || !v) {
-            if (!T && tau != tau_stack)
-                free(tau);
+        if (fidx) { /* the written level's own subdivision, as a whole */
+            size_t mf = fidx[i + 1] - fidx[i];
+            v = edge_points(&fin, fidx[i], fidx[i + 1], &buf);
+            tau = v ? malloc((mf + 1) * sizeof *tau) : NULL;
+            if (tau && (lev == 0 || written_fits(c, q, d, t0, t1, v, mf, tau, want, deviation))) {
+                src = &fin;
+                sidx = fidx;
+                tt = tau;
+            }
             free(buf);
+        } else if (step > 1) { /* every step-th point of the check output */
+            ms = m / step;
+            buf = malloc(2 * (ms + 1) * sizeof *buf);
+            tau = malloc((m + 1) * sizeof *tau);
+            if (buf && tau) {
+                for (j = 0; j <= ms; j++) {
+                    size_t o = idx[i] + j * step;
+                    o = o < out.n ? o : 0;
+                    buf[2 * j] = out.xy[2 * o];
+                    buf[2 * j + 1] = out.xy[2 * o + 1];
+                }
+                if (lev == 0 || written_fits(c, q, d, t0, t1, buf, ms, tau, want, deviation)) {
+                    for (j = ms; j > 0; j--) /* tau[j] is point j * step's */
+                        tau[j * step] = tau[j];
+                    tt = tau;
+                    es = step;
+                }
+            }
+            free(buf);
+        } else {
+            tt = T + idx[i];
+        }
+        if (!tau && !tt) {
             rc = fail_nomem(c);
             break;
         }
-        if (!T)
-            check_edge(q, d, t0, t1, v, m, tau, 1, INFINITY);
-        tau[m] = t1;
-        for (j = step; j <= m; j += step) {
-            size_t o = idx[i] + j;
-            int is_end = !P->closed && i + 1 == ne && j == m;
-            int is_vertex = j == m && (i + 1 == ns || S[i + 1].t == 0.0 || is_end);
-            const double *pt = o < fin.n ? fin.xy + 2 * o : fin.xy;
-            const double *nn = o < fin.n ? fin.nxy + 2 * o : fin.nxy;
-            /* a point at a segment's end belongs to the next segment at 0 */
-            size_t sg = P->seg[kk];
-            double tt = tau[j];
-            if (j == m && !is_end && S[(i + 1) % ns].t == 0.0) {
-                sg = P->seg[S[(i + 1) % ns].k];
-                tt = 0.0;
-            }
-            if (!add_pt(c, pt, is_end ? P->nend : nn, sg, tt,
-                        is_end ? P->endflags : is_vertex ? CONICA_PATH_PT_VERTEX : 0u)) {
+        if (!tt) { /* chords split where they stray */
+            size_t top = 0, *stk;
+            free(tau);
+            v = edge_points(&out, idx[i], idx[i + 1], &buf);
+            sel = malloc((2 * m + 2) * sizeof *sel);
+            tau = malloc((m + 1) * sizeof *tau);
+            if (!v || !sel || !tau) {
+                free(buf);
+                free(sel);
+                free(tau);
                 rc = fail_nomem(c);
                 break;
             }
+            if (T && keep == 1 && !c->s.rough_t)
+                memcpy(tau, T + idx[i], (m + 1) * sizeof *tau);
+            else
+                check_edge(q, d, t0, t1, v, m, tau, 1, INFINITY, 0);
+            tau[0] = t0;
+            tau[m] = t1;
+            stk = sel + m + 1;
+            for (j = m; j >= step; j -= step)
+                stk[top++] = j; /* chords [j - step, j], the last on top */
+            {
+                size_t at = 0;
+                ms = 0;
+                while (top > 0) {
+                    size_t hi = stk[--top], lo = at, span = hi - lo;
+                    double ends[4] = {v[2 * lo], v[2 * lo + 1], v[2 * hi], v[2 * hi + 1]}, tj[2];
+                    if (span > 1 &&
+                        !written_fits(c, q, d, tau[lo], tau[hi], ends, 1, tj, 0u, deviation)) {
+                        stk[top++] = hi;
+                        stk[top++] = lo + span / 2;
+                        continue;
+                    }
+                    sel[ms++] = hi;
+                    at = hi;
+                }
+            }
+            free(buf);
+            tt = tau;
         }
-        if (!T && tau != tau_stack)
-            free(tau);
-        free(buf);
+        if (!sel)
+            ms = (sidx[i + 1] - sidx[i]) / es;
+        rc = take(c, ms);
+        for (j = 1; j <= ms && rc == CONICA_OK; j++) {
+            size_t jj = sel ? sel[j - 1] : j * es;
+            size_t o = sidx[i] + jj;
+            int is_end = !P->closed && i + 1 == ne && j == ms;
+            int is_vertex = j == ms && (i + 1 == ns || S[i + 1].t == 0.0 || is_end);
+            const double *pt = o < src->n ? src->xy + 2 * o : src->xy;
+            const double *nn = o < src->n ? src->nxy + 2 * o : src->nxy;
+            /* a point at a segment's end belongs to the next segment at 0 */
+            size_t sg = P->seg[kk];
+            double tv = j == ms ? t1 : tt[jj];
+            if (j == ms && !is_end && S[(i + 1) % ns].t == 0.0) {
+                sg = P->seg[S[(i + 1) % ns].k];
+                tv = 0.0;
+            }
+            if (!add_pt(c, pt, is_end ? P->nend : nn, sg, tv,
+                        is_end ? P->endflags : is_vertex ? CONICA_PATH_PT_VERTEX : 0u))
+                rc = fail_nomem(c);
+        }
+        free(sel);
+        free(tau);
     }
     conica_curve_free(&out);
     conica_curve_free(&fin);
     free(idx);
+    free(fidx);
     free(bad);
     free(S);
     free(T);
@@ -2786,6 +2929,8 @@ static conica_code drawn_subpath(ctx *c, const conica_path_subpath *sp, int smoo
     }
     if (!smooth && c->s.fit == CONICA_PATH_FIT_MIDDLE && any_break)
         c->flat_fraction = PATH_FIT_INSIDE_FRACTION; /* see below */
+    if (!smooth && sp->closed && any_break)
+        brk[0] = 1; /* no flattened run passes over the drawn start: it stays a vertex */
     if (sp->closed && any_break && !brk[0])
         for (start = 1; start < n && !brk[start]; start++)
             ;

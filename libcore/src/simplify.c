@@ -56,7 +56,10 @@ typedef struct sctx {
     double tol;
     unsigned char *fixed;   /* corners and open ends: always kept */
     unsigned char *kept;
-    size_t *K, nk;          /* kept vertices, ascending */
+    size_t *K, nk;          /* kept vertices, ascending (or, in check_near, its window) */
+    size_t *Kall;           /* the array gather() fills */
+    size_t win[2 * SIMPLIFY_WINDOW + 2]; /* check_near's window of kept vertices */
+    size_t nkept;           /* kept vertices in all */
     double *kxy;            /* their points */
     size_t *pos;            /* output index of kept vertex j in the smoothed polyline */
     size_t *add;            /* per arc: vertex to insert, or SIZE_MAX */
@@ -165,10 +168,12 @@ static int seed_dp(sctx *c, size_t a, size_t b, size_t *stack)
 static void gather(sctx *c)
 {
     size_t i, nk = 0;
+    c->K = c->Kall;
     for (i = 0; i < c->m; i++)
         if (c->kept[i])
             c->K[nk++] = i;
     c->nk = nk;
+    c->nkept = nk;
 }
 
 /* Smooth `cnt` consecutive kept vertices from kept position `from` (mod nk;
@@ -214,15 +219,16 @@ static conica_code measure(sctx *c, size_t from, size_t cnt, int closed, size_t 
             rc = CONICA_ERR_DEGENERATE;
     for (t = alo; t < ahi && rc == CONICA_OK; t++) {
         size_t g = (from + t) % nk, a = c->K[g], b = g + 1 < nk ? c->K[g + 1] : c->K[0] + m;
+        if (b <= a)
+            b += m; /* check_near's window of a closed curve wraps */
         size_t pa = c->pos[t], pb = c->pos[t + 1 < cnt ? t + 1 : 0];
-        size_t worst = SIZE_MAX;
+        size_t worst = SIZE_MAX, k;
         double wd = c->tol;
         if (pb <= pa)
             pb += L->n; /* a closed polyline may start at any corner */
         for (i = a + 1; i < b; i++) {
             const double *q = c->P + 2 * (i % m);
             double d = HUGE_VAL;
-            size_t k;
             for (k = pa; k < pb; k++)
                 d = fmin(d, seg_dist(q, L->xy + 2 * (k % L->n), L->xy + 2 * ((k + 1) % L->n)));
             c->work += pb - pa + 1;
@@ -230,6 +236,26 @@ static conica_code measure(sctx *c, size_t from, size_t cnt, int closed, size_t 
             if (d > wd) {
                 wd = d;
                 worst = i % m;
+            }
+        }
+        if (worst == SIZE_MAX && b > a + 1) {
+            /* and the other way: the smoothed arc within the tolerance of
+             * the traced polygon it replaces (a long edge must not bulge
+             * out of it); where it strays, the vertex there comes back */
+            for (k = pa; k + 1 < pb && worst == SIZE_MAX; k++) {
+                const double *q = L->xy + 2 * ((k + 1) % L->n);
+                double d = HUGE_VAL;
+                size_t near = a + (b - a) / 2;
+                for (i = a; i < b; i++) {
+                    double e = seg_dist(q, c->P + 2 * (i % m), c->P + 2 * ((i + 1) % m));
+                    if (e < d) {
+                        d = e;
+                        near = i > a ? i : i + 1;
+                    }
+                }
+                c->work += b - a;
+                if (d > c->tol)
+                    worst = near % m;
             }
         }
         c->add[g] = worst;
@@ -258,6 +284,8 @@ static conica_code measure(sctx *c, size_t from, size_t cnt, int closed, size_t 
         for (k = 0; k < 2; k++) {
             size_t arc = arcs[k], a = c->K[arc];
             size_t b = arc + 1 < nk ? c->K[arc + 1] : c->K[0] + m;
+            if (b <= a)
+                b += m;
             if (b < a + 2 || c->add[arc] != SIZE_MAX)
                 continue; /* no vertex between them, or one already coming */
             c->add[arc] = c->fixed[v] ? near[k] : (a + (b - a) / 2) % m;
@@ -283,38 +311,57 @@ static conica_code check(sctx *c, conica_status *st)
  * vertices on each side of the gap and measure the SIMPLIFY_REACH arcs on
  * each side (the subdivision is local: a kept vertex moves the curve only
  * a few arcs away, through the normals estimated from its neighbours), or
- * everything when there are few. */
+ * everything when there are few. The window is found by walking from v,
+ * so each try costs the span of its window, not the whole curve: over a
+ * dropping pass every vertex is walked over by about 2 SIMPLIFY_WINDOW
+ * tries (linear work where a gather() per try was quadratic). */
 static conica_code check_near(sctx *c, size_t v, conica_status *st)
 {
-    size_t j, q = 0, nk, from, cnt, alo, ahi;
-    gather(c);
-    nk = c->nk;
+    size_t j, m = c->m, nb = 0, na = 0, nk, from, cnt, alo, ahi;
+    size_t back[SIMPLIFY_WINDOW];
+    if (c->nkept <= 2 * SIMPLIFY_WINDOW + 2)
+        return check(c, st);
+    /* W kept vertices before the gap (nearest first) and W from it on */
+    for (j = 1; j < m && nb < SIMPLIFY_WINDOW; j++) {
+        size_t i;
+        if (!c->closed && j > v)
+            break;
+        i = (v + m - j) % m;
+        if (c->kept[i])
+            back[nb++] = i;
+    }
+    for (j = 0; j < nb; j++)
+        c->win[j] = back[nb - 1 - j];
+    for (j = 1; j < m && na < SIMPLIFY_WINDOW; j++) {
+        size_t i;
+        if (!c->closed && v + j >= m)
+            break;
+        i = (v + j) % m;
+        if (c->kept[i])
+            c->win[nb + na++] = i;
+    }
+    nk = nb + na;
+    c->K = c->win;
+    c->nk = nk;
     for (j = 0; j < nk; j++)
         c->add[j] = SIZE_MAX;
     c->deviation = 0;
-    if (nk <= 2 * SIMPLIFY_WINDOW + 2)
-        return check(c, st);
-    while (q < nk && c->K[q] < v)
-        q++; /* the first kept vertex after the gap (nk: wraps to 0) */
+    from = 0;
+    cnt = nk;
     if (c->closed) {
-        q %= nk;
-        from = (q + nk - SIMPLIFY_WINDOW) % nk;
-        cnt = 2 * SIMPLIFY_WINDOW;
         alo = SIMPLIFY_WINDOW - SIMPLIFY_REACH;
         ahi = SIMPLIFY_WINDOW + SIMPLIFY_REACH - 1;
     } else {
-        size_t lo = q >= SIMPLIFY_WINDOW ? q - SIMPLIFY_WINDOW : 0;
-        size_t hi = q + SIMPLIFY_WINDOW < nk ? q + SIMPLIFY_WINDOW : nk; /* exclusive */
-        size_t mlo = q >= SIMPLIFY_REACH ? q - SIMPLIFY_REACH : 0;
+        /* q: the window's first kept vertex after the gap; the curve's
+         * ends (its first and last vertex, always kept) bound the arcs
+         * measured, the window's own ends are not the curve's */
+        size_t q = nb, mlo = q >= SIMPLIFY_REACH ? q - SIMPLIFY_REACH : 0;
         size_t mhi = q + SIMPLIFY_REACH - 1 < nk - 1 ? q + SIMPLIFY_REACH - 1 : nk - 1;
-        from = lo;
-        cnt = hi - lo;
-        /* the window's own ends are not the curve's: their arcs stay unmeasured */
-        alo = mlo - lo;
-        ahi = mhi - lo;
-        if (lo > 0 && alo == 0)
+        alo = mlo;
+        ahi = mhi;
+        if (c->win[0] > 0 && alo == 0)
             alo = 1;
-        if (hi < nk && ahi + 1 >= cnt)
+        if (c->win[nk - 1] + 1 < m && ahi + 1 >= cnt)
             ahi = cnt - 2;
     }
     return measure(c, from, cnt, 0, alo, ahi, st);
@@ -364,7 +411,7 @@ conica_code conica_simplify(const double *xy, size_t n, int closed,
     P = malloc(2 * n * sizeof *P);
     c.fixed = calloc(n, 1);
     c.kept = calloc(n, 1);
-    c.K = malloc(n * sizeof *c.K);
+    c.K = c.Kall = malloc(n * sizeof *c.K);
     c.kxy = malloc(2 * n * sizeof *c.kxy);
     c.pos = malloc(n * sizeof *c.pos);
     c.add = malloc(n * sizeof *c.add);
@@ -483,13 +530,16 @@ conica_code conica_simplify(const double *xy, size_t n, int closed,
             if (!c.kept[i] || c.fixed[i])
                 continue;
             c.kept[i] = 0;
+            c.nkept--;
             rc = check_near(&c, i, st);
             if (rc == CONICA_ERR_NOMEM || rc == CONICA_ERR_LIMIT)
                 goto done;
-            if (rc == CONICA_OK && passed(&c))
+            if (rc == CONICA_OK && passed(&c)) {
                 inf.dropped++;
-            else
+            } else {
                 c.kept[i] = 1;
+                c.nkept++;
+            }
             rc = CONICA_OK;
         }
     }
@@ -513,7 +563,7 @@ done:
     free(P);
     free(c.fixed);
     free(c.kept);
-    free(c.K);
+    free(c.Kall);
     free(c.kxy);
     free(c.pos);
     free(c.add);

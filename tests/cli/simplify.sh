@@ -1,9 +1,12 @@
 #!/bin/sh
 # SPDX-License-Identifier: MIT
-# svgsmooth --simplify end to end on the traced leaf: the smoothed outline
+# svgsmooth --simplify end to end on the traced leaf (a path of straight
+# segments: smoothed through with --lines-as-samples): the smoothed outline
 # passes within T of every traced vertex, keeps far fewer of them, its
 # curvature changes sign less often than the curve through every traced
-# point, its corners (base and tip) stay; bad values are usage errors.
+# point, its corners (base and tip) stay; without --lines-as-samples a
+# straight-only subpath stays straight (issue 32: a glyph's long edges
+# bulged by 8.8 % of its diagonal); bad values are usage errors.
 # usage (from the repository root): sh tests/cli/simplify.sh BUILD_DIR
 set -u
 . "$(dirname "$0")/harness.sh"
@@ -55,7 +58,7 @@ if [ ! -f "$leaf" ]; then
     skip_case "$leaf missing"
 fi
 check "every point interpolated" "$svgsmooth" --lines-as-samples --precision 12 -o "$tmp/all.svg" "$leaf"
-check "--simplify 1" "$svgsmooth" --simplify 1 --precision 12 -o "$tmp/s1.svg" "$leaf"
+check "--simplify 1" "$svgsmooth" --simplify 1 --lines-as-samples --precision 12 -o "$tmp/s1.svg" "$leaf"
 set -- $(leafstat "$tmp/all.svg")
 all_changes=${3:-0}
 set -- $(leafstat "$tmp/s1.svg")
@@ -66,10 +69,24 @@ check_true "curvature sign changes ${3:-?} < a quarter of ${all_changes} (every 
 check_true "base and tip corners kept" test "${4:-0}" -eq 1
 
 begin_case "a tighter T keeps more vertices and stays within it"
-check "--simplify 0.5" "$svgsmooth" --simplify 0.5 --precision 12 -o "$tmp/s05.svg" "$leaf"
+check "--simplify 0.5" "$svgsmooth" --simplify 0.5 --lines-as-samples --precision 12 -o "$tmp/s05.svg" "$leaf"
 set -- $(leafstat "$tmp/s05.svg")
 check_true "within 0.5 (${2:-?})" le "${2:-9}" 0.5
 check_true "more than at T = 1, fewer than 80 (${1:-?})" test "${1:-0}" -gt 12 -a "${1:-99}" -lt 80
+
+begin_case "straight-only subpaths stay straight: fewer vertices, every output vertex a traced one"
+check "--simplify 1 alone" "$svgsmooth" --simplify 1 --precision 12 -o "$tmp/st.svg" "$leaf"
+set -- $(leafstat "$tmp/st.svg")
+check_true "within 1 of every traced vertex (${2:-?})" le "${2:-9}" 1
+check_true "at most 30 of 80 vertices (${1:-?})" test "${1:-99}" -le 30
+# every point written is a traced vertex: nothing smoothed, edges straight
+check_true "all $(tr -cd 'L ' <"$tmp/st.svg" | wc -c) output points traced (${1:-?} kept)" \
+    test "$(python3 -c "import re,sys; d=re.search(r'id=\"leaf\" d=\"([^\"]*)\"',open(sys.argv[1]).read()).group(1); v=re.findall(r'[-+]?(?:\d+\.?\d*|\.\d+)',d); print(len(v)//2)" "$tmp/st.svg")" -eq "${1:-0}"
+# DejaVu Sans 'Z' (font units, a 39-degree join under the corner angle):
+# with --lines-as-samples its long edges bulged 240 units at --simplify 0.1
+printf '<svg xmlns="http://www.w3.org/2000/svg"><path id="leaf" d="M100 100L1300 100 1300 260 300 1600 1320 1600 1320 1760 80 1760 80 1600 1080 260 100 260Z"/></svg>\n' >"$tmp/z.svg"
+check "Z at --simplify 0.1" "$svgsmooth" --simplify 0.1 -o "$tmp/z.out.svg" "$tmp/z.svg"
+check_grep 'd="M100 100L1300 100 1300 260 300 1600 1320 1600 1320 1760 80 1760 80 1600 1080 260 100 260Z"' "$tmp/z.out.svg" "the Z as drawn, start included"
 
 begin_case "usage errors exit 2"
 check_exit 2 "--simplify 0" "$svgsmooth" --simplify 0 "$leaf"

@@ -1,0 +1,323 @@
+/* SPDX-License-Identifier: MIT */
+/*
+ * svgcheck - measure an svgsmooth output against its input, with no code
+ * of svgsmooth's or libcore's: path data read by tests/support/svgpath.c,
+ * distances by tests/support/fidelity.c (dense samples on both sides, the
+ * worst refined by golden section).
+ *
+ *   svgcheck [--tol T | --rel R] [--samples-too] [--corner DEG] IN OUT
+ *
+ * Pairs the `d` of every <path> (and, with --samples-too, the `points` of
+ * <polygon>/<polyline>: straight edges, as --flatten reads them) of IN and
+ * OUT in document order, subpath by subpath, and prints one line:
+ *
+ *   ratio=R over=N subpaths=S starts=K corners=M/C crossings=X points=P
+ *
+ * R: the largest Hausdorff distance (both ways) over the tolerance: T, or
+ * R times the subpath's control-point bounding-box diagonal (svgsmooth's
+ * default fidelity); N: subpaths over it; K: subpaths whose first output
+ * point (and, open, last) is not the drawn one (within 2 % of the
+ * tolerance); M of C corners (joins turning by more than DEG, default 45)
+ * with no output vertex within the tolerance that turns by at least the
+ * corner less 20 degrees; X: crossings between different subpaths of one
+ * element in the output beyond those of the input (sampled 64 per
+ * segment); P: output vertices. Exit 0 when measured, 2 on a usage or
+ * read error (a pairing mismatch is an error).
+ */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "fidelity.h"
+#include "ts_svgpath.h"
+
+#ifndef M_PI
+#define M_PI 3.14159265358979323846
+#endif
+
+static char *slurp(const char *path, size_t *len)
+{
+    FILE *f = fopen(path, "rb");
+    char *buf = NULL;
+    size_t cap = 0, n = 0, got;
+    if (!f)
+        return NULL;
+    do {
+        if (n + 65536 > cap) {
+            char *g = realloc(buf, cap = 2 * cap + 65536);
+            if (!g) {
+                free(buf);
+                fclose(f);
+                return NULL;
+            }
+            buf = g;
+        }
+        got = fread(buf + n, 1, cap - n - 1, f);
+        n += got;
+    } while (got > 0);
+    fclose(f);
+    buf[n] = 0;
+    *len = n;
+    return buf;
+}
+
+/* The next geometry value: kind 'd' (path), 'g' (polygon), 'l' (polyline). */
+typedef struct value {
+    const char *v;
+    size_t len;
+    char kind;
+} value;
+
+static const char *find_attr(const char *tag, const char *end, const char *name, size_t *len)
+{
+    size_t nl = strlen(name);
+    const char *p = tag;
+    char q = 0;
+    for (; p < end; p++) {
+        if (q) {
+            if (*p == q)
+                q = 0;
+            continue;
+        }
+        if (*p == '"' || *p == '\'') {
+            q = *p;
+            continue;
+        }
+        if ((p[-1] == ' ' || p[-1] == '\t' || p[-1] == '\n' || p[-1] == '\r') &&
+            (size_t)(end - p) > nl + 1 && !strncmp(p, name, nl)) {
+            const char *r = p + nl, *s;
+            while (r < end && (*r == ' ' || *r == '\t' || *r == '\n' || *r == '\r'))
+                r++;
+            if (*r != '=')
+                continue;
+            r++;
+            while (r < end && (*r == ' ' || *r == '\t' || *r == '\n' || *r == '\r'))
+                r++;
+            if (*r != '"' && *r != '\'')
+                continue;
+            s = memchr(r + 1, *r, (size_t)(end - r - 1));
+            if (!s)
+                return NULL;
+            *len = (size_t)(s - r - 1);
+            return r + 1;
+        }
+    }
+    return NULL;
+}
+
+static size_t values(const char *doc, size_t n, value **out)
+{
+    const char *p = doc, *e = doc + n;
+    size_t k = 0, cap = 0;
+    *out = NULL;
+    while ((p = memchr(p, '<', (size_t)(e - p))) != NULL) {
+        const char *t = p + 1, *end;
+        char kind = 0, q = 0;
+        if (!strncmp(t, "path", 4) && strchr(" \t\r\n/>", t[4]))
+            kind = 'd';
+        else if (!strncmp(t, "polygon", 7) && strchr(" \t\r\n/>", t[7]))
+            kind = 'g';
+        else if (!strncmp(t, "polyline", 8) && strchr(" \t\r\n/>", t[8]))
+            kind = 'l';
+        for (end = t; end < e && (q || *end != '>'); end++)
+            if (q && *end == q)
+                q = 0;
+            else if (!q && (*end == '"' || *end == '\''))
+                q = *end;
+        if (kind) {
+            size_t len = 0;
+            const char *v = find_attr(t, end, kind == 'd' ? "d" : "points", &len);
+            if (v) {
+                if (k == cap) {
+                    value *g = realloc(*out, (cap = 2 * cap + 16) * sizeof *g);
+                    if (!g)
+                        exit(2);
+                    *out = g;
+                }
+                (*out)[k].v = v;
+                (*out)[k].len = len;
+                (*out)[k++].kind = kind;
+            }
+        }
+        p = end;
+    }
+    return k;
+}
+
+static ts_code parse(const value *v, ts_svg_subpath **s, size_t *n)
+{
+    if (v->kind == 'd')
+        return ts_svg_path_parse(v->v, v->len, s, n);
+    return ts_svg_points_parse(v->v, v->len, v->kind == 'g', s, n);
+}
+
+/* The output subpath (made of lines) as a polyline: its vertices. */
+static double *poly_of(const ts_svg_subpath *s, ts_poly *p)
+{
+    size_t i, n = s->c.n;
+    double *xy = malloc(2 * (n + 1) * sizeof *xy);
+    if (!xy)
+        exit(2);
+    xy[0] = s->start[0];
+    xy[1] = s->start[1];
+    for (i = 0; i < n; i++) {
+        xy[2 * i + 2] = s->c.seg[i].p[s->c.seg[i].degree][0];
+        xy[2 * i + 3] = s->c.seg[i].p[s->c.seg[i].degree][1];
+    }
+    p->xy = xy;
+    p->n = n + 1;
+    p->closed = s->c.closed;
+    if (s->c.closed && n > 0)
+        p->n = n; /* the closing line's end is the start */
+    return xy;
+}
+
+static double diag(const ts_svg_subpath *s)
+{
+    double lo[2] = {s->start[0], s->start[1]}, hi[2] = {s->start[0], s->start[1]};
+    size_t i;
+    int k, j;
+    for (i = 0; i < s->c.n; i++)
+        for (k = 0; k <= s->c.seg[i].degree; k++)
+            for (j = 0; j < 2; j++) {
+                lo[j] = fmin(lo[j], s->c.seg[i].p[k][j]);
+                hi[j] = fmax(hi[j], s->c.seg[i].p[k][j]);
+            }
+    return hypot(hi[0] - lo[0], hi[1] - lo[1]);
+}
+
+int main(int argc, char **argv)
+{
+    double tol = 0, rel = 1e-3, corner = 45, worst = 0;
+    int samples_too = 0, a;
+    size_t over = 0, nsub = 0, starts = 0, ncorner = 0, missing = 0, cross = 0, points = 0;
+    size_t nin, nout, lin, lout, i;
+    char *din, *dout;
+    value *vin, *vout;
+    for (a = 1; a < argc - 2; a++) {
+        if (!strcmp(argv[a], "--tol") && a + 1 < argc - 2)
+            tol = atof(argv[++a]);
+        else if (!strcmp(argv[a], "--rel") && a + 1 < argc - 2)
+            rel = atof(argv[++a]);
+        else if (!strcmp(argv[a], "--corner") && a + 1 < argc - 2)
+            corner = atof(argv[++a]);
+        else if (!strcmp(argv[a], "--samples-too"))
+            samples_too = 1;
+        else {
+            fprintf(stderr, "svgcheck: unknown option %s\n", argv[a]);
+            return 2;
+        }
+    }
+    if (a != argc - 2) {
+        fprintf(stderr, "usage: svgcheck [--tol T | --rel R] [--samples-too] [--corner DEG] IN OUT\n");
+        return 2;
+    }
+    din = slurp(argv[a], &lin);
+    dout = slurp(argv[a + 1], &lout);
+    if (!din || !dout) {
+        fprintf(stderr, "svgcheck: cannot read %s\n", din ? argv[a + 1] : argv[a]);
+        return 2;
+    }
+    nin = values(din, lin, &vin);
+    nout = values(dout, lout, &vout);
+    if (nin != nout) {
+        fprintf(stderr, "svgcheck: %s: %zu geometry values in, %zu out\n", argv[a], nin, nout);
+        return 2;
+    }
+    for (i = 0; i < nin; i++) {
+        ts_svg_subpath *si = NULL, *so = NULL;
+        size_t ni = 0, no = 0, k;
+        ts_poly *polys, *dense;
+        double **bufs;
+        size_t cin = 0, cout = 0;
+        if (vin[i].kind != 'd' && !samples_too)
+            continue;
+        if (parse(&vin[i], &si, &ni) != TS_OK || parse(&vout[i], &so, &no) != TS_OK)
+            return 2;
+        if (ni != no) {
+            fprintf(stderr, "svgcheck: %s: element %zu: %zu subpaths in, %zu out\n", argv[a],
+                    i + 1, ni, no);
+            return 2;
+        }
+        polys = calloc(no + 1, sizeof *polys);
+        dense = calloc(no + 1, sizeof *dense);
+        bufs = calloc(2 * no + 1, sizeof *bufs);
+        if (!polys || !dense || !bufs)
+            return 2;
+        for (k = 0; k < ni; k++) {
+            double t = tol > 0 ? tol : rel * diag(&si[k]);
+            ts_hausdorff h;
+            ts_corner *cs = NULL;
+            size_t nc = 0;
+            bufs[k] = poly_of(&so[k], &polys[k]);
+            points += polys[k].n;
+            if (si[k].c.n == 0)
+                continue;
+            nsub++;
+            if (!(t > 0))
+                t = 1e-300;
+            if (ts_hausdorff_measure(&si[k].c, 1, &polys[k], 1, NULL, &h) != TS_OK) {
+                fprintf(stderr, "svgcheck: %s: element %zu subpath %zu: not measured\n",
+                        argv[a], i + 1, k + 1);
+                return 2;
+            }
+            if (h.max / t > worst)
+                worst = h.max / t;
+            if (h.max > t)
+                over++;
+            {
+                const double *f = polys[k].xy, *l = polys[k].xy + 2 * (polys[k].n - 1);
+                const ts_seg *ls = &si[k].c.seg[si[k].c.n - 1];
+                double lim = 0.02 * t;
+                int bad = hypot(f[0] - si[k].start[0], f[1] - si[k].start[1]) > lim;
+                if (!si[k].c.closed)
+                    bad |= hypot(l[0] - ls->p[ls->degree][0], l[1] - ls->p[ls->degree][1]) > lim;
+                starts += (size_t)bad;
+            }
+            if (ts_contour_corners(&si[k].c, corner * M_PI / 180, &cs, &nc) == TS_OK && nc) {
+                ts_corner_check cc;
+                if (ts_corners_kept(cs, nc, &polys[k], 1, t, 20 * M_PI / 180, &cc) == TS_OK) {
+                    ncorner += nc;
+                    missing += cc.missing;
+                }
+            }
+            free(cs);
+            {
+                size_t dn = 0;
+                double *dxy = NULL;
+                if (ts_contour_sample(&si[k].c, 64, &dxy, &dn) == TS_OK) {
+                    bufs[no + k] = dxy;
+                    dense[k].xy = dxy;
+                    dense[k].n = dn;
+                    dense[k].closed = si[k].c.closed;
+                }
+            }
+        }
+        if (no > 1) {
+            size_t m = 0;
+            for (k = 0; k < no; k++) /* lone moves and empty samples left out */
+                if (dense[k].n > 1 && polys[k].n > 1) {
+                    dense[m] = dense[k];
+                    polys[m++] = polys[k];
+                }
+            if (m > 1 && ts_poly_crossings(dense, m, 0, &cin, NULL) == TS_OK &&
+                ts_poly_crossings(polys, m, 0, &cout, NULL) == TS_OK && cout > cin)
+                cross += cout - cin;
+        }
+        for (k = 0; k < 2 * no; k++)
+            free(bufs[k]);
+        free(bufs);
+        free(polys);
+        free(dense);
+        ts_svg_subpaths_free(si, ni);
+        ts_svg_subpaths_free(so, no);
+    }
+    printf("ratio=%.4f over=%zu subpaths=%zu starts=%zu corners=%zu/%zu crossings=%zu points=%zu\n",
+           worst, over, nsub, starts, missing, ncorner, cross, points);
+    free(vin);
+    free(vout);
+    free(din);
+    free(dout);
+    return 0;
+}
