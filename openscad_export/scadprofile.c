@@ -24,6 +24,8 @@
 #include "conica/subdiv.h"
 #include "conica_scad.h"
 #include "conica_svg.h"
+#include "conica_svg_render.h"
+#include "scad_region.h"
 #include "svg_cli.h"
 #include "conica/bspline.h"
 #include "conica/plot.h"
@@ -45,10 +47,18 @@ typedef enum units { U_DEFAULT, U_PX, U_MM, U_IN } units;
 typedef enum fit { FIT_INSIDE = 0, FIT_OUTSIDE = 1, FIT_MIDDLE = 2, FIT_CLEARANCE = 3 } fit;
 static const char *const fit_names[4] = {"inside", "outside", "middle", "clearance"};
 static const char *const fit_meaning[4] = {
-    "vertices on each curve, chords inside it: every contour at most as large as drawn",
-    "chords on or outside each curve: every contour, outline or hole, at least as large",
-    "chords straddle each curve, within the tolerance both ways: fewest points",
-    "outlines inside, holes outside: the part never larger, its holes never smaller",
+    "the polygon lies within the painted region, within the tolerance of its edge",
+    "the polygon contains the painted region, within the tolerance of its edge",
+    "the polygon is within the tolerance of the painted region's edge both ways",
+    "outlines inside, holes outside: the polygon within the painted region (as inside)",
+};
+/* --paint: what of each SVG element is material */
+static const char *const paint_names[4] = {"as-drawn", "fill", "stroke", "both"};
+static const char *const paint_meaning[4] = {
+    "fills and strokes where the document paints them: what a browser shows",
+    "the fill of every shape, painted or not; no strokes",
+    "the stroke of every shape, painted or not (its stroke-width); no fills",
+    "the fill and the stroke of every shape",
 };
 
 typedef struct options {
@@ -57,12 +67,14 @@ typedef struct options {
     const char *module;
     int module_given;
     fit fit;
+    conica__paint paint;
     int demo_call;       /* -1: not given (--extrude / --rotate-extrude imply it), 0, 1 */
     units unit;
     int extrude, revolve;
     double height, angle;
     const char *select;
     int force, stats, flatten_only;
+    int paint_given;
     size_t max_points;
     conica_svg_limits limits; /* SVG: XML caps; max_bytes also caps other inputs when given */
     int max_input_given;
@@ -81,6 +93,7 @@ typedef struct stats {
     size_t input_points, dense_points, points;
     size_t elements, subpaths;  /* SVG */
     size_t skipped;             /* contours without area (conica_scad_drop_empty) */
+    size_t fills, strokes;      /* SVG: items whose fill / stroke became material */
     int levels;
     double seconds;
 } stats;
@@ -111,17 +124,22 @@ static void usage(FILE *f)
           "  --levels K        subdivide exactly K levels instead (0..30); every point\n"
           "                    is kept and written exactly (round-trip decimals)\n"
           "  --flatten-only    keep the input geometry: only flatten curves (SVG, .spl)\n"
-          "  --fit F           which side of each curve the polygon keeps to (SVG input;\n"
-          "                    point-normal and spline input: inside only):\n"
-          "                      inside     vertices on the curve, chords inside: every\n"
-          "                                 contour at most as large as drawn (default)\n"
-          "                      outside    chords on or outside: every contour, outline\n"
-          "                                 or hole, at least as large as drawn\n"
-          "                      middle     chords straddle the curve: fewest points\n"
-          "                                 (smooth closed contours; others as inside)\n"
-          "                      clearance  outlines inside, holes outside: the part is\n"
-          "                                 never larger than drawn, its holes never\n"
-          "                                 smaller\n"
+          "  --fit F           which side of the painted region the polygon keeps to (SVG\n"
+          "                    input; point-normal and spline input: inside only):\n"
+          "                      inside     within the painted region: the part never\n"
+          "                                 larger than drawn, its holes never smaller\n"
+          "                                 (default)\n"
+          "                      outside    contains the painted region: the part never\n"
+          "                                 smaller, its holes never larger\n"
+          "                      middle     within the tolerance both ways: fewest points\n"
+          "                      clearance  outlines inside, holes outside (the same\n"
+          "                                 polygon as inside)\n"
+          "                    Corners, straight edges and their ends stay exact; the\n"
+          "                    polygon is checked against the drawn region before it is\n"
+          "                    written (exit 1 when it would lose or add material)\n"
+          "  --paint P         SVG: what is material: as-drawn (default; fills and\n"
+          "                    strokes as a browser shows them), fill (every shape\n"
+          "                    filled), stroke (every shape stroked), both\n"
           "  --module NAME     module name (default: the input file's name made into an\n"
           "                    identifier, e.g. bracket-v2.svg -> bracket_v2, with a\n"
           "                    warning when it had to be changed; stdin: profile)\n",
@@ -162,6 +180,15 @@ static int is_number(const char *s)
 {
     double d;
     return s && cli_parse_double(s, &d) == 0;
+}
+
+/* Index of s in names[0..n), or -1. */
+static int name_index(const char *s, const char *const *names, int n)
+{
+    for (int i = 0; i < n; i++)
+        if (strcmp(s, names[i]) == 0)
+            return i;
+    return -1;
 }
 
 static int parse_args(int argc, char **argv, options *o, int *exit_now)
@@ -221,17 +248,22 @@ static int parse_args(int argc, char **argv, options *o, int *exit_now)
             o->module_given = 1;
         } else if (strcmp(a, "--fit") == 0) {
             NEED_ARG();
-            int found = 0;
-            for (int f = 0; f < 4; f++)
-                if (strcmp(next, fit_names[f]) == 0) {
-                    o->fit = (fit)f;
-                    found = 1;
-                }
-            if (!found)
+            int f = name_index(next, fit_names, 4);
+            if (f < 0)
                 return cli_usage_error(PROG,
                                        "--fit must be inside, outside, middle or clearance, "
                                        "not '%s'",
                                        next);
+            o->fit = (fit)f;
+        } else if (strcmp(a, "--paint") == 0) {
+            NEED_ARG();
+            int f = name_index(next, paint_names, 4);
+            if (f < 0)
+                return cli_usage_error(PROG,
+                                       "--paint must be as-drawn, fill, stroke or both, not '%s'",
+                                       next);
+            o->paint = (conica__paint)f;
+            o->paint_given = 1;
         } else if (strcmp(a, "--demo-call") == 0) {
             o->demo_call = 1;
         } else if (strcmp(a, "--no-demo-call") == 0) {
@@ -836,6 +868,98 @@ static int load_svg(const options *o, const char *name, const char *buf, size_t 
     return result;
 }
 
+/* What the document paints (the SVG layer's render: <use>, viewports,
+ * styles, transforms) as one region: fills under their fill rule and
+ * strokes as areas, clipped and unioned with Clipper, fitted to one side
+ * and checked against the drawn region (scad_region.h), into prof as one
+ * group of simple contours in output units, y up. */
+static int load_svg_region(const options *o, const char *name, const char *buf, size_t len,
+                           conica_scad_profile *prof, stats *sx)
+{
+    conica_svg_doc *doc = NULL;
+    conica_svg_scene scene;
+    conica_svg_render_settings rs = conica_svg_render_defaults();
+    conica__region_settings gs;
+    conica__region_stats gx;
+    conica__polys region;
+    conica_status st;
+    char **ids = NULL;
+    size_t nids = 0, g;
+    int result = 0;
+
+    if (conica_svg_doc_load(buf, len, &o->limits, &doc, &st) != CONICA_OK)
+        return status_error(name, &st);
+    rs.unit = o->unit == U_PX ? "px" : o->unit == U_IN ? "in" : "mm";
+    rs.warn = svg_warn;
+    rs.warn_ctx = (void *)name;
+    rs.unpainted = o->paint != CONICA__PAINT_AS_DRAWN;
+    if (o->select) {
+        ids = split_ids(o->select, &nids);
+        if (!ids) {
+            conica_svg_doc_free(doc);
+            return cli_error(PROG, name, "out of memory");
+        }
+        rs.select = (const char *const *)ids;
+        rs.nselect = nids;
+    }
+    conica_svg_scene_init(&scene);
+    conica__polys_init(&region);
+    if (conica_svg_render(doc, &rs, &scene, &st) != CONICA_OK) {
+        result = status_error(name, &st);
+        goto done;
+    }
+    if (!scene.has_size)
+        cli_warning(PROG, name, "the document's size is relative or missing: 1 user unit = 1 px");
+    memset(&gs, 0, sizeof gs);
+    /* the written digits get tolerance * ROUND_FRACTION of the tolerance */
+    gs.tolerance = o->tolerance * (1 - CONICA_SCAD_ROUND_FRACTION);
+    gs.fit = o->fit == FIT_OUTSIDE  ? CONICA__REGION_OUTSIDE
+             : o->fit == FIT_MIDDLE ? CONICA__REGION_MIDDLE
+                                    : CONICA__REGION_INSIDE;
+    gs.paint = o->paint;
+    gs.max_points = o->max_points * 16;
+    memset(&gx, 0, sizeof gx);
+    sx->kind = "SVG";
+    sx->elements = scene.n;
+    if (conica__scad_region(&scene, &gs, &region, &gx, &st) != CONICA_OK) {
+        result = status_error(name, &st);
+        goto done;
+    }
+    sx->subpaths = gx.subpaths;
+    sx->dense_points = gx.dense_points;
+    sx->fills = gx.fills;
+    sx->strokes = gx.strokes;
+    if (region.n == 0) {
+        result = cli_error(PROG, name,
+                           "nothing is painted: %s%s",
+                           scene.n ? "the painted shapes cover no area"
+                                   : "no shape of the document is filled or stroked",
+                           o->paint == CONICA__PAINT_AS_DRAWN
+                               ? " (--paint fill fills every shape, painted or not)"
+                               : "");
+        goto done;
+    }
+    if (conica_scad_add_group(prof, "painted region", CONICA_SCAD_FILL_NONZERO, 0, &g, &st) !=
+        CONICA_OK) {
+        result = status_error(name, &st);
+        goto done;
+    }
+    for (size_t i = 0; i < region.n && result == 0; i++)
+        if (conica_scad_add_contour(prof, g, region.xy + 2 * region.start[i],
+                                    region.start[i + 1] - region.start[i], &st) != CONICA_OK)
+            result = status_error(name, &st);
+done:
+    conica__polys_free(&region);
+    conica_svg_scene_free(&scene);
+    conica_svg_doc_free(doc);
+    if (ids) {
+        if (nids)
+            free(ids[0]);
+        free(ids);
+    }
+    return result;
+}
+
 /* --fit clearance: the contours that are holes in the inside run *in
  * (arranged as *lay) take their points from the outside run *out, which
  * holds the same subpaths in the same order (*in may have lost some to
@@ -883,7 +1007,7 @@ static int take_holes(conica_scad_profile *in, const conica_scad_layout *lay,
 /* ------------------------------------------------------------ main */
 
 static char *header_text(int argc, char **argv, const options *o, const char *kind_name,
-                         int exact)
+                         int exact, const stats *sx, int region)
 {
     size_t cap = 1024;
     for (int i = 0; i < argc; i++)
@@ -919,6 +1043,11 @@ static char *header_text(int argc, char **argv, const options *o, const char *ki
     if (n < cap)
         n += (size_t)snprintf(h + n, cap - n, "\nfit: %s (%s)", fit_names[o->fit],
                               fit_meaning[o->fit]);
+    if (n < cap && region)
+        n += (size_t)snprintf(h + n, cap - n,
+                              "\npaint: %s (%s): %zu fill%s and %zu stroke%s made material",
+                              paint_names[o->paint], paint_meaning[o->paint], sx->fills,
+                              sx->fills == 1 ? "" : "s", sx->strokes, sx->strokes == 1 ? "" : "s");
     if (n < cap) {
         if (exact)
             snprintf(h + n, cap - n, "\ncoordinates: exact (the shortest decimals that read "
@@ -1041,9 +1170,14 @@ static int profile_file(void *ctx, const char *in, const char *outp)
         return CLI_EXIT_ERROR;
     name = strcmp(o.in, "-") == 0 ? "<stdin>" : o.in;
     kind k = detect(o.in, buf, len);
-    if (k != IN_SVG && (o.unit != U_DEFAULT || o.select)) {
+    if (k != IN_SVG && (o.unit != U_DEFAULT || o.select || o.paint_given)) {
         free(buf);
-        return cli_usage_error(PROG, "--units and --select apply to SVG input only");
+        return cli_usage_error(PROG, "--units, --select and --paint apply to SVG input only");
+    }
+    if (k == IN_SVG && o.levels >= 0 && o.paint_given) {
+        free(buf);
+        return cli_usage_error(PROG, "--paint applies to --tolerance (the painted region); "
+                                     "--levels smooths each path's fill as it is");
     }
     if (k != IN_SVG && o.fit != FIT_INSIDE) {
         free(buf);
@@ -1069,9 +1203,14 @@ static int profile_file(void *ctx, const char *in, const char *outp)
     conica_scad_profile_init(&rounded);
     conica_scad_layout_init(&lay);
     /* --fit clearance: an inside run, and an outside one for the holes */
+    /* --levels on SVG smooths each path as it is (the region's booleans
+     * need polygons): --fit clearance runs inside and outside there */
+    int region = k == IN_SVG && o.levels < 0;
     fit fits[2] = {o.fit == FIT_CLEARANCE ? FIT_INSIDE : o.fit, FIT_OUTSIDE};
-    size_t nruns = o.fit == FIT_CLEARANCE ? 2 : 1;
-    if (k == IN_SVG)
+    size_t nruns = o.fit == FIT_CLEARANCE && !region ? 2 : 1;
+    if (region)
+        rc = load_svg_region(&o, name, buf, len, &prof[0], &sx);
+    else if (k == IN_SVG)
         rc = load_svg(&o, name, buf, len, fits, nruns, prof, &sx);
     else if (k == IN_SPLINE)
         rc = load_spline(&o, name, buf, len, &prof[0], &sx);
@@ -1174,7 +1313,7 @@ static int profile_file(void *ctx, const char *in, const char *outp)
     }
     {
         static const char *const kinds[3] = {"point-normal", "SVG", "spline"};
-        char *header = header_text(argc, argv, &o, kinds[k], exact);
+        char *header = header_text(argc, argv, &o, kinds[k], exact, &sx, k == IN_SVG && o.levels < 0);
         conica_scad_write_options wo = conica_scad_write_defaults();
         cli_output out;
         if (!header) {
