@@ -23,7 +23,7 @@
 enum {
     W_TEXT, W_IMAGE, W_FOREIGN, W_CLIP, W_MASK, W_FILTER, W_FILTER_MISSING, W_MARKERS,
     W_TRANSFORM_BAD, W_TRANSFORM_SINGULAR, W_CSS_TRANSFORM, W_PATH_DATA, W_POINTS, W_DASHES,
-    W_JOIN, W_VIEWBOX, W_KINDS
+    W_JOIN, W_PAR, W_NON_SCALING, W_KINDS
 };
 
 typedef struct use_chain {
@@ -144,8 +144,8 @@ static int parse_transform(const char *s, conica_svg_matrix *out)
             size_t used;
             while (i < n && blank(s[i]))
                 i++;
-            if (i < n && s[i] == ')')
-                break;
+            if (i >= n || s[i] == ')')
+                break; /* librsvg 2.54 reads a missing last ')' as there */
             if (cnt >= 6)
                 return 0;
             used = conica_svg__read_number(s + i, n - i, &v[cnt]);
@@ -209,7 +209,7 @@ static double poly_area2(const double *p, size_t n)
     size_t i;
     for (i = 0; i < n; i++) {
         size_t j = (i + 1) % n;
-        a += p[2 * i] * p[2 * j + 1] - p[2 * j] * p[2 * i];
+        a += p[2 * i] * p[2 * j + 1] - p[2 * j] * p[2 * i + 1];
     }
     return a;
 }
@@ -440,19 +440,22 @@ static int parse_viewbox(xmlNodePtr n, double vb[4])
 }
 
 /* preserveAspectRatio (SVG 1.1, 7.8): align x, y in {0, .5, 1} (or *none)
- * and slice. Invalid values are the default xMidYMid meet. */
-static void parse_par(xmlNodePtr n, int *none, double *ax, double *ay, int *slice)
+ * and slice; absent: xMidYMid meet. 0 when the value does not start with
+ * an align value (after an optional defer): librsvg 2.54 then draws
+ * nothing of the element; what follows the align is read as meet unless
+ * it is slice. */
+static int parse_par(xmlNodePtr n, int *none, double *ax, double *ay, int *slice)
 {
     static const char *const al[] = {"xMinYMin", "xMidYMin", "xMaxYMin", "xMinYMid", "xMidYMid",
                                      "xMaxYMid", "xMinYMax", "xMidYMax", "xMaxYMax"};
     char *a = attr(n, "preserveAspectRatio");
     const char *p;
-    int k;
+    int k, ok = 1;
     *none = 0;
     *ax = *ay = 0.5;
     *slice = 0;
     if (!a)
-        return;
+        return 1;
     p = a;
     while (blank(*p))
         p++;
@@ -461,28 +464,22 @@ static void parse_par(xmlNodePtr n, int *none, double *ax, double *ay, int *slic
             ;
     if (!strncmp(p, "none", 4) && (!p[4] || blank(p[4]))) {
         *none = 1;
-        p += 4;
     } else {
         for (k = 0; k < 9; k++)
             if (!strncmp(p, al[k], 8) && (!p[8] || blank(p[8])))
                 break;
-        if (k == 9) {
-            xmlFree(a);
-            return;
+        if (k < 9) {
+            *ax = 0.5 * (k % 3);
+            *ay = 0.5 * (k / 3);
+            for (p += 8; blank(*p); p++)
+                ;
+            *slice = !strncmp(p, "slice", 5);
+        } else {
+            ok = 0;
         }
-        *ax = 0.5 * (k % 3);
-        *ay = 0.5 * (k / 3);
-        p += 8;
-    }
-    while (blank(*p))
-        p++;
-    if (!strncmp(p, "slice", 5))
-        *slice = !*none;
-    else if (*p && strncmp(p, "meet", 4)) {
-        *none = 0;
-        *ax = *ay = 0.5;
     }
     xmlFree(a);
+    return ok;
 }
 
 /* The viewBox-to-viewport transform (SVG 1.1, 7.8) for the viewport (x, y,
@@ -564,9 +561,13 @@ static int geometry(rctx *c, xmlNodePtr n, const frame *f, const conica_svg__sty
                 c->st->line = (size_t)xmlGetLineNo(n);
             return 0;
         }
-        if (bad != (size_t)-1)
-            warn(c, n, W_POINTS, "bad points list at byte %zu; %s", bad,
-                 np ? "the pairs before it are drawn" : "nothing drawn");
+        if (bad != (size_t)-1) {
+            /* librsvg 2.54 draws nothing of a list with an error (SVG 1.1,
+             * 9.7.1 would keep the pairs before it) */
+            warn(c, n, W_POINTS, "bad points list at byte %zu: not drawn (as librsvg 2.54)", bad);
+            free(xy);
+            return 0;
+        }
         if (!conica_svg__points_path(xy, np, is(n, "polygon"), p)) {
             free(xy);
             c->rc = conica__fail(c->st, CONICA_ERR_NOMEM, 0, 0, "out of memory");
@@ -643,6 +644,9 @@ static void draw_shape(rctx *c, xmlNodePtr n, const frame *f, const conica_svg_m
     it.st.cap = (conica_svg_linecap)st->cap;
     it.st.miterlimit = st->miterlimit;
     it.st.non_scaling = st->non_scaling;
+    if (stroke && st->non_scaling)
+        warn(c, n, W_NON_SCALING, "vector-effect non-scaling-stroke: the width is taken in the "
+             "output frame as SVG 2 defines (librsvg 2.54 scales it with the element)");
     if (stroke && st->join_unsupported)
         warn(c, n, W_JOIN, "stroke-linejoin miter-clip/arcs drawn as miter (as librsvg 2.54)");
     if (stroke && st->dash_too_long)
@@ -768,18 +772,24 @@ static void render_switch(rctx *c, xmlNodePtr n, const frame *f, size_t level,
 }
 
 /* A viewport element (nested svg, or symbol through use) at (x, y, w, h)
- * of user space ctm: its viewBox, clip and children. */
+ * of user space ctm: its viewBox, clip (unless overflow is visible; only
+ * with clip) and children. */
 static void render_viewport(rctx *c, xmlNodePtr n, const frame *f, const conica_svg_matrix *ctm,
-                            double x, double y, double w, double h, size_t level,
+                            double x, double y, double w, double h, int clip, size_t level,
                             const conica_svg__style *st)
 {
     frame f2 = *f;
     double vb[4], *owned = NULL;
-    int has_vb = parse_viewbox(n, vb);
+    int has_vb = parse_viewbox(n, vb), none, slice;
+    double ax, ay;
     if (!(w > 0.0) || !(h > 0.0) || has_vb < 0)
         return; /* a zero-size viewport or viewBox disables rendering */
+    if (!parse_par(n, &none, &ax, &ay, &slice)) {
+        warn(c, n, W_PAR, "preserveAspectRatio is not valid: not drawn (as librsvg 2.54)");
+        return;
+    }
     f2.ovr_w = f2.ovr_h = -1.0;
-    if (!st->overflow_visible) {
+    if (clip && !st->overflow_visible) {
         int r = push_clip(f, ctm, x, y, w, h, &f2, &owned);
         if (r < 0) {
             c->rc = conica__fail(c->st, CONICA_ERR_NOMEM, 0, 0, "out of memory");
@@ -859,7 +869,8 @@ static void render_use(rctx *c, xmlNodePtr n, const frame *f, const conica_svg_m
         if (sst->display_none)
             return;
         f2.selected = f2.selected || selected_id(c, t);
-        render_viewport(c, t, &f2, &f2.ctm, 0, 0, w >= 0 ? w : f->vw, h >= 0 ? h : f->vh,
+        /* librsvg 2.54 clips no symbol instance, whatever its overflow */
+        render_viewport(c, t, &f2, &f2.ctm, 0, 0, w >= 0 ? w : f->vw, h >= 0 ? h : f->vh, 0,
                         level + 1, sst);
         return;
     }
@@ -953,7 +964,7 @@ static void render_node(rctx *c, xmlNodePtr n, const frame *f, size_t level,
             w = f->ovr_w;
         if (f->ovr_h >= 0)
             h = f->ovr_h;
-        render_viewport(c, n, &f2, &ctm, x, y, w, h, level, st);
+        render_viewport(c, n, &f2, &ctm, x, y, w, h, 1, level, st);
     } else if (is(n, "use")) {
         render_use(c, n, &f2, &ctm, level, st);
     } else if (is(n, "path") || is(n, "rect") || is(n, "circle") || is(n, "ellipse") ||

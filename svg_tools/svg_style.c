@@ -47,13 +47,6 @@ static const char *const prop_names[P_COUNT] = {
     "font-size", "overflow", "clip-path", "mask", "filter", "marker-start", "marker-mid",
     "marker-end", "marker", "transform"};
 
-/* Inherited properties (SVG 2 property index). */
-static int prop_inherited(int p)
-{
-    return !(p == P_OPACITY || p == P_DISPLAY || p == P_VECTOR_EFFECT || p == P_OVERFLOW ||
-             p == P_CLIP_PATH || p == P_MASK || p == P_FILTER || p == P_TRANSFORM);
-}
-
 static char lower(char c)
 {
     return c >= 'A' && c <= 'Z' ? (char)(c - 'A' + 'a') : c;
@@ -606,12 +599,12 @@ static int apply(int p, const char *s, size_t n, const conica_svg__style *parent
     trim(&s, &n);
     if (!n)
         return 0;
-    if (ieq(s, n, "inherit") || ieq(s, n, "initial") || ieq(s, n, "unset")) {
-        conica_svg__style init;
-        const conica_svg__style *from = &init;
-        conica_svg__style_initial(&init);
-        if (ieq(s, n, "inherit") || (ieq(s, n, "unset") && prop_inherited(p)))
-            from = parent;
+    /* CSS-wide keywords: inherit only; librsvg 2.54 reads initial and
+     * unset as invalid values (the declaration is dropped) */
+    if (ieq(s, n, "initial") || ieq(s, n, "unset"))
+        return 0;
+    if (ieq(s, n, "inherit")) {
+        const conica_svg__style *from = parent;
         switch (p) {
         case P_FILL: o->fill = from->fill; break;
         case P_STROKE: o->stroke = from->stroke; break;
@@ -1185,10 +1178,32 @@ static conica_code parse_sheet(conica_svg__sheet *sh, size_t from, size_t to, si
             i = j < to ? j + 1 : to;
             continue;
         }
-        for (open = i; open < to && s[open] != '{'; open++)
-            ;
-        if (open >= to)
+        /* the prelude ends at a '{' outside () and [] blocks and strings
+         * (CSS Syntax 3, 5.4.3: an unclosed '[' swallows the rest) */
+        {
+            int depth = 0;
+            char q = 0;
+            for (open = i; open < to; open++) {
+                char ch = s[open];
+                if (q) {
+                    if (ch == q)
+                        q = 0;
+                } else if (ch == '"' || ch == '\'') {
+                    q = ch;
+                } else if (ch == '(' || ch == '[') {
+                    depth++;
+                } else if ((ch == ')' || ch == ']') && depth) {
+                    depth--;
+                } else if (ch == '{' && !depth) {
+                    break;
+                }
+            }
+        }
+        if (open >= to) {
+            warnf(warn, wctx, line, "unterminated CSS rule, not applied:", s + i,
+                  to - i < 40 ? to - i : 40);
             break;
+        }
         close = block_end(s, to, open);
         {
             size_t d0 = sh->ndecls, s0 = sh->nsels, c0 = sh->ncomps, p0 = sh->nsimples, k, a;
@@ -1278,10 +1293,9 @@ conica_code conica_svg__sheet_read(xmlNodePtr root, conica_svg_warn_fn warn, voi
         }
         while (e) {
             if (e->type == XML_ELEMENT_NODE && is_tag(e, "style")) {
-                char *type = conica_svg__attr(e, "type", CONICA_SVG__MAX_ATTR, NULL);
-                int css = !type || !type[0] || !strcmp(type, "text/css");
-                xmlFree(type);
-                if (css) {
+                /* every sheet is CSS, whatever its type says: librsvg 2.54
+                 * applies `<style type="text/other">` too */
+                {
                     xmlNodePtr c;
                     size_t from = (*out) ? (*out)->len : 0;
                     for (c = e->children; c; c = c->next) {
