@@ -746,12 +746,20 @@ static int apply(int p, const char *s, size_t n, const conica_svg__style *parent
     case P_MARKER_END:
     case P_MARKER: {
         int bits = p == P_MARKER ? 7 : 1 << (p - P_MARKER_START);
-        if (ieq(s, n, "none"))
+        const char *id, *rest;
+        size_t idlen, restn;
+        if (ieq(s, n, "none")) {
             o->markers &= ~bits;
-        else if (n >= 4 && ieq(s, 4, "url("))
-            o->markers |= bits;
-        else
+        } else if (parse_url(s, n, &id, &idlen, &rest, &restn)) {
+            /* only a reference to a marker element draws one */
+            xmlNodePtr t = idlen ? conica_svg__ids_find(ids, id, idlen) : NULL;
+            if (is_tag(t, "marker"))
+                o->markers |= bits;
+            else
+                o->markers &= ~bits;
+        } else {
             return 0;
+        }
         return 1;
     }
     case P_TRANSFORM:
