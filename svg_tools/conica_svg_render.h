@@ -17,6 +17,9 @@
  * 96 px per inch, scaled to that unit), with the root's viewBox and
  * preserveAspectRatio applied.
  *
+ * docs/svg-rendering.md lists what is read, what is warned about, and the
+ * caps.
+ *
  * Conventions as in conica/common.h: inputs, outputs, then an optional
  * conica_status; outputs untouched on failure; `_init` then `_free`.
  */
@@ -87,10 +90,12 @@ typedef struct conica_svg_item {
     conica_svg_fill_rule fill_rule;
     int stroke;             /**< non-zero: the stroke is painted */
     conica_svg_stroke st;   /**< the stroke's properties (meaningful when stroke) */
-    /** The intersection of the clips of the viewports it is drawn in (root
-     *  and nested `<svg>`, `<symbol>` instances; overflow hidden) as a
-     *  convex polygon of nclip points in the output frame, counter-clockwise
-     *  in a y-up frame; nclip == 0: nothing clips it. */
+    /** The intersection of the clips of the viewports it is drawn in (the
+     *  root when the scene has a size, nested `<svg>` whose overflow is not
+     *  visible/auto; librsvg 2.54 clips no `<symbol>` instance, nor does
+     *  the render) as a convex polygon of nclip >= 3 points in the output
+     *  frame with a positive shoelace area (counter-clockwise in a y-up
+     *  reading of the coordinates); nclip == 0: nothing clips it. */
     size_t nclip;
     double *clip;           /**< 2 * nclip coordinates */
 } conica_svg_item;

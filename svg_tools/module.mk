@@ -44,3 +44,12 @@ install-inkscape: $(INKSCAPE_EXT)
 
 install: install-inkscape
 .PHONY: inkscape-extension install-inkscape
+
+# svgscene (tests/tools/svgscene.c): a document's rendered scene as a flat
+# SVG, for tests/cli/svg_render.sh's pixel comparisons with rsvg-convert.
+SVGSCENE := $(BUILD)/tests/svgscene
+$(BUILD)/obj/tests/tools/svgscene.o: CPPFLAGS += -Isvg_tools
+$(SVGSCENE): $(BUILD)/obj/tests/tools/svgscene.o $(SVG_A) $(CORE_A)
+	@mkdir -p $(@D)
+	$(CC) $(LDFLAGS) -o $@ $< $(SVG_A) $(CORE_A) $(ALL_LDLIBS)
+TEST_EXTRA += $(SVGSCENE)
