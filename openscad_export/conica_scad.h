@@ -309,8 +309,12 @@ CONICA_API conica_scad_write_options conica_scad_write_defaults(void);
  *        OpenSCAD identifier ([A-Za-z_][A-Za-z0-9_]*, at most
  *        CONICA_SCAD_MAX_MODULE_NAME characters), not a reserved word
  *        (for, module, function, if, else, let, each, assert, echo, true,
- *        false, undef, include, use) and not a built-in module the written
- *        file calls (polygon, linear_extrude, rotate_extrude).
+ *        false, undef, include, use), not one of OpenSCAD's built-in
+ *        modules (translate, circle, polygon, union, offset, ...: a module
+ *        of that name would replace the built-in) and not one of its
+ *        built-in functions (sin, len, str, concat, ...). The helper names
+ *        the file defines (NAME_points, NAME_paths, NAME_bbox,
+ *        NAME_extruded, NAME_revolved) end in suffixes no built-in has.
  * @return a static string (never free it), or NULL
  */
 CONICA_API const char *conica_scad_name_problem(const char *s);

@@ -141,10 +141,28 @@ static const char *const scad_keywords[] = {
     "assert", "each", "echo", "else", "false", "for", "function", "if",
     "include", "let", "module", "true", "undef", "use",
 };
-/* Built-in modules the written file calls: a module of that name would
- * replace the built-in (`module polygon() polygon(...)` recurses). */
-static const char *const scad_called_builtins[] = {
-    "linear_extrude", "polygon", "rotate_extrude",
+/* OpenSCAD's built-in modules (2021.01 and later: src/builtin.cc and the
+ * modules it registers). A module of that name replaces the built-in for
+ * the whole file and every file that `include`s it: `module polygon()`
+ * calls itself, `module translate()` makes OpenSCAD stop with "Recursion
+ * detected", `module circle()` silently changes the user's own circles. */
+static const char *const scad_builtin_modules[] = {
+    "children", "circle", "color", "cube", "cylinder", "difference", "dxf_linear_extrude",
+    "dxf_rotate_extrude", "fill", "group", "hull", "import", "import_dxf", "import_off",
+    "import_stl", "intersection", "intersection_for", "linear_extrude", "minkowski", "mirror",
+    "multmatrix", "offset", "parent_module", "polygon", "polyhedron", "projection", "render",
+    "resize", "roof", "rotate", "rotate_extrude", "scale", "sphere", "square", "surface",
+    "text", "translate", "union",
+};
+/* Its built-in functions: modules and functions live apart in OpenSCAD,
+ * but a library module named `len` or `str` is a trap for its users all
+ * the same, so these are refused too. */
+static const char *const scad_builtin_functions[] = {
+    "abs", "acos", "asin", "atan", "atan2", "ceil", "chr", "concat", "cos", "cross",
+    "dxf_cross", "dxf_dim", "exp", "floor", "fontmetrics", "is_bool", "is_function",
+    "is_list", "is_num", "is_object", "is_string", "is_undef", "len", "ln", "log", "lookup",
+    "max", "min", "norm", "object", "ord", "pow", "rands", "round", "search", "sign", "sin",
+    "sqrt", "str", "tan", "textmetrics", "version", "version_num",
 };
 
 const char *conica_scad_name_problem(const char *s)
@@ -165,9 +183,13 @@ const char *conica_scad_name_problem(const char *s)
     for (size_t i = 0; i < sizeof scad_keywords / sizeof scad_keywords[0]; i++)
         if (strcmp(s, scad_keywords[i]) == 0)
             return "an OpenSCAD reserved word";
-    for (size_t i = 0; i < sizeof scad_called_builtins / sizeof scad_called_builtins[0]; i++)
-        if (strcmp(s, scad_called_builtins[i]) == 0)
-            return "the name of a built-in module the generated file calls";
+    for (size_t i = 0; i < sizeof scad_builtin_modules / sizeof scad_builtin_modules[0]; i++)
+        if (strcmp(s, scad_builtin_modules[i]) == 0)
+            return "the name of an OpenSCAD built-in module (a module of that name would "
+                   "replace it)";
+    for (size_t i = 0; i < sizeof scad_builtin_functions / sizeof scad_builtin_functions[0]; i++)
+        if (strcmp(s, scad_builtin_functions[i]) == 0)
+            return "the name of an OpenSCAD built-in function";
     return NULL;
 }
 

@@ -22,6 +22,8 @@
 #include "conica/subdiv.h"
 #include "conica_scad.h"
 #include "conica_svg.h"
+#include "conica_svg_render.h"
+#include "scad_region.h"
 #include "svg_cli.h"
 #include "conica/bspline.h"
 #include "conica/plot.h"
@@ -43,10 +45,18 @@ typedef enum units { U_DEFAULT, U_PX, U_MM, U_IN } units;
 typedef enum fit { FIT_INSIDE = 0, FIT_OUTSIDE = 1, FIT_MIDDLE = 2, FIT_CLEARANCE = 3 } fit;
 static const char *const fit_names[4] = {"inside", "outside", "middle", "clearance"};
 static const char *const fit_meaning[4] = {
-    "vertices on each curve, chords inside it: every contour at most as large as drawn",
-    "chords on or outside each curve: every contour, outline or hole, at least as large",
-    "chords straddle each curve, within the tolerance both ways: fewest points",
-    "outlines inside, holes outside: the part never larger, its holes never smaller",
+    "the polygon lies within the painted region, within the tolerance of its edge",
+    "the polygon contains the painted region, within the tolerance of its edge",
+    "the polygon is within the tolerance of the painted region's edge both ways",
+    "outlines inside, holes outside: the polygon within the painted region (as inside)",
+};
+/* --paint: what of each SVG element is material */
+static const char *const paint_names[4] = {"as-drawn", "fill", "stroke", "both"};
+static const char *const paint_meaning[4] = {
+    "fills and strokes where the document paints them: what a browser shows",
+    "the fill of every shape, painted or not; no strokes",
+    "the stroke of every shape, painted or not (its stroke-width); no fills",
+    "the fill and the stroke of every shape",
 };
 
 typedef struct options {
@@ -55,12 +65,14 @@ typedef struct options {
     const char *module;
     int module_given;
     fit fit;
+    conica__paint paint;
     int demo_call;       /* -1: not given (--extrude / --rotate-extrude imply it), 0, 1 */
     units unit;
     int extrude, revolve;
     double height, angle;
     const char *select;
     int force, stats, flatten_only;
+    int paint_given;
     size_t max_points;
     conica_svg_limits limits; /* SVG: XML caps; max_bytes also caps other inputs when given */
     int max_input_given;
@@ -82,6 +94,7 @@ typedef struct stats {
     size_t input_points, dense_points, points;
     size_t elements, subpaths;  /* SVG */
     size_t skipped;             /* contours without area (conica_scad_drop_empty) */
+    size_t fills, strokes;      /* SVG: items whose fill / stroke became material */
     int levels;
     double seconds;
 } stats;
@@ -89,6 +102,7 @@ typedef struct stats {
 enum {
     OPT_MODULE = CLI_OPT_LONG,
     OPT_FIT,
+    OPT_PAINT,
     OPT_DEMO_CALL,
     OPT_NO_DEMO_CALL,
     OPT_UNITS,
@@ -121,19 +135,28 @@ static const cli_opt opts[] = {
     {OPT_FLATTEN_ONLY, "flatten-only", CLI_ARG_NONE, NULL, NULL,
      "keep the input geometry: only flatten curves (SVG,\n.spl)", {0, 0, 0}},
     {OPT_FIT, "fit", CLI_ARG_REQUIRED, "F", "inside|outside|middle|clearance",
-     "which side of each curve the polygon keeps to (SVG\n"
-     "input; point-normal and spline input: inside only):\n"
-     "  inside     vertices on the curve, chords inside:\n"
-     "             every contour at most as large as\n"
-     "             drawn (default)\n"
-     "  outside    chords on or outside: every contour,\n"
-     "             outline or hole, at least as large\n"
-     "  middle     chords straddle the curve: fewest\n"
-     "             points (smooth closed contours;\n"
-     "             others as inside)\n"
-     "  clearance  outlines inside, holes outside: the\n"
-     "             part is never larger than drawn, its\n"
-     "             holes never smaller",
+     "which side of the painted region the polygon keeps\n"
+     "to (SVG input; point-normal and spline input:\n"
+     "inside only):\n"
+     "  inside     within the painted region: the part\n"
+     "             never larger than drawn, its holes\n"
+     "             never smaller (default)\n"
+     "  outside    contains the painted region: the\n"
+     "             part never smaller, its holes never\n"
+     "             larger\n"
+     "  middle     within the tolerance both ways:\n"
+     "             fewest points\n"
+     "  clearance  outlines inside, holes outside (the\n"
+     "             same polygon as inside)\n"
+     "Corners, straight edges and their ends stay exact;\n"
+     "the polygon is checked against the drawn region\n"
+     "before it is written (exit 1 when it would lose or\n"
+     "add material)",
+     {0, 0, 0}},
+    {OPT_PAINT, "paint", CLI_ARG_REQUIRED, "P", "as-drawn|fill|stroke|both",
+     "SVG: what is material: as-drawn (default; fills\n"
+     "and strokes as a browser shows them), fill (every\n"
+     "shape filled), stroke (every shape stroked), both",
      {0, 0, 0}},
     {OPT_MODULE, "module", CLI_ARG_REQUIRED, "NAME", NULL,
      "module name (default: the input file's name made\n"
@@ -230,6 +253,15 @@ static int is_number(const char *s)
     return s && cli_parse_double(s, &d) == 0;
 }
 
+/* Index of s in names[0..n), or -1. */
+static int name_index(const char *s, const char *const *names, int n)
+{
+    for (int i = 0; i < n; i++)
+        if (strcmp(s, names[i]) == 0)
+            return i;
+    return -1;
+}
+
 /* One option's value into *o; returns -1 to go on, or an exit status. */
 static int take_option(cli_parser *p, int c, void *ctx)
 {
@@ -259,16 +291,21 @@ static int take_option(cli_parser *p, int c, void *ctx)
         break;
     }
     case OPT_FIT: {
-        int found = 0;
-        for (int f = 0; f < 4; f++)
-            if (strcmp(v, fit_names[f]) == 0) {
-                o->fit = (fit)f;
-                found = 1;
-            }
-        if (!found)
+        int f = name_index(v, fit_names, 4);
+        if (f < 0)
             return cli_usage_error(PROG,
                                    "--fit must be inside, outside, middle or clearance, not '%s'",
                                    v);
+        o->fit = (fit)f;
+        break;
+    }
+    case OPT_PAINT: {
+        int f = name_index(v, paint_names, 4);
+        if (f < 0)
+            return cli_usage_error(PROG,
+                                   "--paint must be as-drawn, fill, stroke or both, not '%s'", v);
+        o->paint = (conica__paint)f;
+        o->paint_given = 1;
         break;
     }
     case OPT_DEMO_CALL: o->demo_call = 1; break;
@@ -893,6 +930,98 @@ static int load_svg(const options *o, const char *name, const char *buf, size_t 
     return result;
 }
 
+/* What the document paints (the SVG layer's render: <use>, viewports,
+ * styles, transforms) as one region: fills under their fill rule and
+ * strokes as areas, clipped and unioned with Clipper, fitted to one side
+ * and checked against the drawn region (scad_region.h), into prof as one
+ * group of simple contours in output units, y up. */
+static int load_svg_region(const options *o, const char *name, const char *buf, size_t len,
+                           conica_scad_profile *prof, stats *sx)
+{
+    conica_svg_doc *doc = NULL;
+    conica_svg_scene scene;
+    conica_svg_render_settings rs = conica_svg_render_defaults();
+    conica__region_settings gs;
+    conica__region_stats gx;
+    conica__polys region;
+    conica_status st;
+    char **ids = NULL;
+    size_t nids = 0, g;
+    int result = 0;
+
+    if (conica_svg_doc_load(buf, len, &o->limits, &doc, &st) != CONICA_OK)
+        return status_error(name, &st);
+    rs.unit = o->unit == U_PX ? "px" : o->unit == U_IN ? "in" : "mm";
+    rs.warn = svg_warn;
+    rs.warn_ctx = (void *)name;
+    rs.unpainted = o->paint != CONICA__PAINT_AS_DRAWN;
+    if (o->select) {
+        ids = split_ids(o->select, &nids);
+        if (!ids) {
+            conica_svg_doc_free(doc);
+            return cli_error(PROG, name, "out of memory");
+        }
+        rs.select = (const char *const *)ids;
+        rs.nselect = nids;
+    }
+    conica_svg_scene_init(&scene);
+    conica__polys_init(&region);
+    if (conica_svg_render(doc, &rs, &scene, &st) != CONICA_OK) {
+        result = status_error(name, &st);
+        goto done;
+    }
+    if (!scene.has_size)
+        cli_warning(PROG, name, "the document's size is relative or missing: 1 user unit = 1 px");
+    memset(&gs, 0, sizeof gs);
+    /* the written digits get tolerance * ROUND_FRACTION of the tolerance */
+    gs.tolerance = o->tolerance * (1 - CONICA_SCAD_ROUND_FRACTION);
+    gs.fit = o->fit == FIT_OUTSIDE  ? CONICA__REGION_OUTSIDE
+             : o->fit == FIT_MIDDLE ? CONICA__REGION_MIDDLE
+                                    : CONICA__REGION_INSIDE;
+    gs.paint = o->paint;
+    gs.max_points = o->max_points * 16;
+    memset(&gx, 0, sizeof gx);
+    sx->kind = "SVG";
+    sx->elements = scene.n;
+    if (conica__scad_region(&scene, &gs, &region, &gx, &st) != CONICA_OK) {
+        result = status_error(name, &st);
+        goto done;
+    }
+    sx->subpaths = gx.subpaths;
+    sx->dense_points = gx.dense_points;
+    sx->fills = gx.fills;
+    sx->strokes = gx.strokes;
+    if (region.n == 0) {
+        result = cli_error(PROG, name,
+                           "nothing is painted: %s%s",
+                           scene.n ? "the painted shapes cover no area"
+                                   : "no shape of the document is filled or stroked",
+                           o->paint == CONICA__PAINT_AS_DRAWN
+                               ? " (--paint fill fills every shape, painted or not)"
+                               : "");
+        goto done;
+    }
+    if (conica_scad_add_group(prof, "painted region", CONICA_SCAD_FILL_NONZERO, 0, &g, &st) !=
+        CONICA_OK) {
+        result = status_error(name, &st);
+        goto done;
+    }
+    for (size_t i = 0; i < region.n && result == 0; i++)
+        if (conica_scad_add_contour(prof, g, region.xy + 2 * region.start[i],
+                                    region.start[i + 1] - region.start[i], &st) != CONICA_OK)
+            result = status_error(name, &st);
+done:
+    conica__polys_free(&region);
+    conica_svg_scene_free(&scene);
+    conica_svg_doc_free(doc);
+    if (ids) {
+        if (nids)
+            free(ids[0]);
+        free(ids);
+    }
+    return result;
+}
+
 /* --fit clearance: the contours that are holes in the inside run *in
  * (arranged as *lay) take their points from the outside run *out, which
  * holds the same subpaths in the same order (*in may have lost some to
@@ -940,7 +1069,7 @@ static int take_holes(conica_scad_profile *in, const conica_scad_layout *lay,
 /* ------------------------------------------------------------ main */
 
 static char *header_text(int argc, char **argv, const options *o, const char *kind_name,
-                         int exact)
+                         int exact, const stats *sx, int region)
 {
     size_t cap = 1024;
     for (int i = 0; i < argc; i++)
@@ -977,6 +1106,11 @@ static char *header_text(int argc, char **argv, const options *o, const char *ki
     if (n < cap)
         n += (size_t)snprintf(h + n, cap - n, "\nfit: %s (%s)", fit_names[o->fit],
                               fit_meaning[o->fit]);
+    if (n < cap && region)
+        n += (size_t)snprintf(h + n, cap - n,
+                              "\npaint: %s (%s): %zu fill%s and %zu stroke%s made material",
+                              paint_names[o->paint], paint_meaning[o->paint], sx->fills,
+                              sx->fills == 1 ? "" : "s", sx->strokes, sx->strokes == 1 ? "" : "s");
     if (n < cap) {
         if (exact)
             snprintf(h + n, cap - n, "\ncoordinates: exact (the shortest decimals that read "
@@ -1099,9 +1233,14 @@ static int profile_file(void *ctx, const char *in, const char *outp)
         return CLI_EXIT_ERROR;
     name = strcmp(o.in, "-") == 0 ? "<stdin>" : o.in;
     kind k = detect(o.in, buf, len);
-    if (k != IN_SVG && (o.unit != U_DEFAULT || o.select)) {
+    if (k != IN_SVG && (o.unit != U_DEFAULT || o.select || o.paint_given)) {
         free(buf);
-        return cli_usage_error(PROG, "--units and --select apply to SVG input only");
+        return cli_usage_error(PROG, "--units, --select and --paint apply to SVG input only");
+    }
+    if (k == IN_SVG && o.levels >= 0 && o.paint_given) {
+        free(buf);
+        return cli_usage_error(PROG, "--paint applies to --tolerance (the painted region); "
+                                     "--levels smooths each path's fill as it is");
     }
     if (k != IN_SVG && o.fit != FIT_INSIDE) {
         free(buf);
@@ -1127,9 +1266,14 @@ static int profile_file(void *ctx, const char *in, const char *outp)
     conica_scad_profile_init(&rounded);
     conica_scad_layout_init(&lay);
     /* --fit clearance: an inside run, and an outside one for the holes */
+    /* --levels on SVG smooths each path as it is (the region's booleans
+     * need polygons): --fit clearance runs inside and outside there */
+    int region = k == IN_SVG && o.levels < 0;
     fit fits[2] = {o.fit == FIT_CLEARANCE ? FIT_INSIDE : o.fit, FIT_OUTSIDE};
-    size_t nruns = o.fit == FIT_CLEARANCE ? 2 : 1;
-    if (k == IN_SVG)
+    size_t nruns = o.fit == FIT_CLEARANCE && !region ? 2 : 1;
+    if (region)
+        rc = load_svg_region(&o, name, buf, len, &prof[0], &sx);
+    else if (k == IN_SVG)
         rc = load_svg(&o, name, buf, len, fits, nruns, prof, &sx);
     else if (k == IN_SPLINE)
         rc = load_spline(&o, name, buf, len, &prof[0], &sx);
@@ -1232,7 +1376,7 @@ static int profile_file(void *ctx, const char *in, const char *outp)
     }
     {
         static const char *const kinds[3] = {"point-normal", "SVG", "spline"};
-        char *header = header_text(argc, argv, &o, kinds[k], exact);
+        char *header = header_text(argc, argv, &o, kinds[k], exact, &sx, k == IN_SVG && o.levels < 0);
         conica_scad_write_options wo = conica_scad_write_defaults();
         cli_output out;
         if (!header) {

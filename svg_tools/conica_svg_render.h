@@ -17,6 +17,9 @@
  * 96 px per inch, scaled to that unit), with the root's viewBox and
  * preserveAspectRatio applied.
  *
+ * docs/svg-rendering.md lists what is read, what is warned about, and the
+ * caps.
+ *
  * Conventions as in conica/common.h: inputs, outputs, then an optional
  * conica_status; outputs untouched on failure; `_init` then `_free`.
  */
@@ -24,6 +27,7 @@
 #define CONICA_SVG_RENDER_H
 
 #include <stddef.h>
+#include <stdio.h>
 
 #include "conica_svg.h"
 
@@ -86,10 +90,12 @@ typedef struct conica_svg_item {
     conica_svg_fill_rule fill_rule;
     int stroke;             /**< non-zero: the stroke is painted */
     conica_svg_stroke st;   /**< the stroke's properties (meaningful when stroke) */
-    /** The intersection of the clips of the viewports it is drawn in (root
-     *  and nested `<svg>`, `<symbol>` instances; overflow hidden) as a
-     *  convex polygon of nclip points in the output frame, counter-clockwise
-     *  in a y-up frame; nclip == 0: nothing clips it. */
+    /** The intersection of the clips of the viewports it is drawn in (the
+     *  root when the scene has a size, nested `<svg>` whose overflow is not
+     *  visible/auto; librsvg 2.54 clips no `<symbol>` instance, nor does
+     *  the render) as a convex polygon of nclip >= 3 points in the output
+     *  frame with a positive shoelace area (counter-clockwise in a y-up
+     *  reading of the coordinates); nclip == 0: nothing clips it. */
     size_t nclip;
     double *clip;           /**< 2 * nclip coordinates */
 } conica_svg_item;
@@ -103,11 +109,17 @@ typedef struct conica_svg_scene {
      *  height without a viewBox): 1 user unit is then 1 px. */
     int has_size;
     double width, height;
+    char unit[4];           /**< the output unit ("px", "mm", ...) */
 } conica_svg_scene;
 
 /** Caps of conica_svg_render() (each has a default; input controls them). */
 #define CONICA_SVG_DEFAULT_MAX_USE_DEPTH ((size_t)32)        /**< `<use>` nested in instances */
 #define CONICA_SVG_DEFAULT_MAX_INSTANCES ((size_t)1 << 20)   /**< elements drawn, `<use>` copies included */
+/** Caps on `<style>` sheets (the sheet is refused with CONICA_ERR_LIMIT
+ *  and the line of its `<style>` element beyond them). */
+#define CONICA_SVG_MAX_CSS_BYTES ((size_t)1 << 20)  /**< text of all `<style>` elements */
+#define CONICA_SVG_MAX_CSS_RULES ((size_t)4096)     /**< selectors, over all rules */
+#define CONICA_SVG_MAX_CSS_DECLS ((size_t)16384)    /**< declarations, over all rules */
 
 /** Settings; start from conica_svg_render_defaults(). */
 typedef struct conica_svg_render_settings {
@@ -121,6 +133,11 @@ typedef struct conica_svg_render_settings {
     size_t max_use_depth;   /**< default CONICA_SVG_DEFAULT_MAX_USE_DEPTH */
     size_t max_instances;   /**< default CONICA_SVG_DEFAULT_MAX_INSTANCES */
     size_t max_segments;    /**< segments over all items; default CONICA_SVG_DEFAULT_MAX_POINTS */
+    /** Non-zero: also an item for every displayed, visible geometry element
+     *  that paints nothing (fill and stroke none, transparent or of opacity
+     *  0), with fill = stroke = 0 (for tools that fill or stroke geometry
+     *  regardless of its paint); default 0: painted items only. */
+    int unpainted;
     /** Warnings, one per element and kind: every feature that changes the
      *  picture and is not drawn (text, images, clip-path and mask geometry,
      *  filters, ...) is named here, never silently drawn as something else. */
@@ -148,6 +165,20 @@ CONICA_API void conica_svg_scene_free(conica_svg_scene *s);
 CONICA_API conica_code conica_svg_render(const conica_svg_doc *doc,
                                          const conica_svg_render_settings *s,
                                          conica_svg_scene *out, conica_status *st);
+
+/**
+ * @brief Write the scene as one flat SVG document: the root frame of the
+ *        scene (width/height in its unit, viewBox 0 0 width height), each
+ *        item a `<path>` with its local path data, transform="matrix(ctm)",
+ *        its fill and fill-rule, its stroke properties and vector-effect,
+ *        clipped by its clip polygon (one `<clipPath>` per distinct clip), in
+ *        paint order, painted opaque black. `rsvg-convert` paints the same
+ *        pixels for it as for the document the scene was made from (up to
+ *        what the render warned about), which is how the tests check it.
+ * @return CONICA_OK, CONICA_ERR_ARG, CONICA_ERR_NOMEM, CONICA_ERR_IO
+ */
+CONICA_API conica_code conica_svg_scene_write(const conica_svg_scene *s, FILE *f,
+                                              conica_status *st);
 
 /** @brief Apply m to the point (x, y). */
 CONICA_API void conica_svg_matrix_apply(const conica_svg_matrix *m, double x, double y,

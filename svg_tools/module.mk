@@ -83,3 +83,12 @@ $(SVGCHECK): $(BUILD)/obj/tests/svgcheck/svgcheck.o $(BUILD)/lib/libconica_tests
 	@mkdir -p $(@D)
 	$(CC) $(LDFLAGS) -o $@ $< $(BUILD)/lib/libconica_testsupport.a -lm
 TEST_EXTRA += $(SVGCHECK)
+
+# svgscene (tests/tools/svgscene.c): a document's rendered scene as a flat
+# SVG, for tests/cli/svg_render.sh's pixel comparisons with rsvg-convert.
+SVGSCENE := $(BUILD)/tests/svgscene
+$(BUILD)/obj/tests/tools/svgscene.o: CPPFLAGS += -Isvg_tools
+$(SVGSCENE): $(BUILD)/obj/tests/tools/svgscene.o $(SVG_A) $(CORE_A)
+	@mkdir -p $(@D)
+	$(CC) $(LDFLAGS) -o $@ $< $(SVG_A) $(CORE_A) $(ALL_LDLIBS)
+TEST_EXTRA += $(SVGSCENE)

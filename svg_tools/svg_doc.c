@@ -1513,70 +1513,29 @@ static int is_svg_element(xmlNodePtr n)
            (!n->ns || (n->ns->href && !xmlStrcmp(n->ns->href, BAD_CAST SVG_NS)));
 }
 
+/* The render (svg_render.c, svg_style.c) reads the same tree the same way. */
+xmlDocPtr conica_svg__doc_xml(const conica_svg_doc *doc)
+{
+    return doc->xml;
+}
+
+char *conica_svg__attr(xmlNodePtr n, const char *name, size_t cap, int *too_long)
+{
+    return get_attr_cap(n, name, cap, too_long);
+}
+
+xmlNodePtr conica_svg__next_element(xmlNodePtr n, xmlNodePtr root)
+{
+    size_t depth = 0;
+    return next_element(n, root, &depth);
+}
+
+int conica_svg__is_svg(xmlNodePtr n)
+{
+    return is_svg_element(n);
+}
+
 /* ------------------------------------------------------------ shapes */
-
-typedef struct pbuild {
-    conica_svg_path *p;
-    double x, y, sx, sy;
-    int ok;
-} pbuild;
-
-/* A MOVE or LINE from the current point to (x, y). */
-static void pb_to(pbuild *b, conica_svg_seg_type type, double x, double y)
-{
-    conica_svg_seg g;
-    memset(&g, 0, sizeof g);
-    g.type = type;
-    g.cmd = type == CONICA_SVG_SEG_MOVE ? 'M' : 'L';
-    g.x0 = b->x;
-    g.y0 = b->y;
-    g.x1 = b->x = x;
-    g.y1 = b->y = y;
-    if (type == CONICA_SVG_SEG_MOVE) {
-        b->sx = x;
-        b->sy = y;
-    }
-    b->ok = b->ok && conica_svg__path_push(b->p, &g);
-}
-
-static void pb_move(pbuild *b, double x, double y)
-{
-    pb_to(b, CONICA_SVG_SEG_MOVE, x, y);
-}
-
-static void pb_line(pbuild *b, double x, double y)
-{
-    pb_to(b, CONICA_SVG_SEG_LINE, x, y);
-}
-
-static void pb_arc(pbuild *b, double rx, double ry, double x, double y)
-{
-    conica_svg_seg g;
-    memset(&g, 0, sizeof g);
-    g.cmd = 'A';
-    g.x0 = b->x;
-    g.y0 = b->y;
-    g.x1 = x;
-    g.y1 = y;
-    g.sweep = 1;
-    if (conica_svg__arc_to_centre(&g, rx, ry, 0.0))
-        b->ok = b->ok && conica_svg__path_push(b->p, &g);
-    b->x = x;
-    b->y = y;
-}
-
-static void pb_close(pbuild *b)
-{
-    conica_svg_seg g;
-    memset(&g, 0, sizeof g);
-    g.type = CONICA_SVG_SEG_CLOSE;
-    g.cmd = 'Z';
-    g.x0 = b->x;
-    g.y0 = b->y;
-    g.x1 = b->x = b->sx;
-    g.y1 = b->y = b->sy;
-    b->ok = b->ok && conica_svg__path_push(b->p, &g);
-}
 
 /* A user-space length attribute: number with no unit or px. 1 ok, 0 absent
  * (value untouched), -1 unusable (another unit, not a length), -3 not a
@@ -1596,90 +1555,23 @@ static int len_attr(xmlNodePtr n, const char *name, double *v, const char **bad)
     return r;
 }
 
-/* rect/circle/ellipse/line as path segments (SVG 2, 10.2-10.5).
- * Returns 1 built, 0 nothing to draw, -1 unusable attributes, -2 no memory,
- * -3 an attribute that is not a finite number (*bad names it). */
+/* rect/circle/ellipse/line as path segments (SVG 2, 10.2-10.5), from
+ * attributes in user units. Returns 1 built, 0 nothing to draw, -1
+ * unusable attributes, -2 no memory, -3 an attribute that is not a finite
+ * number (*bad names it). */
 static int shape_path(xmlNodePtr n, conica_svg_path *p, const char **bad)
 {
     const char *tag = (const char *)n->name;
-    pbuild b;
+    const char *const *names = conica_svg__shape_attrs(tag);
     double v[6] = {0, 0, 0, 0, 0, 0};
-    int r[6] = {0, 0, 0, 0, 0, 0}, i;
-    memset(&b, 0, sizeof b);
-    b.p = p;
-    b.ok = 1;
-    if (!strcmp(tag, "rect")) {
-        static const char *names[6] = {"x", "y", "width", "height", "rx", "ry"};
-        double x, y, w, h, rx, ry;
-        for (i = 0; i < 6; i++)
-            if ((r[i] = len_attr(n, names[i], &v[i], bad)) < 0)
-                return r[i];
-        x = v[0], y = v[1], w = v[2], h = v[3];
-        if (!(w > 0.0) || !(h > 0.0))
-            return 0;
-        rx = r[4] ? v[4] : r[5] ? v[5] : 0.0; /* auto: the other radius */
-        ry = r[5] ? v[5] : r[4] ? v[4] : 0.0;
-        rx = rx < 0 ? 0 : rx > 0.5 * w ? 0.5 * w : rx;
-        ry = ry < 0 ? 0 : ry > 0.5 * h ? 0.5 * h : ry;
-        if (rx > 0.0 && ry > 0.0) {
-            pb_move(&b, x + rx, y);
-            pb_line(&b, x + w - rx, y);
-            pb_arc(&b, rx, ry, x + w, y + ry);
-            pb_line(&b, x + w, y + h - ry);
-            pb_arc(&b, rx, ry, x + w - rx, y + h);
-            pb_line(&b, x + rx, y + h);
-            pb_arc(&b, rx, ry, x, y + h - ry);
-            pb_line(&b, x, y + ry);
-            pb_arc(&b, rx, ry, x + rx, y);
-        } else {
-            pb_move(&b, x, y);
-            pb_line(&b, x + w, y);
-            pb_line(&b, x + w, y + h);
-            pb_line(&b, x, y + h);
-        }
-        pb_close(&b);
-    } else if (!strcmp(tag, "circle") || !strcmp(tag, "ellipse")) {
-        double cx, cy, rx, ry;
-        int circle = tag[0] == 'c';
-        if ((r[0] = len_attr(n, "cx", &v[0], bad)) < 0 ||
-            (r[1] = len_attr(n, "cy", &v[1], bad)) < 0)
-            return r[0] < 0 ? r[0] : r[1];
-        if (circle) {
-            if ((r[2] = len_attr(n, "r", &v[2], bad)) < 0)
-                return r[2];
-            v[3] = v[2];
-        } else {
-            r[2] = len_attr(n, "rx", &v[2], bad);
-            if (r[2] < 0)
-                return r[2];
-            r[3] = len_attr(n, "ry", &v[3], bad);
-            if (r[3] < 0)
-                return r[3];
-            if (!r[2])
-                v[2] = v[3];
-            if (!r[3])
-                v[3] = v[2];
-        }
-        cx = v[0], cy = v[1], rx = v[2], ry = v[3];
-        if (!(rx > 0.0) || !(ry > 0.0))
-            return 0;
-        pb_move(&b, cx + rx, cy);
-        pb_arc(&b, rx, ry, cx, cy + ry);
-        pb_arc(&b, rx, ry, cx - rx, cy);
-        pb_arc(&b, rx, ry, cx, cy - ry);
-        pb_arc(&b, rx, ry, cx + rx, cy);
-        pb_close(&b);
-    } else if (!strcmp(tag, "line")) {
-        static const char *names[4] = {"x1", "y1", "x2", "y2"};
-        for (i = 0; i < 4; i++)
-            if ((r[i] = len_attr(n, names[i], &v[i], bad)) < 0)
-                return r[i];
-        pb_move(&b, v[0], v[1]);
-        pb_line(&b, v[2], v[3]);
-    } else {
+    int given[6] = {0, 0, 0, 0, 0, 0}, i, r;
+    if (!names)
         return 0;
-    }
-    return b.ok ? 1 : -2;
+    for (i = 0; i < 6 && names[i]; i++)
+        if ((given[i] = len_attr(n, names[i], &v[i], bad)) < 0)
+            return given[i];
+    r = conica_svg__shape_path(tag, v, given, p);
+    return r;
 }
 
 /* ------------------------------------------------------------ walk */
@@ -1799,7 +1691,7 @@ static void warn(const conica_svg_settings *s, size_t line, const char *fmt, ...
     s->warn(s->warn_ctx, line, msg);
 }
 
-static void describe(xmlNodePtr n, char *what, size_t size)
+void conica_svg__describe(xmlNodePtr n, char *what, size_t size)
 {
     char *id = get_attr(n, "id");
     if (id)
@@ -1868,8 +1760,8 @@ static int element_path(const conica_svg_settings *s, xmlNodePtr n, int kind, co
         char *owned;
         const char *a = get_attr_view(n, "points", s->limits.max_path_bytes, &too_long, &owned);
         double *xy = NULL;
-        size_t np = 0, bad = 0, len, i;
-        pbuild b;
+        size_t np = 0, bad = 0, len;
+        int ok;
         if (too_long) {
             *rc = conica__fail(st, CONICA_ERR_LIMIT, line, 0,
                                "%s: points exceed the limit of %zu bytes (--max-path-bytes)", what,
@@ -1887,19 +1779,9 @@ static int element_path(const conica_svg_settings *s, xmlNodePtr n, int kind, co
         if (bad != (size_t)-1)
             warn(s, line, "%s: bad points list at byte %zu; %s", what, bad,
                  np ? "the valid pairs before it are kept" : "element left unchanged");
-        memset(&b, 0, sizeof b);
-        b.p = p;
-        b.ok = 1;
-        for (i = 0; i < np; i++) {
-            if (i == 0)
-                pb_move(&b, xy[0], xy[1]);
-            else
-                pb_line(&b, xy[2 * i], xy[2 * i + 1]);
-        }
-        if (np && kind == 1)
-            pb_close(&b);
+        ok = conica_svg__points_path(xy, np, kind == 1, p);
         free(xy);
-        if (!b.ok) {
+        if (!ok) {
             *rc = conica__fail(st, CONICA_ERR_NOMEM, 0, 0, "out of memory");
             return 0;
         }
@@ -1966,7 +1848,7 @@ static conica_code collect(const conica_svg_doc *doc, const conica_svg_settings 
             if (kind >= 0 && selected(s, &sel, n)) {
                 char what[96];
                 double prec;
-                describe(n, what, sizeof what);
+                conica_svg__describe(n, what, sizeof what);
                 p.n = 0;
                 p.has_error = 0;
                 if (element_path(s, n, kind, what, &p, &prec, &rc, st)) {

@@ -7,6 +7,8 @@
 #include <stdarg.h>
 #include <stddef.h>
 
+#include <libxml/tree.h>
+
 #include "conica_svg.h"
 
 /* conica__fail()/conica__ok() from libcore's internal.h fill the status. */
@@ -66,6 +68,41 @@ double conica_svg__text_precision(const char *text, size_t len);
  * attributes one after another. */
 conica_code conica_svg__path_parse_into(const char *d, size_t len, size_t max_segments,
                                         conica_svg_path *p, conica_status *st);
+
+/* The geometry attributes of a basic shape, in the order
+ * conica_svg__shape_path() takes their values (NULL-terminated), or NULL
+ * when tag is not rect, circle, ellipse or line. */
+const char *const *conica_svg__shape_attrs(const char *tag);
+
+/* The path of a basic shape (SVG 2, 10.2-10.5) from its lengths in user
+ * units, v[i] read where given[i] is non-zero (the attributes in
+ * conica_svg__shape_attrs() order): rect rx/ry auto from the other radius
+ * and clamped to half the size, ellipse rx/ry auto likewise. Appends to *p;
+ * 1 built, 0 nothing to draw (a zero size or radius), -2 no memory. */
+int conica_svg__shape_path(const char *tag, const double v[6], const int given[6],
+                           conica_svg_path *p);
+
+/* A points list (np pairs) as a path, closed for a polygon; 0 when out of
+ * memory. */
+int conica_svg__points_path(const double *xy, size_t np, int closed, conica_svg_path *p);
+
+/* The document's libxml2 tree. */
+xmlDocPtr conica_svg__doc_xml(const conica_svg_doc *doc);
+
+/* Attribute `name` (no namespace) with entity references expanded, or NULL
+ * when absent or longer than cap bytes (*too_long set, if given); free
+ * with xmlFree(). */
+char *conica_svg__attr(xmlNodePtr n, const char *name, size_t cap, int *too_long);
+
+/* The element after n in document order below root, or NULL (no
+ * recursion). */
+xmlNodePtr conica_svg__next_element(xmlNodePtr n, xmlNodePtr root);
+
+/* An element in the SVG namespace (or in none). */
+int conica_svg__is_svg(xmlNodePtr n);
+
+/* "tag 'id'" or "tag (no id)", for messages. */
+void conica_svg__describe(xmlNodePtr n, char *what, size_t size);
 
 /* Seconds of CPU time used by the process (robust on a loaded machine). */
 double conica_svg__now(void);

@@ -31,6 +31,7 @@
 #include "conica/plot.h"
 #include "conica/subdiv.h"
 #include "internal.h"
+#include "path_fit.h"
 
 #ifndef M_PI
 #define M_PI 3.14159265358979323846
@@ -746,6 +747,12 @@ static size_t find_inflections(const double *q, int d, double *out, size_t cap)
         }
     }
     return n;
+}
+
+/* For the one-sided fits (path_fit.c): the same inflections. */
+size_t conica__path_seg_inflections(const conica_path *p, size_t seg, double *out, size_t cap)
+{
+    return find_inflections(seg_pts(p, seg), p->seg[seg].degree, out, cap);
 }
 
 /* Angle between unit vectors. */

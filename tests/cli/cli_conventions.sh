@@ -208,8 +208,11 @@ check "svgsmooth on one file of a batch" "$bindir/svgsmooth" -o "$tmp/onedir/" "
 check_grep "^svgsmooth: 1 file written, 0 failed" "$err"
 
 begin_case "a progress line on a terminal only; -q and --progress force it"
-mkdir -p "$tmp/many"
-for i in 1 2 3 4 5 6; do cp "$ex/rect-star.svg" "$tmp/many/f$i.svg"; done
+mkdir -p "$tmp/many/svgsmooth" "$tmp/many/scadprofile"
+for i in 1 2 3 4 5 6; do
+    cp "$ex/rect-star.svg" "$tmp/many/svgsmooth/f$i.svg"
+    cp "$ex/bracket.svg" "$tmp/many/scadprofile/f$i.svg" # a part drawn to be one
+done
 # pty CMD...: run CMD with stderr on a pseudo-terminal; what it wrote there
 pty() {
     "$PY" - "$@" <<'EOF'
@@ -232,14 +235,14 @@ EOF
 }
 PY=${PY:-python3}
 for t in svgsmooth scadprofile; do
-    check "$t, several files, stderr a terminal" pty "$build/bin/$t" -o "$tmp/$t.p1/" "$tmp"/many/f*.svg
+    check "$t, several files, stderr a terminal" pty "$build/bin/$t" -o "$tmp/$t.p1/" "$tmp/many/$t"/f*.svg
     check_grep "^.?$t: [0-9]+/6 files, .* files/s, ETA [0-9]+ s" "$out" "$t: a progress line with count, rate and ETA"
     check_grep "$t: 6 files written, 0 failed" "$out" "$t: the summary after it"
-    check "$t -q, stderr a terminal" pty "$build/bin/$t" -q -o "$tmp/$t.p2/" "$tmp"/many/f*.svg
+    check "$t -q, stderr a terminal" pty "$build/bin/$t" -q -o "$tmp/$t.p2/" "$tmp/many/$t"/f*.svg
     check_no_grep "files/s" "$out" "$t -q: no progress line"
-    check "$t, stderr a file" "$build/bin/$t" -o "$tmp/$t.p3/" "$tmp"/many/f*.svg
+    check "$t, stderr a file" "$build/bin/$t" -o "$tmp/$t.p3/" "$tmp/many/$t"/f*.svg
     check_no_grep "files/s" "$err" "$t: no progress line when stderr is not a terminal"
-    check "$t --progress, stderr a file" "$build/bin/$t" --progress -o "$tmp/$t.p4/" "$tmp"/many/f*.svg
+    check "$t --progress, stderr a file" "$build/bin/$t" --progress -o "$tmp/$t.p4/" "$tmp/many/$t"/f*.svg
     check_grep "[0-9]+/6 files, .* files/s" "$err" "$t --progress: the progress line all the same"
 done
 
