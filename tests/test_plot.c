@@ -820,6 +820,86 @@ TEST_CASE("limits and bad settings", "[plot][limits]")
     conica_bspline_free(&s);
 }
 
+/* A clamped uniform cubic wave y = sin(fr i) through n control points,
+ * knots 0..n-3 (unit intervals). */
+static void long_wave(size_t n, double fr, conica_bspline *s)
+{
+    double *c = malloc(2 * n * sizeof *c), *k = malloc((n + 4) * sizeof *k);
+    REQUIRE(c != NULL && k != NULL);
+    for (size_t i = 0; i < n; i++) {
+        c[2 * i] = (double)i;
+        c[2 * i + 1] = sin(fr * (double)i);
+    }
+    for (size_t i = 0; i < n + 4; i++)
+        k[i] = i < 4 ? 0.0 : (i >= n ? (double)(n - 3) : (double)(i - 3));
+    REQUIRE_EQ(conica_bspline_set(3, 2, k, n + 4, c, n, NULL, s, NULL), CONICA_OK);
+    free(c);
+    free(k);
+}
+
+/* Points and trial steps of the guaranteed plot of s at tol; every
+ * stride-th chord checked by the independent dense checker. */
+static void plot_long(const conica_bspline *s, double tol, size_t stride, size_t *points,
+                      size_t *trials)
+{
+    conica_plot_settings set = conica_plot_defaults();
+    set.abs_tolerance = tol;
+    set.max_points = (size_t)1 << 24;
+    conica_polyline pl;
+    conica_polyline_init(&pl);
+    conica_plot_stats stats;
+    conica_status st;
+    conica_code rc = conica_plot(s, &set, &pl, &stats, &st);
+    if (rc != CONICA_OK)
+        INFO("plot: %s", st.message);
+    REQUIRE_EQ(rc, CONICA_OK);
+    REQUIRE(pl.t != NULL);
+    CHECK_EQ_U(pl.npieces, 1);
+    CHECK_EQ(pl.t[0], s->knots[3]);
+    CHECK_EQ(pl.t[pl.n - 1], s->knots[s->n]);
+    double worst = 0;
+    for (size_t i = stride / 2; i + 1 < pl.n; i += stride) {
+        double d = fc_chord_dev(s, pl.t[i], pl.t[i + 1]);
+        worst = d > worst ? d : worst;
+    }
+    CHECK_LE(worst, tol * (1 + 1e-9));
+    *points = pl.n;
+    *trials = stats.iterations;
+    conica_polyline_free(&pl);
+}
+
+TEST_CASE("guaranteed mode: long splines finish in work linear in their length",
+          "[plot][guaranteed][limits]")
+{
+    /* The search snapped any trial within G_SNAP times the whole domain
+     * to the interval's end; on 10^6 unit intervals that window (1e-3)
+     * held the shrunk retry of a failed trial, which was retried for
+     * ever (CONICA_ERR_LIMIT here). Points and trial steps per control
+     * point are the same at 10^4 and 10^6 control points. */
+    const struct {
+        size_t n;
+        double fr, tol;
+    } cases[] = {{1000000, 0.3, 1e-3}, {702349, 1.0, 1e-3}, {702349, 0.3, 1e-2}};
+    for (size_t c = 0; c < sizeof cases / sizeof cases[0]; c++) {
+        conica_bspline big, small;
+        conica_bspline_init(&big);
+        conica_bspline_init(&small);
+        CAPTURE_U(cases[c].n);
+        CAPTURE_D(cases[c].tol);
+        long_wave(cases[c].n, cases[c].fr, &big);
+        long_wave(10000, cases[c].fr, &small);
+        size_t pb, tb, ps, ts;
+        plot_long(&big, cases[c].tol, 9973, &pb, &tb);
+        plot_long(&small, cases[c].tol, 97, &ps, &ts);
+        double per_big = (double)pb / (double)(cases[c].n - 3);
+        double per_small = (double)ps / (double)(10000 - 3);
+        CHECK_REL(per_big, per_small, 0.01);
+        CHECK_LE((double)tb / (double)pb, 1.02 * (double)ts / (double)ps);
+        conica_bspline_free(&big);
+        conica_bspline_free(&small);
+    }
+}
+
 TEST_CASE("control points near +-DBL_MAX: too large, not 'tolerance is zero'", "[plot][limits]")
 {
     /* the extent's squares overflowed, so the relative tolerance came out

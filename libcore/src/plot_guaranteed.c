@@ -195,8 +195,16 @@
  * instead of searching for the longest first chord and then a short last
  * one. The same number of points in fewer trials. */
 #define G_HALVE 3.0
-/* A trial this close to the end (relative to the piece) ends there. */
+/* A trial this close to the end of the remainder or chain it is tried on
+ * (relative to that remainder's or trial chord's own parameter length,
+ * never to the whole piece: on a long spline G_SNAP times the domain can
+ * exceed a failed step's shrink, Q_SHRINK, and the search would retry the
+ * same snapped trial for ever) ends there. */
 #define G_SNAP 1e-9
+/* Least trial step, relative to the knot interval it lies in; at least
+ * G_MIN_STEP_ULPS ulps of the parameter, so a trial always moves. */
+#define G_MIN_STEP 1e-13
+#define G_MIN_STEP_ULPS 16.0
 /* Knot intervals one chord may span. */
 #define G_CHAIN_MAX 64
 #define BZ ((MAXP + 1) * HD)
@@ -884,23 +892,30 @@ static double secant(double hp, double dp, double hf, double df, double tol)
     return h < lo ? lo : (h > hi ? hi : h);
 }
 
+/* Least trial step from ua in the knot interval [ba, bb], see G_MIN_STEP. */
+static double min_step_in(double ua, double ba, double bb)
+{
+    double h = G_MIN_STEP * (bb - ba), u = G_MIN_STEP_ULPS * DBL_EPSILON * fabs(ua);
+    return h > u ? h : u;
+}
+
 /* Longest certified chord from m->ua inside the current interval (trial
  * steps *hs from ua, at most to bb): on return *xo and *devo, the halves
  * of the accepted split in m->Lb / m->Rb (unless *xo == bb: then the
  * chord is the whole remainder m->R). *halved is set when the rest of the
  * piece (ending at b_end) is to take one more chord, see G_HALVE. */
-static conica_code bez_search(march *m, double *hs, double span_all, double min_step,
-                              double b_end, size_t max_iter,
+static conica_code bez_search(march *m, double *hs, double b_end, size_t max_iter,
                               conica_plot_stats *stats, double *xo, double *devo, int *halved,
                               conica_status *st)
 {
     double ua = m->ua, bb = m->bb, tol = m->tol;
+    double snap = G_SNAP * (bb - ua), min_step = min_step_in(ua, m->ba, bb);
     int have = 0, have_fail = 0, grows = 0, tries = 0;
     *halved = 0;
     double best_dev = 0, best_x = bb, fail_x = bb, fail_dev = 0;
     for (;;) {
         double x = ua + *hs;
-        if (!(x < bb) || bb - x < G_SNAP * span_all)
+        if (!(x < bb) || bb - x < snap)
             x = bb;
         conica_code rc = too_many(max_iter, stats, st);
         if (rc != CONICA_OK)
@@ -1080,7 +1095,7 @@ static double cross_trial_end(double x, double end, double b_end, double snap)
  * split halves are then in m->Lb / m->Rb (m->Lb its whole polygon when
  * *xo is its end). *nco gets the number of intervals loaded. */
 static conica_code cross_search(march *m, double dev0, double hs0, double b_end,
-                                double span_all, size_t max_iter,
+                                size_t max_iter,
                                 conica_plot_stats *stats, int *found, double *xo, double *devo,
                                 size_t *jo, size_t *nco, conica_status *st)
 {
@@ -1103,7 +1118,7 @@ static conica_code cross_search(march *m, double dev0, double hs0, double b_end,
         if (nc == 0)
             break;
         double end = m->T[m->cmu[nc] + 1];
-        x = cross_trial_end(x, end, b_end, G_SNAP * span_all);
+        x = cross_trial_end(x, end, b_end, G_SNAP * (x - ua));
         if (x <= best_x)
             break;
         conica_code rc = too_many(max_iter, stats, st);
@@ -1429,16 +1444,16 @@ static void c3_enter(c3m *m, size_t mu, size_t k)
 }
 
 /* bez_search on the current interval of a cubic. */
-static conica_code c3_search(c3m *m, double *hs, double span_all, double min_step,
-                             size_t max_iter, conica_plot_stats *stats,
+static conica_code c3_search(c3m *m, size_t max_iter, double *hs, conica_plot_stats *stats,
                              double *xo, double *devo, conica_status *st)
 {
     double ua = m->ua, bb = m->bb, tol = m->tol;
+    double snap = G_SNAP * (bb - ua), min_step = min_step_in(ua, m->ba, bb);
     int have = 0, have_fail = 0, grows = 0, tries = 0;
     double best_dev = 0, best_x = bb, fail_x = bb, fail_dev = 0;
     for (;;) {
         double x = ua + *hs;
-        if (!(x < bb) || bb - x < G_SNAP * span_all)
+        if (!(x < bb) || bb - x < snap)
             x = bb;
         conica_code rc = too_many(max_iter, stats, st);
         if (rc != CONICA_OK)
@@ -1617,7 +1632,7 @@ static int c3_chain_grow(c3m *m)
  * ua + hs0 beyond bb, and a failure ends the search (the caller then
  * searches inside the interval). *xf / *df: a known failing chord end
  * (*xf <= ua: none) on entry, the last failing one on return. */
-static conica_code c3_cross(c3m *m, double dev0, double hs0, double b_end, double span_all,
+static conica_code c3_cross(c3m *m, double dev0, double hs0, double b_end,
                             size_t max_iter, conica_plot_stats *stats, int *found,
                             double *xo, double *devo, size_t *jo, double *xf, double *df,
                             conica_status *st)
@@ -1653,7 +1668,7 @@ static conica_code c3_cross(c3m *m, double dev0, double hs0, double b_end, doubl
         if (m->nc == 0)
             break;
         double end = m->T[m->cmu[m->nc] + 1];
-        x = cross_trial_end(x, end, b_end, G_SNAP * span_all);
+        x = cross_trial_end(x, end, b_end, G_SNAP * (x - ua));
         if (x <= best_x || (have_fail && x >= fail_x))
             break;
         conica_code rc = too_many(max_iter, stats, st);
@@ -1769,8 +1784,7 @@ static conica_code c3_march(const conica_bspline *g, double tol, double tol_eff,
     m->Rt = m->buf[2];
     m->Lb = m->buf[3];
     m->Rb = m->buf[4];
-    double a = g->knots[3], b = g->knots[g->n], span = b - a, pt[2];
-    double hs = span, min_step = span * 1e-13;
+    double b = g->knots[g->n], pt[2], hs;
     m->bend = b;
     size_t splits = 0;
     conica_code rc = CONICA_OK;
@@ -1780,8 +1794,8 @@ static conica_code c3_march(const conica_bspline *g, double tol, double tol_eff,
         double x = b, dev = 0.0, xf = m->ua, df = 0.0, step;
         int found = 0, last = 0;
         size_t j = 0;
-        if (m->bb < b && m->ua + hs > m->bb + G_SNAP * span) {
-            rc = c3_cross(m, -1.0, hs, b, span, max_iter, stats, &found, &x, &dev, &j, &xf, &df, st);
+        if (m->bb < b && m->ua + hs > m->bb + G_SNAP * hs) {
+            rc = c3_cross(m, -1.0, hs, b, max_iter, stats, &found, &x, &dev, &j, &xf, &df, st);
             if (rc != CONICA_OK)
                 break;
             if (!found && xf > m->ua) { /* shrink from the failed trial, D ~ h^2 */
@@ -1791,7 +1805,7 @@ static conica_code c3_march(const conica_bspline *g, double tol, double tol_eff,
             }
         }
         if (!found) {
-            rc = c3_search(m, &hs, span, min_step, max_iter, stats, &x, &dev, st);
+            rc = c3_search(m, max_iter, &hs, stats, &x, &dev, st);
             if (rc != CONICA_OK)
                 break;
         }
@@ -1814,7 +1828,7 @@ static conica_code c3_march(const conica_bspline *g, double tol, double tol_eff,
         } else {
             double x2 = x, dev2 = dev;
             if (dev < G_CROSS * tol) { /* try a longer chord across the knot */
-                rc = c3_cross(m, dev, 0.0, b, span, max_iter, stats, &found, &x2, &dev2, &j, &xf, &df,
+                rc = c3_cross(m, dev, 0.0, b, max_iter, stats, &found, &x2, &dev2, &j, &xf, &df,
                               st);
                 if (rc != CONICA_OK)
                     break;
@@ -1978,7 +1992,6 @@ static conica_code general_march(const conica_bspline *g, double tol, double tol
     m->next = close ? G_CLOSE_NEXT : G_NEXT;
     conica_code rc = CONICA_OK;
     double hs = b - a; /* first guess: the whole piece */
-    double min_step = (b - a) * 1e-13;
     size_t splits = 0;
     enter_interval(m, next_span(m, p), 0);
     double K0 = start_k(m); /* the first trial follows the curvature at a */
@@ -1991,7 +2004,7 @@ static conica_code general_march(const conica_bspline *g, double tol, double tol
     for (;;) {
         double x = b, dev = 0.0;
         int halved = 0;
-        rc = bez_search(m, &hs, b - a, min_step, b, max_iter, stats, &x, &dev, &halved, st);
+        rc = bez_search(m, &hs, b, max_iter, stats, &x, &dev, &halved, st);
         if (rc != CONICA_OK)
             goto done;
         double step = x - m->ua;
@@ -2015,7 +2028,7 @@ static conica_code general_march(const conica_bspline *g, double tol, double tol
                 /* the first trial: the remainder's cubic model continued
                  * past the knot (a C^(p-1) join) when planar polynomial */
                 double hs0 = pm ? march_model_step(m, tol_eff, 1.0, 0) : 0.0;
-                rc = cross_search(m, dev, hs0, b, b - a, max_iter, stats, &found, &x2, &dev2, &j, &nc,
+                rc = cross_search(m, dev, hs0, b, max_iter, stats, &found, &x2, &dev2, &j, &nc,
                                   st);
                 if (rc != CONICA_OK)
                     goto done;
