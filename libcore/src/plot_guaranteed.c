@@ -814,6 +814,14 @@ static double bez_cert(march *m, const double *P1, const double *P2, int steer)
                 }
                 D = e * inv;
                 m->flops += P2 ? 60.0 : 30.0;
+            } else if (rational && p == 2) { /* exact, plot_conic.c */
+                double e = conica__r2_absmax(s1, w1);
+                if (P2) {
+                    double e2 = conica__r2_absmax(s2, w2);
+                    e = e2 > e ? e2 : e;
+                }
+                D = e * inv;
+                m->flops += P2 ? 80.0 : 12.0;
             } else if (D > m->tol_eff ? D <= G_REFINE_RATIO * m->tol_eff
                                       : (steer && D >= G_GROW_BELOW * m->tol &&
                                          p <= G_REFINE_MAX_P)) {
@@ -1018,8 +1026,9 @@ static double chain_cert(march *m, const double *last, size_t j)
             inside = signed_dists(m, P, k == 0 ? 1 : 0, k == j ? p - 1 : p, a, cx, cy, c2, exact,
                                   s, t, w, &smax) ||
                      (exact && proj_inside(t, p, c2));
-            double e = exact ? bern_max(s, p) : smax;
-            if (inside && !exact && e > lim && e <= G_REFINE_RATIO * lim) {
+            int r2 = rational && p == 2; /* exact, plot_conic.c */
+            double e = exact ? bern_max(s, p) : (r2 && inside ? conica__r2_absmax(s, w) : smax);
+            if (inside && !exact && !r2 && e > lim && e <= G_REFINE_RATIO * lim) {
                 /* near tol: the sub-arc's form on its two halves, as in
                  * bez_cert (the coefficients alone over-estimate a bump of
                  * degree p by up to p / (p - 1)) */
@@ -1929,6 +1938,18 @@ static double q2_step(march *m, double T)
     return lam * L;
 }
 
+/* general_march's trial for a planar rational quadratic (a conic arc):
+ * the longest chord within T of the remainder's own conic, exactly
+ * (plot_conic.c), from lam0, the previous chord in units of the
+ * remainder (0: none); twice the remainder when all of it is within T. */
+static double r2_trial(march *m, double T, double lam0)
+{
+    size_t ev = 0;
+    double lam = conica__r2_step(m->R, T, lam0, &ev);
+    m->flops += 45.0 * (double)ev;
+    return lam * (m->bb - m->ua);
+}
+
 /* general_march's model_lam trial (planar polynomial, degree >= 4): the
  * step in parameter length from the remainder's start, lam0 in units of
  * the remainder as for model_lam. */
@@ -1982,13 +2003,14 @@ static conica_code general_march(const conica_bspline *g, double tol, double tol
     m->tol_eff = tol_eff;
     int close = m->p <= G_CLOSE_MAX_P && m->p >= G_CLOSE_MIN_P;
     int q2 = m->p == 2 && m->d == 2 && m->h == 2; /* see q2_step */
+    int r2 = m->p == 2 && m->d == 2 && m->h == 3; /* see r2_trial */
     /* planar polynomial degree >= 4: model_lam predicts, aiming at Q_AIM
      * (degrees up to G_CLOSE_MAX_P, see Q_AIM) or G_NEXT */
     int pm = m->p >= G_CLOSE_MIN_P && m->d == 2 && m->h == 2, pq = pm && close;
     m->aim = pq ? Q_AIM : G_NEXT;
-    m->good = q2 || pq ? Q_GOOD : (close ? G_CLOSE_GOOD : G_GOOD);
-    m->shrink_aim = q2 || pq ? Q_AIM : G_TARGET;
-    m->shrink_max = q2 || pq ? Q_SHRINK : 0.8;
+    m->good = q2 || r2 || pq ? Q_GOOD : (close ? G_CLOSE_GOOD : G_GOOD);
+    m->shrink_aim = q2 || r2 || pq ? Q_AIM : G_TARGET;
+    m->shrink_max = q2 || r2 || pq ? Q_SHRINK : 0.8;
     m->next = close ? G_CLOSE_NEXT : G_NEXT;
     conica_code rc = CONICA_OK;
     double hs = b - a; /* first guess: the whole piece */
@@ -1999,6 +2021,8 @@ static conica_code general_march(const conica_bspline *g, double tol, double tol
         hs = sqrt(m->next * tol / K0);
     if (q2)
         hs = q2_step(m, Q_AIM * tol_eff);
+    if (r2)
+        hs = r2_trial(m, Q_AIM * tol_eff, 0.0);
     if (pm)
         hs = march_model_step(m, tol_eff, 0.0, m->bb >= b);
     for (;;) {
@@ -2074,8 +2098,9 @@ static conica_code general_march(const conica_bspline *g, double tol, double tol
             hs = march_model_step(m, tol_eff, m->ua == x ? step / (m->bb - m->ua) : 0.0,
                                   m->bb >= b);
         } else {
-            hs = q2 ? q2_step(m, Q_AIM * tol_eff)
-                    : next_step(use_k, use_k ? start_k(m) : 0.0, dev, step, tol, m->next);
+            hs = q2   ? q2_step(m, Q_AIM * tol_eff)
+                 : r2 ? r2_trial(m, Q_AIM * tol_eff, m->ua == x ? step / (m->bb - m->ua) : 0.0)
+                      : next_step(use_k, use_k ? start_k(m) : 0.0, dev, step, tol, m->next);
         }
     }
 done:
