@@ -25,13 +25,10 @@
 
 #include "plot_internal.h"
 
-/* r2_step: stop when D is within this fraction of T; at most R2_ITER
- * evaluations of the deviation; one step changes lam by a factor within
- * [R2_FMIN, R2_FMAX]. */
-#define R2_STOP 2e-3
-#define R2_ITER 6
-#define R2_FMIN 0.25
-#define R2_FMAX 4.0
+/* conica__r2_step: stop when a step changes lam by at most this fraction
+ * of it (D ~ lam^2: within twice that of T); at most R2_ITER steps. */
+#define R2_STOP 1e-3
+#define R2_ITER 8
 
 /* |N / W| at u (power-basis coefficients n0..n2, d0..d2). */
 static double r2_val(double n0, double n1, double n2, double d0, double d1, double d2, double u)
@@ -74,38 +71,42 @@ double conica__r2_absmax(const double *s, const double *w)
     return best;
 }
 
-double conica__r2_chord_dev(const double *R, double lam)
-{
-    double q1[3], r1[3], q2[3];
-    for (int c = 0; c < 3; c++) {
-        q1[c] = R[c] + lam * (R[3 + c] - R[c]);
-        r1[c] = R[3 + c] + lam * (R[6 + c] - R[3 + c]);
-        q2[c] = q1[c] + lam * (r1[c] - q1[c]);
-    }
-    double ax = R[0] / R[2], ay = R[1] / R[2];
-    double mx = q1[0] / q1[2] - ax, my = q1[1] / q1[2] - ay;
-    double cx = q2[0] / q2[2] - ax, cy = q2[1] / q2[2] - ay;
-    double c2 = cx * cx + cy * cy;
-    if (!(c2 > 0.0) || !(R[2] * q2[2] > 0.0))
-        return 0.0;
-    double s = fabs(mx * cy - my * cx) / sqrt(c2);
-    return s * q1[2] / (q1[2] + sqrt(R[2] * q2[2]));
-}
-
+/* Longest chord in closed form. For the remainder R (homogeneous points
+ * R_i = (x_i w_i, y_i w_i, w_i)) and its sub-arc [0, lam] (de Casteljau:
+ * Q_0 = R_0, Q_1 = (1 - lam) R_0 + lam R_1, Q_2 = R(lam)), the middle
+ * point's distance to the chord's line is det[Q_0, Q_1, Q_2] /
+ * (w(Q_0) w(Q_1) w(Q_2) |b - a|), with det[Q_0, Q_1, Q_2] =
+ * lam^3 det[R_0, R_1, R_2] = lam^3 w_0 (u x v), u = R_1 - a w_1,
+ * v = R_2 - a w_2 (spatial parts, a = R_0 / w_0), and
+ * b - a = lam e / W(lam), e = 2 (1 - lam) u + lam v. Times the standard
+ * form's w / (1 + w), w = w(Q_1) / sqrt(w_0 W(lam)) (conica__r2_absmax),
+ *   D(lam) = lam^2 |u x v| / (|e| (w(Q_1) + sqrt(w_0 W(lam)))),
+ * whose root D = T is the fixed point of
+ *   lam = sqrt(T |e| (w(Q_1) + sqrt(w_0 W)) / |u x v|),
+ * a function of lam that varies by O(lam) only: a few steps from the
+ * guess (or from lam = 0). */
 double conica__r2_step(const double *R, double T, double lam, size_t *evals)
 {
-    lam = lam > 0.0 && lam < 1.0 ? lam : 1.0;
+    double w0 = R[2], w1 = R[5], w2 = R[8], ax = R[0] / w0, ay = R[1] / w0;
+    double ux = R[3] - ax * w1, uy = R[4] - ay * w1, vx = R[6] - ax * w2, vy = R[7] - ay * w2;
+    double cr = fabs(ux * vy - uy * vx);
+    if (!(cr > 0.0))
+        return 2.0; /* straight */
+    double k = T / cr;
+    lam = lam > 0.0 && lam < 1.0 ? lam : 0.0;
     for (int it = 0; it < R2_ITER; it++) {
-        double D = conica__r2_chord_dev(R, lam);
+        double v = 1.0 - lam, ex = 2.0 * v * ux + lam * vx, ey = 2.0 * v * uy + lam * vy;
+        double W = v * (v * w0 + 2.0 * lam * w1) + lam * lam * w2, wq = w0 + lam * (w1 - w0);
         ++*evals;
-        if (lam >= 1.0 && D <= T)
-            return 2.0; /* the whole remainder */
-        double f = D > 0.0 ? sqrt(T / D) : R2_FMAX; /* D ~ K lam^2 */
-        f = f < R2_FMIN ? R2_FMIN : (f > R2_FMAX ? R2_FMAX : f);
-        double nl = lam * f;
-        if (fabs(D - T) <= R2_STOP * T)
+        if (!(W > 0.0))
             break;
+        double nl = sqrt(k * sqrt(ex * ex + ey * ey) * (wq + sqrt(w0 * W)));
+        if (nl >= 1.0 && lam >= 1.0)
+            return 2.0; /* the whole remainder is within T */
+        int done = fabs(nl - lam) <= R2_STOP * nl;
         lam = nl < 1.0 ? nl : 1.0;
+        if (done)
+            break;
     }
     return lam;
 }

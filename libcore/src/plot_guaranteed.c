@@ -1946,7 +1946,7 @@ static double r2_trial(march *m, double T, double lam0)
 {
     size_t ev = 0;
     double lam = conica__r2_step(m->R, T, lam0, &ev);
-    m->flops += 45.0 * (double)ev;
+    m->flops += 12.0 + 22.0 * (double)ev;
     return lam * (m->bb - m->ua);
 }
 

@@ -100,14 +100,12 @@ double conica__now(void);
 
 /* Planar rational quadratics (plot_conic.c). conica__r2_absmax: the
  * largest |sum B_i w_i s_i / sum B_i w_i| over [0, 1] (quadratic
- * Bernstein B_i, w_i > 0), exact. conica__r2_chord_dev: the distance of
- * the arc to the line of its chord [R(0), R(lam)], R three homogeneous
- * points (x w, y w, w) of a remainder (the distance to the chord segment
- * when the arc projects onto it). conica__r2_step: the lam in (0, 1]
- * where that deviation is T (2 when the whole remainder is within T),
- * from the guess lam (<= 0: none); *evals counts deviations computed. */
+ * Bernstein B_i, w_i > 0), exact. conica__r2_step: for a remainder R of
+ * three homogeneous points (x w, y w, w), the lam in (0, 1] where the
+ * distance of the arc [0, lam] to its chord's line is T (2 when the whole
+ * remainder is within T), from the guess lam (<= 0: none); *evals counts
+ * the steps. */
 double conica__r2_absmax(const double *s, const double *w);
-double conica__r2_chord_dev(const double *R, double lam);
 double conica__r2_step(const double *R, double T, double lam, size_t *evals);
 
 #endif
