@@ -4,6 +4,7 @@
  * (seed 000, Section 1.1; README.md). */
 #include <errno.h>
 #include <limits.h>
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -29,7 +30,8 @@ static void usage(FILE *f)
             "usage: conica subdivide [-k LEVELS] [--open|--closed] [--precise]\n"
             "                        [--estimate-normals] [--normals area|circle]\n"
             "                        [--reference-compatible] [--max-points N]\n"
-            "                        [--max-input-points N] [--threads N] [--time]\n"
+            "                        [--max-input-points N] [--threads N] [--noise X]\n"
+            "                        [--time]\n"
             "                        [-o OUT] [IN]\n"
             "\n"
             "Refine a point-normal curve with conic-preserving interpolatory subdivision\n"
@@ -57,6 +59,9 @@ static void usage(FILE *f)
             "                          the input file size is capped by the environment\n"
             "                          variable CONICA_MAX_INPUT_BYTES, default %zu bytes)\n"
             "      --threads N         worker threads (results are bit-identical for any N)\n"
+            "      --noise X           rounding of the input coordinates (e.g. half a unit\n"
+            "                          of the last digit written): turns within it make no\n"
+            "                          inflection points (default 0: the doubles' own)\n"
             "      --time              print `subdivide: N edge points in S s (U us/point)` on\n"
             "                          stderr: the subdivision alone, best of %d runs\n"
             "  -o, --output OUT        write to OUT (`-` = stdout) via a temporary file\n"
@@ -74,6 +79,7 @@ typedef struct options {
     conica_normal_method method;
     size_t max_points, max_input_points;
     int threads;
+    double noise;
     const char *in, *out;
 } options;
 
@@ -100,6 +106,7 @@ static int parse_args(int argc, char **argv, options *o)
     o->max_points = CONICA_SUBDIV_DEFAULT_MAX_POINTS;
     o->max_input_points = CONICA_CURVE_MAX_INPUT_POINTS;
     o->threads = 0;
+    o->noise = 0.0;
     o->in = NULL;
     o->out = NULL;
 
@@ -177,6 +184,12 @@ static int parse_args(int argc, char **argv, options *o)
                 return cli_usage_error(USAGE_PROG, "--threads needs an integer in 1..%d%s%s%s",
                                        MAX_THREADS, v ? ", not '" : "", v ? v : "", v ? "'" : "");
             o->threads = (int)num;
+        } else if (strncmp(a, "--noise", 7) == 0 && (a[7] == '\0' || a[7] == '=')) {
+            v = opt_value(argc, argv, &i, a, 7);
+            if (!v || cli_parse_double(v, &o->noise) || !(o->noise >= 0) || !isfinite(o->noise))
+                return cli_usage_error(USAGE_PROG,
+                                       "--noise needs a finite number >= 0%s%s%s",
+                                       v ? ", not '" : "", v ? v : "", v ? "'" : "");
         } else {
             return cli_usage_error(USAGE_PROG, "unknown option '%s'", a);
         }
@@ -279,6 +292,7 @@ int conica_cmd_subdivide(int argc, char **argv)
     s.max_points = o.max_points;
     if (o.threads > 0)
         s.threads = o.threads;
+    s.noise = o.noise;
 
     /* Open the output first so that an unwritable target fails before a long
      * computation; the temporary file is dropped on any later failure. */
