@@ -11,10 +11,9 @@
  * --max-attributes and --max-namespaces
  * (--max-input-bytes is described by each tool: its default differs). */
 #define CONICA_SVG_CLI_LIMITS_HELP                                                           \
-    "  --max-depth N         XML element nesting cap (default 256; above 256 libxml2's\n"    \
-    "                        own caps are lifted: XML_PARSE_HUGE)\n"                         \
+    "  --max-depth N         XML element nesting cap (default 256)\n"                       \
     "  --max-elements N      XML element cap (default 1048576)\n"                            \
-    "  --max-path-bytes N    cap on one d/points attribute (default 8 MiB)\n"              \
+    "  --max-path-bytes N    cap on one d/points attribute (default 32 MiB)\n"             \
     "  --max-attributes N    cap on the attributes of one element (default 256)\n"         \
     "  --max-namespaces N    cap on the xmlns declarations in scope at one element\n"       \
     "                        (its own and its ancestors', default 64)\n"
