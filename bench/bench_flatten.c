@@ -33,6 +33,8 @@
 
 #ifdef CONICA_HAVE_CAIRO
 #include <cairo.h>
+
+#include "cairo_points.h"
 #endif
 
 #define NRANDOM 50
@@ -41,13 +43,6 @@
 #define CHECK_SAMPLES 200 /* curve samples per piece for cairo's violations */
 
 static const double rel_tols[3] = {1e-2, 1e-3, 1e-4};
-
-static double cpu_now(void)
-{
-    struct timespec ts;
-    clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts);
-    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
-}
 
 static void table_greedy(const char *splines_dir, int verbose)
 {
@@ -107,6 +102,13 @@ static void table_greedy(const char *splines_dir, int verbose)
 }
 
 #ifdef CONICA_HAVE_CAIRO
+static double cpu_now(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts);
+    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+}
+
 static unsigned long long rng = 0x853C49E6748FEA9Bull;
 static double urand(void)
 {
@@ -116,21 +118,6 @@ static double urand(void)
     return (double)(rng >> 11) / 9007199254740992.0;
 }
 
-/* Distance of q to the polyline xy[0..n). */
-static double dist_poly(const double *q, const double *xy, size_t n)
-{
-    double best = INFINITY;
-    for (size_t i = 0; i + 1 < n; i++) {
-        const double *a = xy + 2 * i, *b = a + 2;
-        double dx = b[0] - a[0], dy = b[1] - a[1], l2 = dx * dx + dy * dy;
-        double t = l2 > 0 ? ((q[0] - a[0]) * dx + (q[1] - a[1]) * dy) / l2 : 0;
-        t = t < 0 ? 0 : (t > 1 ? 1 : t);
-        double ex = q[0] - a[0] - t * dx, ey = q[1] - a[1] - t * dy, d = sqrt(ex * ex + ey * ey);
-        best = d < best ? d : best;
-    }
-    return best;
-}
-
 /* cairo's flattening of one cubic (c[8]) into xy (cap points); returns
  * the point count. */
 static size_t cairo_flat(cairo_t *cr, const double *c, double *xy, size_t cap)
@@ -138,19 +125,7 @@ static size_t cairo_flat(cairo_t *cr, const double *c, double *xy, size_t cap)
     cairo_new_path(cr);
     cairo_move_to(cr, c[0], c[1]);
     cairo_curve_to(cr, c[2], c[3], c[4], c[5], c[6], c[7]);
-    cairo_path_t *path = cairo_copy_path_flat(cr);
-    size_t n = 0;
-    for (int i = 0; i < path->num_data; i += path->data[i].header.length) {
-        const cairo_path_data_t *d = &path->data[i];
-        if ((d->header.type == CAIRO_PATH_MOVE_TO || d->header.type == CAIRO_PATH_LINE_TO) &&
-            n < cap) {
-            xy[2 * n] = d[1].point.x;
-            xy[2 * n + 1] = d[1].point.y;
-            n++;
-        }
-    }
-    cairo_path_destroy(path);
-    return n;
+    return bench_cairo_points(cr, xy, cap);
 }
 
 static void table_cairo(void)
@@ -226,13 +201,7 @@ static void table_cairo(void)
             for (size_t i = 0; i < BEZ_COUNT; i++) {
                 size_t n = cairo_flat(cr, cub + 8 * i, xy, cap);
                 pc += n;
-                double dc = 0;
-                for (int k = 0; k <= CHECK_SAMPLES; k++) {
-                    double x[3];
-                    fc_point(&sp[i], (double)k / CHECK_SAMPLES, x);
-                    double d = dist_poly(x, xy, n);
-                    dc = d > dc ? d : dc;
-                }
+                double dc = fc_curve_to_polyline(&sp[i], xy, n, CHECK_SAMPLES);
                 wc = dc / T > wc ? dc / T : wc;
                 vc += dc > T;
                 if (conica_plot(&sp[i], &ps, &pl, NULL, NULL) == CONICA_OK) {

@@ -73,3 +73,14 @@ $(BENCH_FAIRNESS): $(BUILD)/obj/bench/bench_fairness.o $(BUILD)/lib/libconica_te
 	@mkdir -p $(@D)
 	$(CC) $(LDFLAGS) -o $@ $< $(BUILD)/lib/libconica_testsupport.a $(CLI_A) $(CORE_A) $(CORE_LIBS) $(FT_LIBS)
 BENCH_BINS += $(BENCH_FAIRNESS)
+
+# ---- bench_arcs (issue 38): Table A, cubic / quadratic / conic arcs / NURBS ellipses
+# vs the greedy optimum and cairo in one run (cairo optional, as for bench_flatten)
+BENCH_ARCS := $(BUILD)/bench/bench_arcs
+$(BUILD)/obj/bench/bench_arcs.o: CPPFLAGS += -Itests/support \
+    $(if $(CAIRO_FOUND),-DCONICA_HAVE_CAIRO $(patsubst -I%,-isystem %,$(shell $(PKG_CONFIG) --cflags cairo)))
+$(BENCH_ARCS): $(BUILD)/obj/bench/bench_arcs.o $(BUILD)/lib/libconica_testsupport.a $(CORE_A)
+	@mkdir -p $(@D)
+	$(CC) $(LDFLAGS) -o $@ $< $(BUILD)/lib/libconica_testsupport.a $(CORE_A) $(CORE_LIBS) \
+	    $(FT_LIBS) $(if $(CAIRO_FOUND),$(shell $(PKG_CONFIG) --libs cairo))
+BENCH_BINS += $(BENCH_ARCS)

@@ -50,7 +50,7 @@ extern "C" {
 #define CONICA_SVG_DEFAULT_MAX_BYTES ((size_t)64 << 20)     /**< document bytes */
 #define CONICA_SVG_DEFAULT_MAX_DEPTH ((size_t)256)          /**< XML element nesting */
 #define CONICA_SVG_DEFAULT_MAX_ELEMENTS ((size_t)1 << 20)   /**< XML elements */
-#define CONICA_SVG_DEFAULT_MAX_PATH_BYTES ((size_t)8 << 20) /**< one d/points attribute */
+#define CONICA_SVG_DEFAULT_MAX_PATH_BYTES ((size_t)32 << 20) /**< one d/points attribute */
 #define CONICA_SVG_DEFAULT_MAX_POINTS ((size_t)1 << 26)     /**< output points, whole document */
 /** Attributes of one element (xmlns declarations not counted): libxml2's
  * duplicate-attribute check is quadratic in this (10^5 attributes on one
@@ -162,11 +162,11 @@ typedef struct conica_svg_doc conica_svg_doc;
 /**
  * @brief Parse an SVG document from memory, safely: no network
  *        (XML_PARSE_NONET), no external DTD, no entity substitution, no
- *        XInclude, libxml2's own size limits kept (no XML_PARSE_HUGE; the
- *        push parser lets large documents through) unless lim->max_depth
- *        exceeds libxml2's depth cap of 256 (then XML_PARSE_HUGE, which
- *        also lifts libxml2's 10 MB cap on one token: the document size
- *        cap still bounds it); depth and element caps are counted while
+ *        XInclude; libxml2's own caps (10 MB on one token, 256 levels)
+ *        give way to ours (XML_PARSE_HUGE: the document size cap bounds
+ *        every token, lim->max_path_bytes one path's data, so a single
+ *        path of 10^6 vertices is read), the document parsed in one pass
+ *        (linear in one long attribute value); depth and element caps are counted while
  *        parsing, so the parse stops where one is crossed; an entity declaration
  *        that could expand (external or parameter entity: XXE; text with
  *        references or markup: billion laughs; text over 1 KB) makes the
@@ -180,7 +180,7 @@ typedef struct conica_svg_doc conica_svg_doc;
  *        CONICA_ERR_LIMIT and its line before any parsing.
  *        Any error libxml2 reports fails the load, also those
  *        after which libxml2 itself goes on or stops with the document
- *        still "well-formed" (a text node over its 10 MB cap, an unbound
+ *        still "well-formed" (a text node over its token cap, an unbound
  *        namespace prefix): st->message then starts with what was wrong and
  *        quotes libxml2's first message; libxml2 prints nothing itself.
  *        Blank text, comments, namespaces and unknown nodes are

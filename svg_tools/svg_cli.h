@@ -15,13 +15,12 @@
  * conica_svg__cli_limit() with the option's full name. */
 #define CONICA_SVG_CLI_LIMIT_OPTS(first)                                                       \
     {(first), "max-depth", CLI_ARG_REQUIRED, "N", NULL,                                        \
-     "XML element nesting cap (default 256; above 256\n"                                       \
-     "libxml2's own caps are lifted: XML_PARSE_HUGE)",                                          \
+     "XML element nesting cap (default 256)",                                                 \
      {0, 0, 0}},                                                                               \
         {(first) + 1, "max-elements", CLI_ARG_REQUIRED, "N", NULL,                             \
          "XML element cap (default 1048576)", {0, 0, 0}},                                      \
         {(first) + 2, "max-path-bytes", CLI_ARG_REQUIRED, "N", NULL,                           \
-         "cap on one d/points attribute (default 8 MiB)", {0, 0, 0}},                          \
+         "cap on one d/points attribute (default 32 MiB)", {0, 0, 0}},                          \
         {(first) + 3, "max-attributes", CLI_ARG_REQUIRED, "N", NULL,                           \
          "cap on the attributes of one element (default 256)", {0, 0, 0}},                     \
         {(first) + 4, "max-namespaces", CLI_ARG_REQUIRED, "N", NULL,                           \

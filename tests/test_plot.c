@@ -330,9 +330,85 @@ TEST_CASE("guaranteed mode on a rational circle (NURBS)", "[plot][guaranteed][ra
         /* near-optimal: the minimum for a circle is pi / acos(1 - tol) */
         double nmin = 3.14159265358979 / acos(1 - tols[t]);
         CHECK_LE((double)pl.n, 1.3 * nmin + 4);
+        /* chords cross the G1 joins at the quarter points (no piece
+         * ends) and take the exact conic deviation (plot_conic.c) */
+        CHECK_LE((double)pl.n, 1.02 * nmin + 2);
         conica_polyline_free(&pl);
     }
     conica_bspline_free(&s);
+}
+
+/* A random ellipse arc (sweep up to pi) as one rational quadratic piece,
+ * or the full ellipse as the 9-point quadratic NURBS, in a 100 x 100 box. */
+static void random_conic(ct_rng *r, int full, conica_bspline *s)
+{
+    double ax = 5 + 45 * ct_rng_uniform(r), ay = 5 + 45 * ct_rng_uniform(r);
+    double rot = 6.283185307179586 * ct_rng_uniform(r);
+    double cx = 40 + 20 * ct_rng_uniform(r), cy = 40 + 20 * ct_rng_uniform(r), cs = cos(rot), sn = sin(rot);
+    double ux[9], uy[9], P[18], W[9];
+    size_t n;
+    if (full) {
+        const double hx[9] = {1, 1, 0, -1, -1, -1, 0, 1, 1}, hy[9] = {0, 1, 1, 1, 0, -1, -1, -1, 0};
+        n = 9;
+        for (size_t i = 0; i < n; i++) {
+            ux[i] = hx[i];
+            uy[i] = hy[i];
+            W[i] = i % 2 ? sqrt(0.5) : 1.0;
+        }
+    } else {
+        double sweep = 0.1 + 3.04 * ct_rng_uniform(r), t0 = 6.283185307179586 * ct_rng_uniform(r);
+        double h = 0.5 * sweep, m = t0 + h;
+        n = 3;
+        ux[0] = cos(t0);
+        uy[0] = sin(t0);
+        ux[1] = cos(m) / cos(h);
+        uy[1] = sin(m) / cos(h);
+        ux[2] = cos(t0 + sweep);
+        uy[2] = sin(t0 + sweep);
+        W[0] = W[2] = 1.0;
+        W[1] = cos(h);
+    }
+    for (size_t i = 0; i < n; i++) {
+        P[2 * i] = cx + cs * ax * ux[i] - sn * ay * uy[i];
+        P[2 * i + 1] = cy + sn * ax * ux[i] + cs * ay * uy[i];
+    }
+    const double kf[12] = {0, 0, 0, 1, 1, 2, 2, 3, 3, 4, 4, 4}, ka[6] = {0, 0, 0, 1, 1, 1};
+    REQUIRE_EQ(conica_bspline_set(2, 2, full ? kf : ka, full ? 12 : 6, P, n, W, s, NULL),
+               CONICA_OK);
+}
+
+TEST_CASE("guaranteed mode: conic arcs and NURBS ellipses within T, at the greedy optimum",
+          "[plot][guaranteed][rational]")
+{
+    /* the independent checker (tests/support/flatten_check.c) on every
+     * chord, both directions; the points within 2% of its greedy optimum
+     * (the longest chord within T from each point) over the set */
+    ct_rng rng;
+    ct_rng_init(&rng, 38);
+    const double tols[] = {0.1, 0.01, 0.001};
+    for (int full = 0; full < 2; full++) {
+        for (int t = 0; t < 3; t++) {
+            size_t pts = 0, greedy = 0;
+            CAPTURE_I(full);
+            CAPTURE_D(tols[t]);
+            for (int i = 0; i < (full ? 3 : 10); i++) {
+                conica_bspline s;
+                conica_bspline_init(&s);
+                random_conic(&rng, full, &s);
+                conica_polyline pl;
+                conica_polyline_init(&pl);
+                REQUIRE_EQ(fc_plot(&s, tols[t], &pl), CONICA_OK);
+                double back = 0, dev = fc_plot_dev(&s, &pl, &back);
+                CHECK_LE(dev, tols[t]);
+                CHECK_LE(back, tols[t]);
+                pts += pl.n;
+                greedy += fc_greedy(&s, tols[t]);
+                conica_polyline_free(&pl);
+                conica_bspline_free(&s);
+            }
+            CHECK_LE((double)pts, 1.02 * (double)greedy);
+        }
+    }
 }
 
 TEST_CASE("discontinuities split the output, C0 joins do not", "[plot][pieces]")
@@ -818,6 +894,86 @@ TEST_CASE("limits and bad settings", "[plot][limits]")
     CHECK_EQ(conica_plot_rule_from_name("nope"), -1);
     conica_polyline_free(&pl);
     conica_bspline_free(&s);
+}
+
+/* A clamped uniform cubic wave y = sin(fr i) through n control points,
+ * knots 0..n-3 (unit intervals). */
+static void long_wave(size_t n, double fr, conica_bspline *s)
+{
+    double *c = malloc(2 * n * sizeof *c), *k = malloc((n + 4) * sizeof *k);
+    REQUIRE(c != NULL && k != NULL);
+    for (size_t i = 0; i < n; i++) {
+        c[2 * i] = (double)i;
+        c[2 * i + 1] = sin(fr * (double)i);
+    }
+    for (size_t i = 0; i < n + 4; i++)
+        k[i] = i < 4 ? 0.0 : (i >= n ? (double)(n - 3) : (double)(i - 3));
+    REQUIRE_EQ(conica_bspline_set(3, 2, k, n + 4, c, n, NULL, s, NULL), CONICA_OK);
+    free(c);
+    free(k);
+}
+
+/* Points and trial steps of the guaranteed plot of s at tol; every
+ * stride-th chord checked by the independent dense checker. */
+static void plot_long(const conica_bspline *s, double tol, size_t stride, size_t *points,
+                      size_t *trials)
+{
+    conica_plot_settings set = conica_plot_defaults();
+    set.abs_tolerance = tol;
+    set.max_points = (size_t)1 << 24;
+    conica_polyline pl;
+    conica_polyline_init(&pl);
+    conica_plot_stats stats;
+    conica_status st;
+    conica_code rc = conica_plot(s, &set, &pl, &stats, &st);
+    if (rc != CONICA_OK)
+        INFO("plot: %s", st.message);
+    REQUIRE_EQ(rc, CONICA_OK);
+    REQUIRE(pl.t != NULL);
+    CHECK_EQ_U(pl.npieces, 1);
+    CHECK_EQ(pl.t[0], s->knots[3]);
+    CHECK_EQ(pl.t[pl.n - 1], s->knots[s->n]);
+    double worst = 0;
+    for (size_t i = stride / 2; i + 1 < pl.n; i += stride) {
+        double d = fc_chord_dev(s, pl.t[i], pl.t[i + 1]);
+        worst = d > worst ? d : worst;
+    }
+    CHECK_LE(worst, tol * (1 + 1e-9));
+    *points = pl.n;
+    *trials = stats.iterations;
+    conica_polyline_free(&pl);
+}
+
+TEST_CASE("guaranteed mode: long splines finish in work linear in their length",
+          "[plot][guaranteed][limits]")
+{
+    /* The search snapped any trial within G_SNAP times the whole domain
+     * to the interval's end; on 10^6 unit intervals that window (1e-3)
+     * held the shrunk retry of a failed trial, which was retried for
+     * ever (CONICA_ERR_LIMIT here). Points and trial steps per control
+     * point are the same at 10^4 and 10^6 control points. */
+    const struct {
+        size_t n;
+        double fr, tol;
+    } cases[] = {{1000000, 0.3, 1e-3}, {702349, 1.0, 1e-3}, {702349, 0.3, 1e-2}};
+    for (size_t c = 0; c < sizeof cases / sizeof cases[0]; c++) {
+        conica_bspline big, small;
+        conica_bspline_init(&big);
+        conica_bspline_init(&small);
+        CAPTURE_U(cases[c].n);
+        CAPTURE_D(cases[c].tol);
+        long_wave(cases[c].n, cases[c].fr, &big);
+        long_wave(10000, cases[c].fr, &small);
+        size_t pb, tb, ps, ts;
+        plot_long(&big, cases[c].tol, 9973, &pb, &tb);
+        plot_long(&small, cases[c].tol, 97, &ps, &ts);
+        double per_big = (double)pb / (double)(cases[c].n - 3);
+        double per_small = (double)ps / (double)(10000 - 3);
+        CHECK_REL(per_big, per_small, 0.01);
+        CHECK_LE((double)tb / (double)pb, 1.02 * (double)ts / (double)ps);
+        conica_bspline_free(&big);
+        conica_bspline_free(&small);
+    }
 }
 
 TEST_CASE("control points near +-DBL_MAX: too large, not 'tolerance is zero'", "[plot][limits]")

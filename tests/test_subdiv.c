@@ -1417,3 +1417,50 @@ TEST_CASE("estimated normals, ablations and statistics", "[subdiv][settings]")
     conica_subdiv_info_free(&info);
     conica_curve_free(&out);
 }
+
+/* 10^6 points of the blob r = R (1 + 0.3 cos 3t + 0.1 sin 5t) (six true
+ * inflections) around (ox, oy), subdivided once: the inflection count and
+ * the output size. */
+static void blob_counts(double ox, double oy, size_t *infl, size_t *out_n)
+{
+    const size_t n = 1000000;
+    const double R = 5.0, two_pi = 6.283185307179586;
+    double *xy = malloc(2 * n * sizeof *xy);
+    REQUIRE(xy != NULL);
+    for (size_t i = 0; i < n; i++) {
+        double t = two_pi * (double)i / (double)n;
+        double r = R * (1 + 0.3 * cos(3 * t) + 0.1 * sin(5 * t));
+        xy[2 * i] = ox + r * cos(t);
+        xy[2 * i + 1] = oy + r * sin(t);
+    }
+    conica_curve c, o;
+    conica_curve_init(&c);
+    conica_curve_init(&o);
+    REQUIRE_EQ(conica_curve_set(xy, NULL, n, 1, &c, NULL), CONICA_OK);
+    free(xy);
+    conica_subdiv_settings s = conica_subdiv_defaults();
+    s.levels = 1;
+    conica_subdiv_info info;
+    conica_subdiv_info_init(&info);
+    REQUIRE_EQ(conica_subdivide(&c, &s, &o, &info, NULL), CONICA_OK);
+    *infl = info.inflections;
+    *out_n = o.n;
+    conica_subdiv_info_free(&info);
+    conica_curve_free(&c);
+    conica_curve_free(&o);
+}
+
+TEST_CASE("the same inflection points wherever the curve sits (the coordinates' rounding)",
+          "[subdiv][inflections][invariance]")
+{
+    /* At (5000, 3000) the turns near the six true inflections fall to the
+     * coordinates' rounding (2^-41 there against 2^-51 at the origin), and
+     * their exact signs flipped: 252 inflection points instead of 6. */
+    size_t i0, n0, i1, n1;
+    blob_counts(0, 0, &i0, &n0);
+    blob_counts(5000, 3000, &i1, &n1);
+    CHECK_EQ_U(i0, 6);
+    CHECK_EQ_U(i1, i0);
+    CHECK_EQ_U(n1, n0);
+    CHECK_EQ_U(n0, 2 * (1000000 + 6));
+}

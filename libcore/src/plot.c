@@ -212,8 +212,34 @@ static void proj_point(const conica_bspline *s, size_t i, double *out)
         out[c] = s->ctrl[i * (size_t)s->dim + (size_t)c];
 }
 
-conica_code conica__pieces_make(const conica_bspline *s, int graph, conica__pieces *out,
-                                conica_status *st)
+/* A join at knot run start i (multiplicity p) where the tangent turns by
+ * less than this angle, in radians, counts as tangent-continuous. */
+#define CONICA__G1_SIN 1e-9
+
+/* Whether the clamped curve is tangent-continuous (G1) at the knot of
+ * multiplicity p starting at index i: the curve point there is control
+ * point i - 1, the one-sided tangents point along P_{i-1} - P_{i-2} and
+ * P_i - P_{i-1} (Böhm's end-tangent property of the restricted pieces;
+ * for a rational spline the same differences of the projected points). */
+static int g1_join(const conica_bspline *s, size_t i)
+{
+    size_t d = (size_t)s->dim;
+    const double *a = s->ctrl + (i - 2) * d, *b = a + d, *c = b + d;
+    double l2 = 0, r2 = 0, dot = 0, crs2 = 0;
+    for (size_t k = 0; k < d; k++) {
+        double l = b[k] - a[k], r = c[k] - b[k];
+        l2 += l * l;
+        r2 += r * r;
+        dot += l * r;
+    }
+    if (!(l2 > 0) || !(r2 > 0) || !(dot > 0))
+        return 0;
+    crs2 = l2 * r2 - dot * dot; /* |l x r|^2 by Lagrange's identity */
+    return crs2 <= CONICA__G1_SIN * CONICA__G1_SIN * l2 * r2;
+}
+
+conica_code conica__pieces_make(const conica_bspline *s, int graph, int keep_g1,
+                                conica__pieces *out, conica_status *st)
 {
     int where;
     size_t idx;
@@ -240,7 +266,7 @@ conica_code conica__pieces_make(const conica_bspline *s, int graph, conica__piec
         size_t m = 0;
         while (cl.knots[i + m] == z)
             m++;
-        if (m == p) {
+        if (m == p && !(keep_g1 && cl.dim >= 2 && g1_join(&cl, i))) {
             rc = conica__insert_raw(&cl, z, 1, st);
             if (rc != CONICA_OK) {
                 conica_bspline_free(&cl);
@@ -414,7 +440,7 @@ conica_code conica_plot(const conica_bspline *s, const conica_plot_settings *set
     double t0 = conica__now();
     int geometric = set->method == CONICA_PLOT_GUARANTEED || set->method == CONICA_PLOT_ADAPTIVE;
     conica__pieces pc = {0, NULL, NULL};
-    rc = conica__pieces_make(s, geometric, &pc, st);
+    rc = conica__pieces_make(s, geometric, set->method == CONICA_PLOT_GUARANTEED, &pc, st);
     if (rc != CONICA_OK)
         return rc;
     double tol = conica_plot_tolerance(s, set);

@@ -195,8 +195,16 @@
  * instead of searching for the longest first chord and then a short last
  * one. The same number of points in fewer trials. */
 #define G_HALVE 3.0
-/* A trial this close to the end (relative to the piece) ends there. */
+/* A trial this close to the end of the remainder or chain it is tried on
+ * (relative to that remainder's or trial chord's own parameter length,
+ * never to the whole piece: on a long spline G_SNAP times the domain can
+ * exceed a failed step's shrink, Q_SHRINK, and the search would retry the
+ * same snapped trial for ever) ends there. */
 #define G_SNAP 1e-9
+/* Least trial step, relative to the knot interval it lies in; at least
+ * G_MIN_STEP_ULPS ulps of the parameter, so a trial always moves. */
+#define G_MIN_STEP 1e-13
+#define G_MIN_STEP_ULPS 16.0
 /* Knot intervals one chord may span. */
 #define G_CHAIN_MAX 64
 #define BZ ((MAXP + 1) * HD)
@@ -806,6 +814,14 @@ static double bez_cert(march *m, const double *P1, const double *P2, int steer)
                 }
                 D = e * inv;
                 m->flops += P2 ? 60.0 : 30.0;
+            } else if (rational && p == 2) { /* exact, plot_conic.c */
+                double e = conica__r2_absmax(s1, w1);
+                if (P2) {
+                    double e2 = conica__r2_absmax(s2, w2);
+                    e = e2 > e ? e2 : e;
+                }
+                D = e * inv;
+                m->flops += P2 ? 80.0 : 12.0;
             } else if (D > m->tol_eff ? D <= G_REFINE_RATIO * m->tol_eff
                                       : (steer && D >= G_GROW_BELOW * m->tol &&
                                          p <= G_REFINE_MAX_P)) {
@@ -884,23 +900,30 @@ static double secant(double hp, double dp, double hf, double df, double tol)
     return h < lo ? lo : (h > hi ? hi : h);
 }
 
+/* Least trial step from ua in the knot interval [ba, bb], see G_MIN_STEP. */
+static double min_step_in(double ua, double ba, double bb)
+{
+    double h = G_MIN_STEP * (bb - ba), u = G_MIN_STEP_ULPS * DBL_EPSILON * fabs(ua);
+    return h > u ? h : u;
+}
+
 /* Longest certified chord from m->ua inside the current interval (trial
  * steps *hs from ua, at most to bb): on return *xo and *devo, the halves
  * of the accepted split in m->Lb / m->Rb (unless *xo == bb: then the
  * chord is the whole remainder m->R). *halved is set when the rest of the
  * piece (ending at b_end) is to take one more chord, see G_HALVE. */
-static conica_code bez_search(march *m, double *hs, double span_all, double min_step,
-                              double b_end, size_t max_iter,
+static conica_code bez_search(march *m, double *hs, double b_end, size_t max_iter,
                               conica_plot_stats *stats, double *xo, double *devo, int *halved,
                               conica_status *st)
 {
     double ua = m->ua, bb = m->bb, tol = m->tol;
+    double snap = G_SNAP * (bb - ua), min_step = min_step_in(ua, m->ba, bb);
     int have = 0, have_fail = 0, grows = 0, tries = 0;
     *halved = 0;
     double best_dev = 0, best_x = bb, fail_x = bb, fail_dev = 0;
     for (;;) {
         double x = ua + *hs;
-        if (!(x < bb) || bb - x < G_SNAP * span_all)
+        if (!(x < bb) || bb - x < snap)
             x = bb;
         conica_code rc = too_many(max_iter, stats, st);
         if (rc != CONICA_OK)
@@ -1003,8 +1026,9 @@ static double chain_cert(march *m, const double *last, size_t j)
             inside = signed_dists(m, P, k == 0 ? 1 : 0, k == j ? p - 1 : p, a, cx, cy, c2, exact,
                                   s, t, w, &smax) ||
                      (exact && proj_inside(t, p, c2));
-            double e = exact ? bern_max(s, p) : smax;
-            if (inside && !exact && e > lim && e <= G_REFINE_RATIO * lim) {
+            int r2 = rational && p == 2; /* exact, plot_conic.c */
+            double e = exact ? bern_max(s, p) : (r2 && inside ? conica__r2_absmax(s, w) : smax);
+            if (inside && !exact && !r2 && e > lim && e <= G_REFINE_RATIO * lim) {
                 /* near tol: the sub-arc's form on its two halves, as in
                  * bez_cert (the coefficients alone over-estimate a bump of
                  * degree p by up to p / (p - 1)) */
@@ -1080,7 +1104,7 @@ static double cross_trial_end(double x, double end, double b_end, double snap)
  * split halves are then in m->Lb / m->Rb (m->Lb its whole polygon when
  * *xo is its end). *nco gets the number of intervals loaded. */
 static conica_code cross_search(march *m, double dev0, double hs0, double b_end,
-                                double span_all, size_t max_iter,
+                                size_t max_iter,
                                 conica_plot_stats *stats, int *found, double *xo, double *devo,
                                 size_t *jo, size_t *nco, conica_status *st)
 {
@@ -1103,7 +1127,7 @@ static conica_code cross_search(march *m, double dev0, double hs0, double b_end,
         if (nc == 0)
             break;
         double end = m->T[m->cmu[nc] + 1];
-        x = cross_trial_end(x, end, b_end, G_SNAP * span_all);
+        x = cross_trial_end(x, end, b_end, G_SNAP * (x - ua));
         if (x <= best_x)
             break;
         conica_code rc = too_many(max_iter, stats, st);
@@ -1429,16 +1453,16 @@ static void c3_enter(c3m *m, size_t mu, size_t k)
 }
 
 /* bez_search on the current interval of a cubic. */
-static conica_code c3_search(c3m *m, double *hs, double span_all, double min_step,
-                             size_t max_iter, conica_plot_stats *stats,
+static conica_code c3_search(c3m *m, size_t max_iter, double *hs, conica_plot_stats *stats,
                              double *xo, double *devo, conica_status *st)
 {
     double ua = m->ua, bb = m->bb, tol = m->tol;
+    double snap = G_SNAP * (bb - ua), min_step = min_step_in(ua, m->ba, bb);
     int have = 0, have_fail = 0, grows = 0, tries = 0;
     double best_dev = 0, best_x = bb, fail_x = bb, fail_dev = 0;
     for (;;) {
         double x = ua + *hs;
-        if (!(x < bb) || bb - x < G_SNAP * span_all)
+        if (!(x < bb) || bb - x < snap)
             x = bb;
         conica_code rc = too_many(max_iter, stats, st);
         if (rc != CONICA_OK)
@@ -1617,7 +1641,7 @@ static int c3_chain_grow(c3m *m)
  * ua + hs0 beyond bb, and a failure ends the search (the caller then
  * searches inside the interval). *xf / *df: a known failing chord end
  * (*xf <= ua: none) on entry, the last failing one on return. */
-static conica_code c3_cross(c3m *m, double dev0, double hs0, double b_end, double span_all,
+static conica_code c3_cross(c3m *m, double dev0, double hs0, double b_end,
                             size_t max_iter, conica_plot_stats *stats, int *found,
                             double *xo, double *devo, size_t *jo, double *xf, double *df,
                             conica_status *st)
@@ -1653,7 +1677,7 @@ static conica_code c3_cross(c3m *m, double dev0, double hs0, double b_end, doubl
         if (m->nc == 0)
             break;
         double end = m->T[m->cmu[m->nc] + 1];
-        x = cross_trial_end(x, end, b_end, G_SNAP * span_all);
+        x = cross_trial_end(x, end, b_end, G_SNAP * (x - ua));
         if (x <= best_x || (have_fail && x >= fail_x))
             break;
         conica_code rc = too_many(max_iter, stats, st);
@@ -1769,8 +1793,7 @@ static conica_code c3_march(const conica_bspline *g, double tol, double tol_eff,
     m->Rt = m->buf[2];
     m->Lb = m->buf[3];
     m->Rb = m->buf[4];
-    double a = g->knots[3], b = g->knots[g->n], span = b - a, pt[2];
-    double hs = span, min_step = span * 1e-13;
+    double b = g->knots[g->n], pt[2], hs;
     m->bend = b;
     size_t splits = 0;
     conica_code rc = CONICA_OK;
@@ -1780,8 +1803,8 @@ static conica_code c3_march(const conica_bspline *g, double tol, double tol_eff,
         double x = b, dev = 0.0, xf = m->ua, df = 0.0, step;
         int found = 0, last = 0;
         size_t j = 0;
-        if (m->bb < b && m->ua + hs > m->bb + G_SNAP * span) {
-            rc = c3_cross(m, -1.0, hs, b, span, max_iter, stats, &found, &x, &dev, &j, &xf, &df, st);
+        if (m->bb < b && m->ua + hs > m->bb + G_SNAP * hs) {
+            rc = c3_cross(m, -1.0, hs, b, max_iter, stats, &found, &x, &dev, &j, &xf, &df, st);
             if (rc != CONICA_OK)
                 break;
             if (!found && xf > m->ua) { /* shrink from the failed trial, D ~ h^2 */
@@ -1791,7 +1814,7 @@ static conica_code c3_march(const conica_bspline *g, double tol, double tol_eff,
             }
         }
         if (!found) {
-            rc = c3_search(m, &hs, span, min_step, max_iter, stats, &x, &dev, st);
+            rc = c3_search(m, max_iter, &hs, stats, &x, &dev, st);
             if (rc != CONICA_OK)
                 break;
         }
@@ -1814,7 +1837,7 @@ static conica_code c3_march(const conica_bspline *g, double tol, double tol_eff,
         } else {
             double x2 = x, dev2 = dev;
             if (dev < G_CROSS * tol) { /* try a longer chord across the knot */
-                rc = c3_cross(m, dev, 0.0, b, span, max_iter, stats, &found, &x2, &dev2, &j, &xf, &df,
+                rc = c3_cross(m, dev, 0.0, b, max_iter, stats, &found, &x2, &dev2, &j, &xf, &df,
                               st);
                 if (rc != CONICA_OK)
                     break;
@@ -1915,6 +1938,18 @@ static double q2_step(march *m, double T)
     return lam * L;
 }
 
+/* general_march's trial for a planar rational quadratic (a conic arc):
+ * the longest chord within T of the remainder's own conic, exactly
+ * (plot_conic.c), from lam0, the previous chord in units of the
+ * remainder (0: none); twice the remainder when all of it is within T. */
+static double r2_trial(march *m, double T, double lam0)
+{
+    size_t ev = 0;
+    double lam = conica__r2_step(m->R, T, lam0, &ev);
+    m->flops += 12.0 + 22.0 * (double)ev;
+    return lam * (m->bb - m->ua);
+}
+
 /* general_march's model_lam trial (planar polynomial, degree >= 4): the
  * step in parameter length from the remainder's start, lam0 in units of
  * the remainder as for model_lam. */
@@ -1968,17 +2003,17 @@ static conica_code general_march(const conica_bspline *g, double tol, double tol
     m->tol_eff = tol_eff;
     int close = m->p <= G_CLOSE_MAX_P && m->p >= G_CLOSE_MIN_P;
     int q2 = m->p == 2 && m->d == 2 && m->h == 2; /* see q2_step */
+    int r2 = m->p == 2 && m->d == 2 && m->h == 3; /* see r2_trial */
     /* planar polynomial degree >= 4: model_lam predicts, aiming at Q_AIM
      * (degrees up to G_CLOSE_MAX_P, see Q_AIM) or G_NEXT */
     int pm = m->p >= G_CLOSE_MIN_P && m->d == 2 && m->h == 2, pq = pm && close;
     m->aim = pq ? Q_AIM : G_NEXT;
-    m->good = q2 || pq ? Q_GOOD : (close ? G_CLOSE_GOOD : G_GOOD);
-    m->shrink_aim = q2 || pq ? Q_AIM : G_TARGET;
-    m->shrink_max = q2 || pq ? Q_SHRINK : 0.8;
+    m->good = q2 || r2 || pq ? Q_GOOD : (close ? G_CLOSE_GOOD : G_GOOD);
+    m->shrink_aim = q2 || r2 || pq ? Q_AIM : G_TARGET;
+    m->shrink_max = q2 || r2 || pq ? Q_SHRINK : 0.8;
     m->next = close ? G_CLOSE_NEXT : G_NEXT;
     conica_code rc = CONICA_OK;
     double hs = b - a; /* first guess: the whole piece */
-    double min_step = (b - a) * 1e-13;
     size_t splits = 0;
     enter_interval(m, next_span(m, p), 0);
     double K0 = start_k(m); /* the first trial follows the curvature at a */
@@ -1986,12 +2021,14 @@ static conica_code general_march(const conica_bspline *g, double tol, double tol
         hs = sqrt(m->next * tol / K0);
     if (q2)
         hs = q2_step(m, Q_AIM * tol_eff);
+    if (r2)
+        hs = r2_trial(m, Q_AIM * tol_eff, 0.0);
     if (pm)
         hs = march_model_step(m, tol_eff, 0.0, m->bb >= b);
     for (;;) {
         double x = b, dev = 0.0;
         int halved = 0;
-        rc = bez_search(m, &hs, b - a, min_step, b, max_iter, stats, &x, &dev, &halved, st);
+        rc = bez_search(m, &hs, b, max_iter, stats, &x, &dev, &halved, st);
         if (rc != CONICA_OK)
             goto done;
         double step = x - m->ua;
@@ -2015,7 +2052,7 @@ static conica_code general_march(const conica_bspline *g, double tol, double tol
                 /* the first trial: the remainder's cubic model continued
                  * past the knot (a C^(p-1) join) when planar polynomial */
                 double hs0 = pm ? march_model_step(m, tol_eff, 1.0, 0) : 0.0;
-                rc = cross_search(m, dev, hs0, b, b - a, max_iter, stats, &found, &x2, &dev2, &j, &nc,
+                rc = cross_search(m, dev, hs0, b, max_iter, stats, &found, &x2, &dev2, &j, &nc,
                                   st);
                 if (rc != CONICA_OK)
                     goto done;
@@ -2061,8 +2098,9 @@ static conica_code general_march(const conica_bspline *g, double tol, double tol
             hs = march_model_step(m, tol_eff, m->ua == x ? step / (m->bb - m->ua) : 0.0,
                                   m->bb >= b);
         } else {
-            hs = q2 ? q2_step(m, Q_AIM * tol_eff)
-                    : next_step(use_k, use_k ? start_k(m) : 0.0, dev, step, tol, m->next);
+            hs = q2   ? q2_step(m, Q_AIM * tol_eff)
+                 : r2 ? r2_trial(m, Q_AIM * tol_eff, m->ua == x ? step / (m->bb - m->ua) : 0.0)
+                      : next_step(use_k, use_k ? start_k(m) : 0.0, dev, step, tol, m->next);
         }
     }
 done:

@@ -8,7 +8,7 @@
 #include "conica/plot.h"
 
 /* Continuous pieces of a spline (Section 1.1.2, check_continuous): each
- * clamped to its domain, interior knot multiplicities <= p-1. joined[k] is
+ * clamped to its domain, interior knot multiplicities <= p-1 (p at kept G1 joins, see below). joined[k] is
  * 1 when piece k starts where piece k-1 ends (C0 join), so the output keeps
  * one polyline piece. */
 typedef struct conica__pieces {
@@ -19,9 +19,14 @@ typedef struct conica__pieces {
 
 /* Split s. With graph != 0 a spline function becomes the planar curve
  * (t, f(t)) with control points (t*_j, c_j) (exact by linear precision;
- * rational functions are refused with CONICA_ERR_UNSUPPORTED). */
-conica_code conica__pieces_make(const conica_bspline *s, int graph, conica__pieces *out,
-                                conica_status *st);
+ * rational functions are refused with CONICA_ERR_UNSUPPORTED). With
+ * keep_g1, a curve is not split at a knot of multiplicity p where it is
+ * tangent-continuous (the joins of a NURBS circle): the guaranteed
+ * plotter's chords may cross it (its certificate needs only C0 inside a
+ * piece), so the piece ends cost no extra points; the piece then keeps
+ * that knot of multiplicity p. */
+conica_code conica__pieces_make(const conica_bspline *s, int graph, int keep_g1,
+                                conica__pieces *out, conica_status *st);
 void conica__pieces_free(conica__pieces *pc);
 
 /* Output accumulation with the max_points cap. */
@@ -92,5 +97,15 @@ double conica__turn_angle(const double *a, const double *q, const double *b, int
 double conica__ctrl_diagonal(const conica_bspline *s);
 
 double conica__now(void);
+
+/* Planar rational quadratics (plot_conic.c). conica__r2_absmax: the
+ * largest |sum B_i w_i s_i / sum B_i w_i| over [0, 1] (quadratic
+ * Bernstein B_i, w_i > 0), exact. conica__r2_step: for a remainder R of
+ * three homogeneous points (x w, y w, w), the lam in (0, 1] where the
+ * distance of the arc [0, lam] to its chord's line is T (2 when the whole
+ * remainder is within T), from the guess lam (<= 0: none); *evals counts
+ * the steps. */
+double conica__r2_absmax(const double *s, const double *w);
+double conica__r2_step(const double *R, double T, double lam, size_t *evals);
 
 #endif

@@ -1515,7 +1515,10 @@ static void SFX(infl_point)(const SFX(input) *in, int ref, size_t i, REAL *pxy, 
 }
 
 /* The edges that need an inflection point: need[i] for edge (i, i+1),
- * their number returned (SFX(load) reads the flags). */
+ * their number returned (SFX(load) reads the flags). Default mode then
+ * reads the sign changes at the coordinates' own rounding
+ * (conica__infl_at_rounding), so a curve gets the same inflection points
+ * wherever it sits; reference mode keeps the reference's test. */
 static size_t SFX(count_infl)(const SFX(input) *in, int ref, unsigned char *need)
 {
     size_t i, c = 0, ne = in->closed ? in->n : in->n - 1;
@@ -1523,6 +1526,8 @@ static size_t SFX(count_infl)(const SFX(input) *in, int ref, unsigned char *need
         need[i] = (unsigned char)SFX(needs_infl)(in, ref, i);
         c += need[i];
     }
+    if (!ref && c >= 2)
+        c = conica__infl_at_rounding(in->xyd, in->xyl, in->n, in->closed, in->noise, need);
     return c;
 }
 

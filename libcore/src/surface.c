@@ -254,7 +254,7 @@ static conica_code iso_plot(const conica_bspline_surface *s, int fix_v, double x
     if (rc != CONICA_OK)
         return rc;
     conica__pieces pc = {0, NULL, NULL};
-    rc = conica__pieces_make(&curve, 0, &pc, st);
+    rc = conica__pieces_make(&curve, 0, 0, &pc, st);
     conica_bspline_free(&curve);
     if (rc != CONICA_OK)
         return rc;

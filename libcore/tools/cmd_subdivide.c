@@ -4,6 +4,7 @@
  * (seed 000, Section 1.1; README.md). */
 #include <errno.h>
 #include <limits.h>
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -34,6 +35,7 @@ enum {
     OPT_MAX_POINTS,
     OPT_MAX_INPUT,
     OPT_THREADS,
+    OPT_NOISE,
     OPT_TIME,
 };
 
@@ -69,6 +71,12 @@ static const cli_opt opts[] = {
      {(double)CONICA_CURVE_MAX_INPUT_POINTS, (double)CLI_DEFAULT_MAX_INPUT, 0}},
     {OPT_THREADS, "threads", CLI_ARG_REQUIRED, "N", NULL,
      "worker threads, 1..%.0f (results are bit-identical\nfor any N)", {MAX_THREADS, 0, 0}},
+    {OPT_NOISE, "noise", CLI_ARG_REQUIRED, "X", NULL,
+     "rounding of the input coordinates (e.g. half a\n"
+     "unit of the last digit written): turns within it\n"
+     "make no inflection points (default 0: the doubles'\n"
+     "own)",
+     {0, 0, 0}},
     {OPT_TIME, "time", CLI_ARG_NONE, NULL, NULL,
      "print `subdivide: N edge points in S s\n"
      "(U us/point)` on stderr: the subdivision alone,\n"
@@ -103,6 +111,7 @@ typedef struct options {
     conica_normal_method method;
     size_t max_points, max_input_points;
     int threads;
+    double noise;
     const char *in, *out;
 } options;
 
@@ -147,6 +156,10 @@ static int take_option(cli_parser *p, int c, void *ctx)
             return cli_opt_bad(p, "needs an integer in 1..%d, not '%s'", MAX_THREADS, v);
         o->threads = (int)num;
         break;
+    case OPT_NOISE:
+        if (cli_parse_double(v, &o->noise) || !(o->noise >= 0) || !isfinite(o->noise))
+            return cli_opt_bad(p, "needs a finite number >= 0, not '%s'", v);
+        break;
     default:
         return cli_opt_bad(p, "is not handled"); /* a table entry without a case */
     }
@@ -163,6 +176,7 @@ static int parse_args(int argc, char **argv, options *o)
     o->max_points = CONICA_SUBDIV_DEFAULT_MAX_POINTS;
     o->max_input_points = CONICA_CURVE_MAX_INPUT_POINTS;
     o->threads = 0;
+    o->noise = 0.0;
     o->in = NULL;
     o->out = NULL;
 
@@ -266,6 +280,7 @@ int conica_cmd_subdivide(int argc, char **argv)
     s.max_points = o.max_points;
     if (o.threads > 0)
         s.threads = o.threads;
+    s.noise = o.noise;
 
     /* Open the output first so that an unwritable target fails before a long
      * computation; the temporary file is dropped on any later failure. */

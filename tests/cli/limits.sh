@@ -241,17 +241,20 @@ done
 refused 2 "^svgsmooth: usage error: --max-attributes needs a whole number in 1\.\.2147483647, not '0'" \
     "$tmp/o.out" "$svgsmooth" --max-attributes 0 -o "$tmp/o.out" "$tmp/ns64.svg"
 
-begin_case "path data length (--max-path-bytes, default 8 MiB)"
+begin_case "path data length (--max-path-bytes, default 32 MiB)"
 refused 1 "path 'R': path data exceeds the limit of 10 bytes \(--max-path-bytes\)" "$tmp/o.svg" \
     "$svgsmooth" --max-path-bytes 10 -o "$tmp/o.svg" "$ex/letter-R.svg"
 {
     printf '<svg xmlns="http://www.w3.org/2000/svg"><path d="M0 0'
-    # 9 000 000 bytes of path data: over the 8 MiB default, under libxml2's 10 MB
-    head -c 1800000 /dev/zero | tr '\0' 'L' | sed 's/L/ L1 1/g'
+    # 12 000 000 bytes of path data: over libxml2's own 10 MB (which no
+    # longer applies), under the 32 MiB default
+    head -c 2400000 /dev/zero | tr '\0' 'L' | sed 's/L/ L1 1/g'
     printf 'Z"/></svg>\n'
-} >"$tmp/path9m.svg"
-refused 1 'path data exceeds the limit of 8388608 bytes \(--max-path-bytes\)' "$tmp/o.svg" \
-    "$svgsmooth" -o "$tmp/o.svg" "$tmp/path9m.svg"
+} >"$tmp/path12m.svg"
+check "a 12 MB d under the default" "$svgsmooth" --flatten --tolerance 0.1 -o "$tmp/o.svg" "$tmp/path12m.svg"
+refused 1 'path data exceeds the limit of 8388608 bytes \(--max-path-bytes\)' "$tmp/o2.svg" \
+    "$svgsmooth" --max-path-bytes 8388608 -o "$tmp/o2.svg" "$tmp/path12m.svg"
+rm -f "$tmp/path12m.svg" "$tmp/o.svg"
 
 begin_case "svgsmooth writes each element as it goes: a later failure leaves the output as it was"
 # The first paths are written into the temporary before the budget runs out

@@ -39,7 +39,7 @@ begin_case "--help exits 0 and describes every option"
 check "--help" "$conica" subdivide --help
 check_grep '^Usage: conica subdivide' "$out"
 for opt in -k --open --closed --precise --estimate-normals --reference-compatible --time -o \
-    --max-points --normals --threads; do
+    --max-points --normals --threads --noise; do
     check_grep "(^| )$opt( |,|=|$)" "$out" "--help mentions $opt"
 done
 
@@ -328,5 +328,18 @@ else
     check "default mode reads double" "$conica" subdivide -k 0 "$tmp/t1_circle.txt"
     check_grep '^v 2\.5 4\.3301270189221936$' "$out" "double mode keeps 17 digits"
 fi
+
+begin_case "--noise: a side zigzagging by its rounding (3 decimals) makes no inflection points"
+# a flat side of 101 points whose y alternates 0, 0.0004 (a straight edge
+# written to 3 decimals and perturbed), closed by a half circle: 140 points
+awk 'BEGIN { pi = atan2(0, -1)
+    for (i = 0; i <= 100; i++) printf "v %.3f %.4f\n", i / 10, (i % 2) * 0.0004
+    for (i = 1; i < 40; i++) { t = pi * i / 40; printf "v %.6f %.6f\n", 5 + 5 * cos(t), 5 * sin(t) } }' \
+    >"$tmp/zigzag.txt"
+check "--noise 0.0005 -k 1" "$conica" subdivide -k 1 --noise 0.0005 "$tmp/zigzag.txt"
+check_count 280 '^v ' "$out"
+check "default -k 1" "$conica" subdivide -k 1 "$tmp/zigzag.txt"
+check_true "without --noise the zigzag's turns are inflections" test "$(count_v "$out")" -gt 280
+check_exit 2 "--noise -1 is a usage error" "$conica" subdivide --noise -1 "$tmp/zigzag.txt"
 
 finish

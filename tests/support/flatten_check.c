@@ -45,6 +45,23 @@ double fc_dist_seg(const double *q, const double *a, const double *b)
     return sqrt(r);
 }
 
+double fc_curve_to_polyline(const conica_bspline *s, const double *xy, size_t n, int samples)
+{
+    double a, b, worst = 0;
+    conica_bspline_domain(s, &a, &b);
+    for (int k = 0; k <= samples; k++) {
+        double x[3], best = INFINITY;
+        fc_point(s, a + (b - a) * k / samples, x);
+        for (size_t i = 0; i + 1 < n; i++) {
+            double p[3] = {xy[2 * i], xy[2 * i + 1], 0}, q[3] = {xy[2 * i + 2], xy[2 * i + 3], 0};
+            double d = fc_dist_seg(x, p, q);
+            best = d < best ? d : best;
+        }
+        worst = best > worst ? best : worst;
+    }
+    return worst;
+}
+
 static double dist_pt(const double *q, const double *p)
 {
     double r = 0;

@@ -26,6 +26,11 @@ void fc_point(const conica_bspline *s, double t, double *out);
 /** Distance from the 3-D point q to the segment [a, b]. */
 double fc_dist_seg(const double *q, const double *a, const double *b);
 
+/* Largest distance of `samples` + 1 equally spaced points of the planar
+ * curve s (over its domain) to the polyline xy[0..n) (points without
+ * parameters, e.g. another library's). */
+double fc_curve_to_polyline(const conica_bspline *s, const double *xy, size_t n, int samples);
+
 /* Largest distance of f([ua, ub]) to the segment [f(ua), f(ub)]. */
 double fc_chord_dev(const conica_bspline *s, double ua, double ub);
 

@@ -53,7 +53,12 @@ typedef struct conica_subdiv_settings {
      *  it, and an end normal within a few rounding units of the chord's
      *  perpendicular counts as perpendicular (a straight run of rounded
      *  points), so rounding noise makes no inflection points and no
-     *  S-shaped edges. */
+     *  S-shaped edges. Whatever its value, default mode reads the sign
+     *  changes of the polygon's turn at the coordinates' own rounding too
+     *  (a few ulps of the largest |coordinate|): several sign changes
+     *  between two turns clear of it count as their parity (one inflection
+     *  point or none), so a curve gets the same inflection points wherever
+     *  it sits. */
     double noise;
 } conica_subdiv_settings;
 
