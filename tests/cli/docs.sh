@@ -7,8 +7,9 @@
 #
 #  - manual pages: groff -ww -z -man (and mandoc -T lint -W warning when
 #    mandoc is installed) print nothing;
-#  - the --flags of each page equal those of the tool's --help (conica: per
-#    subcommand, the page's `.SS "conica NAME"` section);
+#  - the --flags of each page equal those of the tool's option table
+#    (--dump-options; conica: per subcommand, the page's `.SS "conica
+#    NAME"` section);
 #  - every relative link of README.md and docs/*.md names an existing file
 #    (and a #fragment a heading of it);
 #  - README.md has fewer than 350 lines;
@@ -17,11 +18,14 @@
 #  - every ```sh runnable block of README.md and docs/*.md runs (sh -e) from
 #    a scratch copy of the repository root (symbolic links, `build` pointing
 #    at BUILD_DIR), each document's blocks in order in one directory; a
-#    following ```text block is its expected stdout+stderr (`...` matches
-#    any text within a line);
+#    following ```text block (blank lines or up to two `...:` lines
+#    between) is its expected stdout+stderr (`...` matches any text
+#    within a line);
 #  - every docs/examples/*.c compiles against BUILD_DIR/lib/libconica.a and
 #    runs; a ```c docs/examples/NAME.c block equals the file and a following
-#    ```text block its output.
+#    ```text block (required) its output;
+#  - the comparison fails on a changed output (a document made here, and
+#    library.md with one digit changed).
 # In the sanitizer pass (BUILD_DIR ending in /san) only the examples run,
 # with `cc` wrapped to add the sanitizer flags, and no output is compared:
 # clang's build rounds some results differently in the last digits.
