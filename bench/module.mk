@@ -73,3 +73,10 @@ $(BENCH_FAIRNESS): $(BUILD)/obj/bench/bench_fairness.o $(BUILD)/lib/libconica_te
 	@mkdir -p $(@D)
 	$(CC) $(LDFLAGS) -o $@ $< $(BUILD)/lib/libconica_testsupport.a $(CLI_A) $(CORE_A) $(CORE_LIBS) $(FT_LIBS)
 BENCH_BINS += $(BENCH_FAIRNESS)
+
+# ---- bench_corners (issue 33): conica_plot on 10^3..10^6 corner knots
+BENCH_CORNERS := $(BUILD)/bench/bench_corners
+$(BENCH_CORNERS): $(BUILD)/obj/bench/bench_corners.o $(CORE_A)
+	@mkdir -p $(@D)
+	$(CC) $(LDFLAGS) -o $@ $< $(CORE_A) $(CORE_LIBS)
+BENCH_BINS += $(BENCH_CORNERS)
