@@ -298,7 +298,10 @@ conica_code conica_path_arc_to(conica_path *p, double cx, double cy, double rx, 
     if (!isfinite(cx) || !isfinite(cy) || !isfinite(rx) || !isfinite(ry) || !isfinite(phi) ||
         !isfinite(theta1) || !isfinite(dtheta) || !isfinite(x1) || !isfinite(y1))
         return conica__fail(st, CONICA_ERR_NONFINITE, 0, 0, "arc with a value that is not finite");
-    if (fabs(dtheta) > 2 * M_PI * (1 + 1e-12) || !(rx > 0) || !(ry > 0))
+    if (fabs(dtheta) > 2 * M_PI * (1 + 1e-12)) /* the rounding of a full turn passes */
+        return conica__fail(st, CONICA_ERR_ARG, 0, 0,
+                            "arc sweep %g rad exceeds a full turn (|dtheta| <= 2 pi)", dtheta);
+    if (!(rx > 0) || !(ry > 0))
         return conica_path_line_to(p, x1, y1, tag, st);
     /* Parts of at most 90 degrees (a rational quadratic with weight
      * cos(half angle) is the exact arc); the slack keeps 90 degrees in one. */
