@@ -298,3 +298,23 @@ TEST_CASE("path arc: a sweep beyond a full turn is refused", "[hostile][path]")
              CONICA_OK);
     conica_path_free(&p);
 }
+
+/* a * b + c as the build evaluates it (not inlined into a constant) */
+static double mul_add(double a, double b, double c)
+{
+    return a * b + c;
+}
+
+TEST_CASE("build: no silent fma contraction, so gcc and clang builds round alike",
+          "[hostile][build]")
+{
+    /* issue 33: the release (gcc) and sanitizer (clang) builds disagreed on
+     * an arc of radius ~2e161: clang contracted a*b+c into one fma, gcc in
+     * C11 mode does not. With -ffp-contract=off both round the product:
+     * (1 + 2^-30)(1 - 2^-30) = 1 - 2^-60 rounds to 1, and 1 - 1 is 0; a
+     * contracted fma would give -2^-60. The inputs come from strtod so no
+     * compiler folds them. */
+    double a = strtod("1.000000000931322574615478515625", NULL); /* 1 + 2^-30 */
+    double b = strtod("0.999999999068677425384521484375", NULL); /* 1 - 2^-30 */
+    CHECK_EQ(mul_add(a, b, -1.0), 0.0);
+}
