@@ -16,6 +16,7 @@
 #include "conica/curve.h"
 #include "conica/path.h"
 #include "conica/plot.h"
+#include "conica/subdiv.h"
 #include "conica_test.h"
 
 /* A cubic with 4 control points on [0, 1]. */
@@ -317,4 +318,53 @@ TEST_CASE("build: no silent fma contraction, so gcc and clang builds round alike
     double a = strtod("1.000000000931322574615478515625", NULL); /* 1 + 2^-30 */
     double b = strtod("0.999999999068677425384521484375", NULL); /* 1 - 2^-30 */
     CHECK_EQ(mul_add(a, b, -1.0), 0.0);
+}
+
+TEST_CASE("subdivision: huge or tiny but valid normals count by their direction",
+          "[hostile][normals]")
+{
+    /* `vn 1e308 0.65` and Python's [5e-324]*24 were refused as "point 2 of
+     * the output is not finite or has no normal": their squares overflow or
+     * vanish in the fit, which only needs directions */
+    double xy[] = {0, 0, 1, 0, 1, 1, 0, 1};
+    double unit[] = {-1, -1, 1, -1, 1, 1, -1, 1};
+    const double scales[] = {5e-324, 1e-300, 1e300, 1.7e308};
+    conica_subdiv_settings set = conica_subdiv_defaults();
+    set.levels = 3;
+    conica_curve in, ref;
+    conica_status st;
+    conica_curve_init(&in);
+    conica_curve_init(&ref);
+    REQUIRE_EQ(conica_curve_set(xy, unit, 4, 1, &in, &st), CONICA_OK);
+    REQUIRE_EQ(conica_subdivide(&in, &set, &ref, NULL, &st), CONICA_OK);
+    for (size_t k = 0; k < sizeof scales / sizeof scales[0]; k++) {
+        double nn[8];
+        for (size_t i = 0; i < 8; i++)
+            nn[i] = unit[i] * scales[k];
+        conica_curve c, out;
+        conica_curve_init(&c);
+        conica_curve_init(&out);
+        REQUIRE_EQ(conica_curve_set(xy, nn, 4, 1, &c, &st), CONICA_OK);
+        CAPTURE_D(scales[k]);
+        CHECK_EQ(conica_subdivide(&c, &set, &out, NULL, &st), CONICA_OK);
+        REQUIRE_EQ_U(out.n, ref.n);
+        /* the same directions, up to the rounding of the scaled normal */
+        double worst = 0;
+        for (size_t i = 0; i < 2 * out.n; i++)
+            worst = fmax(worst, fabs(out.xy[i] - ref.xy[i]));
+        CHECK_LE(worst, 1e-12);
+        conica_curve_free(&c);
+        conica_curve_free(&out);
+    }
+    /* one huge normal among unit ones: the direction (1, 0) essentially */
+    double mixed[] = {1e308, -0.65, 1, -1, 1, 1, -1, 1};
+    conica_curve c, out;
+    conica_curve_init(&c);
+    conica_curve_init(&out);
+    REQUIRE_EQ(conica_curve_set(xy, mixed, 4, 1, &c, &st), CONICA_OK);
+    CHECK_EQ(conica_subdivide(&c, &set, &out, NULL, &st), CONICA_OK);
+    conica_curve_free(&c);
+    conica_curve_free(&out);
+    conica_curve_free(&in);
+    conica_curve_free(&ref);
 }
