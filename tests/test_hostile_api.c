@@ -368,3 +368,20 @@ TEST_CASE("subdivision: huge or tiny but valid normals count by their direction"
     conica_curve_free(&in);
     conica_curve_free(&ref);
 }
+
+TEST_CASE("path samples: the cap is checked before any value is read", "[hostile][path]")
+{
+    /* conica_path_samples read all 2n values before it checked its cap:
+     * with n = SIZE_MAX / 2 + 1 the loop bound 2n wrapped, and a huge n
+     * read far past the caller's array. A two-value array and a huge n
+     * must give CONICA_ERR_LIMIT without touching xy beyond it (ASan). */
+    double xy[4] = {0, 0, 1, 1};
+    conica_path p;
+    conica_status st;
+    conica_path_init(&p);
+    CHECK_EQ(conica_path_samples(&p, xy, NULL, SIZE_MAX / 2 + 1, 0, 0, &st), CONICA_ERR_LIMIT);
+    CHECK_EQ(conica_path_samples(&p, xy, NULL, (size_t)1 << 40, 0, 0, &st), CONICA_ERR_LIMIT);
+    CHECK(strstr(st.message, "exceed the path's limit") != NULL);
+    CHECK_EQ(conica_path_samples(&p, xy, NULL, 2, 0, 0, &st), CONICA_OK);
+    conica_path_free(&p);
+}

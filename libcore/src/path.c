@@ -420,6 +420,11 @@ conica_code conica_path_samples(conica_path *p, const double *xy, const double *
     size_t i, m = 0;
     if (!p || (!xy && n))
         return conica__fail(st, CONICA_ERR_ARG, 0, 0, "conica_path_samples: NULL argument");
+    /* the cap before anything is read (2 n would wrap for a huge n) */
+    if (n > CONICA_PATH_MAX_ITEMS - p->nsmp)
+        return conica__fail(st, CONICA_ERR_LIMIT, 0, 0,
+                            "%zu samples exceed the path's limit of %zu items", n,
+                            (size_t)CONICA_PATH_MAX_ITEMS);
     for (i = 0; i < 2 * n; i++)
         if (!isfinite(xy[i]) || (nxy && !isfinite(nxy[i])))
             return conica__fail(st, CONICA_ERR_NONFINITE, 0, i / 2, "sample %zu is not finite",
