@@ -385,3 +385,36 @@ TEST_CASE("path samples: the cap is checked before any value is read", "[hostile
     CHECK_EQ(conica_path_samples(&p, xy, NULL, 2, 0, 0, &st), CONICA_OK);
     conica_path_free(&p);
 }
+
+TEST_CASE("spline queries without a status: NULL and empty splines are safe", "[hostile][api]")
+{
+    /* each of these crashed on NULL or an initialised, never set spline */
+    conica_bspline e;
+    conica_bspline_init(&e);
+    double a = 0, b = 0, out[4] = {7, 7, 7, 7};
+    CHECK_EQ_U(conica_bspline_find_span(NULL, 0.5), 0);
+    CHECK_EQ_U(conica_bspline_find_span(&e, 0.5), 0);
+    CHECK_EQ_U(conica_bspline_bezier_count(NULL), 0);
+    CHECK_EQ_U(conica_bspline_bezier_count(&e), 0);
+    conica_bspline_domain(&e, &a, &b);
+    CHECK((isnan(a) && isnan(b)));
+    conica_bspline_domain(NULL, &a, NULL);
+    CHECK(isnan(a));
+    conica_bspline_knot_averages(&e, out);
+    conica_bspline_knot_averages(NULL, out);
+    conica_bspline_control_polygon(&e, out);
+    conica_bspline_control_polygon(NULL, out);
+    CHECK_EQ(out[0], 7);
+    CHECK_EQ(conica_bspline_point_dim(NULL), 0);
+    conica_plot_settings set = conica_plot_defaults();
+    CHECK(isnan(conica_plot_tolerance(NULL, &set)));
+    CHECK(isnan(conica_plot_tolerance(&e, NULL)));
+    /* a real spline still answers */
+    conica_bspline s;
+    cubic(&s);
+    CHECK_EQ_U(conica_bspline_bezier_count(&s), 1);
+    CHECK_EQ_U(conica_bspline_find_span(&s, 0.5), 3);
+    conica_bspline_domain(&s, &a, &b);
+    CHECK((a == 0 && b == 1));
+    conica_bspline_free(&s);
+}

@@ -410,6 +410,8 @@ double conica_plot_extent(const conica_bspline *s)
 
 double conica_plot_tolerance(const conica_bspline *s, const conica_plot_settings *set)
 {
+    if (!s || !set)
+        return NAN;
     if (set->abs_tolerance > 0)
         return set->abs_tolerance;
     /* eq. (3.26): eps = delta / rho * Delta c */
