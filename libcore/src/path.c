@@ -1316,7 +1316,7 @@ typedef struct run {
 
 static void run_eval(const seg_run *R, double u, double pt[2])
 {
-    size_t k = u >= (double)R->m ? R->m - 1 : (size_t)u;
+    size_t k = conica__size_clamp(u, R->m - 1); /* NaN or below 0: the first */
     size_t s = R->segs[k];
     bez_eval(seg_pts(R->p, s), R->p->seg[s].degree, u - (double)k, pt, NULL, NULL);
 }
@@ -1583,7 +1583,7 @@ static conica_code flatten_run(ctx *c, const size_t *segs, size_t m, const doubl
     rc = n > 1 ? take(c, n - 1) : CONICA_OK;
     for (i = 1; i < n && rc == CONICA_OK; i++) {
         double u = U[i], tg[2], nn[2], pt[2], t;
-        size_t kk = u >= (double)m ? m - 1 : (size_t)u, s = segs[kk];
+        size_t kk = conica__size_clamp(u, m - 1), s = segs[kk];
         const double *q = seg_pts(p, s);
         int d = p->seg[s].degree;
         if (i + 1 == n) { /* the run's end point exactly */
