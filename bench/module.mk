@@ -84,3 +84,10 @@ $(BENCH_ARCS): $(BUILD)/obj/bench/bench_arcs.o $(BUILD)/lib/libconica_testsuppor
 	$(CC) $(LDFLAGS) -o $@ $< $(BUILD)/lib/libconica_testsupport.a $(CORE_A) $(CORE_LIBS) \
 	    $(FT_LIBS) $(if $(CAIRO_FOUND),$(shell $(PKG_CONFIG) --libs cairo))
 BENCH_BINS += $(BENCH_ARCS)
+
+# ---- bench_corners (issue 33): conica_plot on 10^3..10^6 corner knots
+BENCH_CORNERS := $(BUILD)/bench/bench_corners
+$(BENCH_CORNERS): $(BUILD)/obj/bench/bench_corners.o $(CORE_A)
+	@mkdir -p $(@D)
+	$(CC) $(LDFLAGS) -o $@ $< $(CORE_A) $(CORE_LIBS)
+BENCH_BINS += $(BENCH_CORNERS)

@@ -255,8 +255,27 @@ static void explain_xml_error(const char *msg, int huge, char *out, size_t cap)
     else if (strstr(msg, "Name too long") || strstr(msg, "NCName too long"))
         snprintf(out, cap, "XML: a name is longer than libxml2's limit of %d bytes (libxml2: %s)",
                  huge ? SVG_XML_HUGE_LENGTH : XML_MAX_NAME_LENGTH, msg);
-    else
-        snprintf(out, cap, "XML: %s", msg);
+    else {
+        /* libxml2 prefixes some messages with its function's name
+         * ("xmlParseCharRef: invalid xmlChar value 0"): the user needs
+         * what is wrong, not where inside libxml2 it was noticed */
+        const char *m = msg, *q = msg;
+        long v;
+        char *end;
+        if (strncmp(q, "xml", 3) == 0) {
+            while ((*q >= 'A' && *q <= 'Z') || (*q >= 'a' && *q <= 'z') ||
+                   (*q >= '0' && *q <= '9') || *q == '_')
+                q++;
+            if (q[0] == ':' && q[1] == ' ')
+                m = q + 2;
+        }
+        if (strncmp(m, "invalid xmlChar value ", 22) == 0 &&
+            ((v = strtol(m + 22, &end, 10)), end != m + 22))
+            snprintf(out, cap, "XML: a character reference to code point %ld, which XML does "
+                               "not allow in a document", v);
+        else
+            snprintf(out, cap, "XML: %s", m);
+    }
 }
 
 /* ------------------------------------------------------------ start-tag scan */

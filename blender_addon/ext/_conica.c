@@ -202,6 +202,77 @@ static void cx_type_error(const char *what, Py_ssize_t i, const char *expected, 
     Py_DECREF(name);
 }
 
+/* float(item) into *v; 0 with an exception set on failure. Only a
+ * TypeError (not a number) becomes our message naming the item: anything
+ * else raised while __float__ runs (KeyboardInterrupt, SystemExit,
+ * RecursionError, MemoryError, the caller's own exception) propagates
+ * unchanged. */
+static int cx_item_double(PyObject *item, const char *what, Py_ssize_t i, double *v)
+{
+    *v = PyFloat_AsDouble(item);
+    if (*v == -1.0 && PyErr_Occurred()) {
+        if (!PyErr_ExceptionMatches(PyExc_TypeError))
+            return 0;
+        PyErr_Clear();
+        cx_type_error(what, i, "a number", item);
+        return 0;
+    }
+    return 1;
+}
+
+/* An iterable that is no sequence, read with its iterator into a growing
+ * array: at most CX_MAX_INPUT_VALUES items are taken (one more is a
+ * ValueError), so an endless generator costs the cap, not all memory. */
+static int cx_read_iterable(PyObject *obj, const char *what, double **out, size_t *n)
+{
+    PyObject *it = PyObject_GetIter(obj), *item;
+    double *d = NULL;
+    size_t len = 0, cap = 0;
+    if (it == NULL) {
+        if (!PyErr_ExceptionMatches(PyExc_TypeError))
+            return 0;
+        PyErr_Clear();
+        cx_type_error(what, -1, "a flat sequence of numbers", obj);
+        return 0;
+    }
+    while ((item = PyIter_Next(it)) != NULL) {
+        if (len == CX_MAX_INPUT_VALUES) {
+            Py_DECREF(item);
+            PyErr_Format(PyExc_ValueError, "%s: more than %zu values (the limit)", what,
+                         CX_MAX_INPUT_VALUES);
+            break;
+        }
+        if (len == cap) {
+            size_t nc = cap ? 2 * cap : 256;
+            double *t = PyMem_Realloc(d, nc * sizeof *d);
+            if (t == NULL) {
+                Py_DECREF(item);
+                PyErr_NoMemory();
+                break;
+            }
+            d = t;
+            cap = nc;
+        }
+        int ok = cx_item_double(item, what, (Py_ssize_t)len, &d[len]);
+        Py_DECREF(item);
+        if (!ok)
+            break;
+        len++;
+    }
+    Py_DECREF(it);
+    if (PyErr_Occurred()) {
+        PyMem_Free(d);
+        return 0;
+    }
+    if (d == NULL && (d = PyMem_Malloc(sizeof *d)) == NULL) {
+        PyErr_NoMemory();
+        return 0;
+    }
+    *out = d;
+    *n = len;
+    return 1;
+}
+
 /*
  * Copy a flat float sequence or buffer into a new double array (free with
  * PyMem_Free). Buffers (array('f'/'d'), memoryviews of them, Blender's
@@ -260,6 +331,10 @@ static int cx_read_doubles(PyObject *obj, const char *what, double **out, size_t
         PyErr_Format(PyExc_TypeError, "%s: expected a flat sequence of numbers, got str", what);
         return 0;
     }
+    /* any other iterable (a generator, an endless itertools.count()) is
+     * read item by item up to the cap, never to its end first */
+    if (!PyList_Check(obj) && !PyTuple_Check(obj) && !PySequence_Check(obj))
+        return cx_read_iterable(obj, what, out, n);
     /* a list over the cap is refused before the snapshot copies it */
     if (PyList_Check(obj) && (size_t)PyList_Size(obj) > CX_MAX_INPUT_VALUES) {
         PyErr_Format(PyExc_ValueError, "%s: %zd values exceed the limit of %zu", what,
@@ -289,15 +364,11 @@ static int cx_read_doubles(PyObject *obj, const char *what, double **out, size_t
     }
     for (Py_ssize_t i = 0; i < len; i++) {
         PyObject *item = PyTuple_GetItem(seq, i); /* borrowed: the tuple keeps it alive */
-        double v = PyFloat_AsDouble(item);
-        if (v == -1.0 && PyErr_Occurred()) {
-            PyErr_Clear();
-            cx_type_error(what, i, "a number", item);
+        if (!cx_item_double(item, what, i, &d[i])) {
             PyMem_Free(d);
             Py_DECREF(seq);
             return 0;
         }
-        d[i] = v;
     }
     Py_DECREF(seq);
     *out = d;
@@ -2457,8 +2528,13 @@ static PyObject *cx_surface(PyObject *self, PyObject *args, PyObject *kw)
         goto done;
     if (ow != Py_None && !cx_read_checked(S, ow, "weights", 0, 0, &w, &nw))
         goto done;
-    if ((size_t)nu > CX_MAX_INPUT_VALUES / (size_t)nv ||
-        nc != 3 * (size_t)nu * (size_t)nv) {
+    if ((size_t)nu > CX_MAX_INPUT_VALUES / 3 / (size_t)nv) {
+        /* the product itself would overflow the message */
+        cx_raisef(S->limit_error, "ctrl: %zd x %zd control points exceed the limit of %zu values",
+                  nu, nv, (size_t)CX_MAX_INPUT_VALUES);
+        goto done;
+    }
+    if (nc != 3 * (size_t)nu * (size_t)nv) {
         cx_raisef(S->arg_error, "ctrl: %zu values, %zd x %zd control points need %zu", nc, nu,
                   nv, 3 * (size_t)nu * (size_t)nv);
         goto done;

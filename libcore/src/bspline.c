@@ -314,8 +314,12 @@ size_t conica__find_span(const double *knots, size_t nk, int degree, double x, i
     return lo;
 }
 
+static int valid(const conica_bspline *s);
+
 size_t conica_bspline_find_span(const conica_bspline *s, double t)
 {
+    if (!valid(s))
+        return 0; /* documented: NULL or an empty spline */
     return conica__find_span(s->knots, s->n + (size_t)s->degree + 1, s->degree, t, 0);
 }
 
@@ -368,6 +372,13 @@ static int valid(const conica_bspline *s)
 
 void conica_bspline_domain(const conica_bspline *s, double *a, double *b)
 {
+    if (!valid(s)) {
+        if (a)
+            *a = NAN;
+        if (b)
+            *b = NAN;
+        return;
+    }
     if (a)
         *a = s->knots[s->degree];
     if (b)
@@ -622,6 +633,8 @@ conica_code conica__bspline_clamp(const conica_bspline *s, conica_bspline *out, 
 size_t conica_bspline_bezier_count(const conica_bspline *s)
 {
     size_t cnt = 0;
+    if (!valid(s))
+        return 0;
     for (size_t i = (size_t)s->degree; i < s->n; i++)
         cnt += s->knots[i] < s->knots[i + 1];
     return cnt;
@@ -716,6 +729,8 @@ conica_code conica_bspline_bezier_piece(const conica_bspline *s, size_t k, doubl
 
 void conica_bspline_knot_averages(const conica_bspline *s, double *out)
 {
+    if (!valid(s) || !out)
+        return;
     size_t p = (size_t)s->degree;
     for (size_t j = 0; j < s->n; j++) {
         double sum = 0.0;
@@ -727,11 +742,15 @@ void conica_bspline_knot_averages(const conica_bspline *s, double *out)
 
 int conica_bspline_point_dim(const conica_bspline *s)
 {
+    if (!s)
+        return 0;
     return s->dim == 1 ? 2 : s->dim;
 }
 
 void conica_bspline_control_polygon(const conica_bspline *s, double *out)
 {
+    if (!valid(s) || !out)
+        return;
     if (s->dim == 1) {
         size_t p = (size_t)s->degree;
         for (size_t j = 0; j < s->n; j++) {

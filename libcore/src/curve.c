@@ -5,6 +5,7 @@
 
 #include <float.h>
 #include <locale.h>
+#include <errno.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -586,8 +587,9 @@ conica_code conica_curve_write(FILE *f, const conica_curve *c, conica_status *st
         for (i = 0; i < c->n; i++)
             if (write_pair(f, "vn", c->nxy + 2 * i))
                 return conica__fail(st, CONICA_ERR_IO, 0, i, "write error");
-    if (ferror(f))
-        return conica__fail(st, CONICA_ERR_IO, 0, 0, "write error");
+    /* flushed: a full disk (/dev/full) shows only when the buffer goes out */
+    if (fflush(f) != 0 || ferror(f))
+        return conica__fail(st, CONICA_ERR_IO, 0, 0, "write error: %s", strerror(errno));
     conica__ok(st);
     return CONICA_OK;
 }

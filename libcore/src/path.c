@@ -308,7 +308,10 @@ conica_code conica_path_arc_to(conica_path *p, double cx, double cy, double rx, 
     if (!isfinite(cx) || !isfinite(cy) || !isfinite(rx) || !isfinite(ry) || !isfinite(phi) ||
         !isfinite(theta1) || !isfinite(dtheta) || !isfinite(x1) || !isfinite(y1))
         return conica__fail(st, CONICA_ERR_NONFINITE, 0, 0, "arc with a value that is not finite");
-    if (fabs(dtheta) > 2 * M_PI * (1 + 1e-12) || !(rx > 0) || !(ry > 0))
+    if (fabs(dtheta) > 2 * M_PI * (1 + 1e-12)) /* the rounding of a full turn passes */
+        return conica__fail(st, CONICA_ERR_ARG, 0, 0,
+                            "arc sweep %g rad exceeds a full turn (|dtheta| <= 2 pi)", dtheta);
+    if (!(rx > 0) || !(ry > 0))
         return conica_path_line_to(p, x1, y1, tag, st);
     /* Parts of at most 90 degrees (a rational quadratic with weight
      * cos(half angle) is the exact arc); the slack keeps 90 degrees in one. */
@@ -427,6 +430,11 @@ conica_code conica_path_samples(conica_path *p, const double *xy, const double *
     size_t i, m = 0;
     if (!p || (!xy && n))
         return conica__fail(st, CONICA_ERR_ARG, 0, 0, "conica_path_samples: NULL argument");
+    /* the cap before anything is read (2 n would wrap for a huge n) */
+    if (n > CONICA_PATH_MAX_ITEMS - p->nsmp)
+        return conica__fail(st, CONICA_ERR_LIMIT, 0, 0,
+                            "%zu samples exceed the path's limit of %zu items", n,
+                            (size_t)CONICA_PATH_MAX_ITEMS);
     for (i = 0; i < 2 * n; i++)
         if (!isfinite(xy[i]) || (nxy && !isfinite(nxy[i])))
             return conica__fail(st, CONICA_ERR_NONFINITE, 0, i / 2, "sample %zu is not finite",
@@ -1362,7 +1370,7 @@ typedef struct run {
 
 static void run_eval(const seg_run *R, double u, double pt[2])
 {
-    size_t k = u >= (double)R->m ? R->m - 1 : (size_t)u;
+    size_t k = conica__size_clamp(u, R->m - 1); /* NaN or below 0: the first */
     size_t s = R->segs[k];
     bez_eval(seg_pts(R->p, s), R->p->seg[s].degree, u - (double)k, pt, NULL, NULL);
 }
@@ -1629,7 +1637,7 @@ static conica_code flatten_run(ctx *c, const size_t *segs, size_t m, const doubl
     rc = n > 1 ? take(c, n - 1) : CONICA_OK;
     for (i = 1; i < n && rc == CONICA_OK; i++) {
         double u = U[i], tg[2], nn[2], pt[2], t;
-        size_t kk = u >= (double)m ? m - 1 : (size_t)u, s = segs[kk];
+        size_t kk = conica__size_clamp(u, m - 1), s = segs[kk];
         const double *q = seg_pts(p, s);
         int d = p->seg[s].degree;
         if (i + 1 == n) { /* the run's end point exactly */

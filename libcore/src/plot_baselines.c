@@ -25,17 +25,19 @@ static double eval_flops(const conica_bspline *s)
     return (double)(p * (p + 1) / 2) * (3.0 + 3.0 * (double)conica__hdim(s));
 }
 
-/* Share of n points for piece k (at least 2). */
-static size_t share(const conica__pieces *pc, size_t k, size_t n)
+/* Parameter length of piece k. */
+static double piece_len(const conica__pieces *pc, size_t k)
 {
-    double total = 0, mine = 0;
-    for (size_t i = 0; i < pc->count; i++) {
-        const conica_bspline *s = &pc->sp[i];
-        double len = s->knots[s->n] - s->knots[s->degree];
-        total += len;
-        if (i == k)
-            mine = len;
-    }
+    const conica_bspline *s = &pc->sp[k];
+    return s->knots[s->n] - s->knots[s->degree];
+}
+
+/* Share of n points for piece k (at least 2), of the pieces' total
+ * parameter length (summed once by the caller: per piece it made many
+ * corners quadratic). */
+static size_t share(const conica__pieces *pc, size_t k, size_t n, double total)
+{
+    double mine = piece_len(pc, k);
     /* mine / total first: n * mine overflows for knots near 1e308, and an
      * infinite or NaN share must not reach the size_t cast (fuzz_plot) */
     double v = total > 0 ? (double)n * (mine / total) : (double)n;
@@ -359,6 +361,9 @@ conica_code conica__plot_baseline(const conica__pieces *pc, const conica_plot_se
     (void)tol;
     if (set->method == CONICA_PLOT_LOCAL_UNIFORM)
         return local_uniform(pc, set, o, stats, st);
+    double total = 0;
+    for (size_t k = 0; k < pc->count; k++)
+        total += piece_len(pc, k);
     for (size_t k = 0; k < pc->count; k++) {
         conica_code rc = CONICA_OK;
         const conica_bspline *s = &pc->sp[k];
@@ -369,16 +374,16 @@ conica_code conica__plot_baseline(const conica__pieces *pc, const conica_plot_se
             return rc;
         switch (set->method) {
         case CONICA_PLOT_UNIFORM:
-            rc = uniform_piece(s, share(pc, k, set->points), join, o, stats, st);
+            rc = uniform_piece(s, share(pc, k, set->points, total), join, o, stats, st);
             break;
         case CONICA_PLOT_CHAIKIN:
-            rc = cut_corners(s, 0, share(pc, k, set->points), join, set, o, stats, st);
+            rc = cut_corners(s, 0, share(pc, k, set->points, total), join, set, o, stats, st);
             break;
         case CONICA_PLOT_LANE_RIESENFELD:
-            rc = cut_corners(s, 1, share(pc, k, set->points), join, set, o, stats, st);
+            rc = cut_corners(s, 1, share(pc, k, set->points, total), join, set, o, stats, st);
             break;
         default:
-            rc = mathematica_piece(s, set, share(pc, k, set->math_initial_points), join, o,
+            rc = mathematica_piece(s, set, share(pc, k, set->math_initial_points, total), join, o,
                                    stats, st);
             break;
         }

@@ -312,6 +312,44 @@ static void reference_end_normals(conica_curve *c)
     }
 }
 
+/* Normals whose larger component lies outside [2^-400, 2^400]: their
+ * squares would overflow or underflow in the fit. */
+#define NORMAL_SAFE_EXP 400
+static int normals_out_of_range(const double *nd, const long double *nl, size_t n)
+{
+    for (size_t i = 0; i < n; i++) {
+        long double x = nd ? nd[2 * i] : nl[2 * i], y = nd ? nd[2 * i + 1] : nl[2 * i + 1];
+        long double m = fabsl(x) > fabsl(y) ? fabsl(x) : fabsl(y);
+        if (m > 0x1p400L || m < 0x1p-400L)
+            return 1;
+    }
+    return 0;
+}
+
+/* The curve with every normal scaled by a power of two to a larger
+ * component in [1, 2) (exact, the direction unchanged), in *est. */
+static conica_code scaled_normals(const double *xyd, const double *nd, const long double *xyl,
+                                  const long double *nl, size_t n, int closed, conica_curve *est,
+                                  conica_status *st)
+{
+    double *tmp = malloc(4 * n * sizeof *tmp), *txy = tmp, *tn = tmp ? tmp + 2 * n : NULL;
+    conica_code code;
+    if (!tmp)
+        return conica__fail(st, CONICA_ERR_NOMEM, 0, 0, "out of memory");
+    for (size_t i = 0; i < n; i++) {
+        long double x = nd ? nd[2 * i] : nl[2 * i], y = nd ? nd[2 * i + 1] : nl[2 * i + 1];
+        long double m = fabsl(x) > fabsl(y) ? fabsl(x) : fabsl(y);
+        int e = ilogbl(m);
+        txy[2 * i] = xyd ? xyd[2 * i] : (double)xyl[2 * i];
+        txy[2 * i + 1] = xyd ? xyd[2 * i + 1] : (double)xyl[2 * i + 1];
+        tn[2 * i] = (double)scalbnl(x, -e);
+        tn[2 * i + 1] = (double)scalbnl(y, -e);
+    }
+    code = conica_curve_set(txy, tn, n, closed, est, st);
+    free(tmp);
+    return code;
+}
+
 static conica_code subdivide_any(const double *xyd, const double *nd, const long double *xyl,
                                  const long double *nl, size_t n, int closed,
                                  const conica_subdiv_settings *s_in, int want_long,
@@ -329,7 +367,14 @@ static conica_code subdivide_any(const double *xyd, const double *nd, const long
         return code;
     if ((code = check_input(xyd, nd, xyl, nl, n, closed, !estimate, st)) != CONICA_OK)
         return code;
-    if (estimate) {
+    if (!estimate && normals_out_of_range(nd, nl, n)) {
+        /* only the normals' directions enter the fit: huge or tiny ones
+         * (vn 1e308 0.65, 5e-324) scaled by a power of two, exactly,
+         * instead of overflowing in the fit and blaming the output */
+        if ((code = scaled_normals(xyd, nd, xyl, nl, n, closed, &est, st)) != CONICA_OK)
+            return code;
+        estimate = 1; /* the fit reads est.nxy */
+    } else if (estimate) {
         /* Normals from the points (curve.c), in double: only their
          * directions enter the fit. */
         if (xyd) {

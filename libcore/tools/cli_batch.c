@@ -20,6 +20,7 @@ void cli_batch_init(cli_batch *b)
     b->items = NULL;
     b->n = b->cap = 0;
     b->progress = CLI_PROGRESS_AUTO;
+    b->failed_plan = 0;
 }
 
 void cli_batch_free(cli_batch *b)
@@ -247,10 +248,13 @@ int cli_batch_plan(const char *prog, char *const *inputs, size_t n, const cli_ba
         if (stat(a, &sb) == 0 && S_ISDIR(sb.st_mode)) {
             size_t len = strlen(a);
             if (!spec->recurse) {
-                rc = cli_usage_error(prog, "'%s' is a directory (-r processes the %s files "
-                                           "under it)",
-                                     a, spec->ext);
-                break;
+                /* one bad input among many, like a missing or broken file:
+                 * the others are still written, the run ends with 1 */
+                cli_error(prog, a, "is a directory, not written (-r processes the %s files "
+                                   "under it)",
+                          spec->ext);
+                b->failed_plan++;
+                continue;
             }
             while (len > 1 && a[len - 1] == '/')
                 len--;
@@ -276,7 +280,9 @@ int cli_batch_plan(const char *prog, char *const *inputs, size_t n, const cli_ba
             rc = add_item(&p, copy, slash ? slash + 1 : a);
         }
     }
-    if (rc == 0 && b->n == 0)
+    if (rc == 0 && b->n == 0 && b->failed_plan)
+        rc = CLI_EXIT_ERROR; /* only directories without -r: each said so */
+    else if (rc == 0 && b->n == 0)
         rc = cli_usage_error(prog, "no %s files found in the input directories", spec->ext);
     if (rc == 0)
         rc = check_unique(&p);
@@ -356,7 +362,7 @@ int cli_batch_run(const char *prog, const cli_batch *b, int jobs, cli_batch_fn f
     sigset_t block, held;
     running *run;
     cli_progress progress;
-    size_t next = 0, nrun = 0, written = 0, failed = 0, i, k;
+    size_t next = 0, nrun = 0, written = 0, failed = b->failed_plan, i, k;
     int stop = 0;
 
     if (jobs < 1)
@@ -380,7 +386,7 @@ int cli_batch_run(const char *prog, const cli_batch *b, int jobs, cli_batch_fn f
             installed[k] = sigaction(batch_sigs[k], &sa, NULL) == 0;
     }
     fflush(NULL); /* nothing buffered is written twice by the children */
-    cli_progress_start(&progress, prog, "files", b->n, b->progress);
+    cli_progress_start(&progress, prog, "files", b->n + b->failed_plan, b->progress);
 
     while (next < b->n || nrun > 0) {
         int status;
@@ -469,7 +475,7 @@ int cli_batch_run(const char *prog, const cli_batch *b, int jobs, cli_batch_fn f
     if (stop) {
         int s = (int)stop;
         fprintf(stderr, "%s: error: stopped by %s: %zu files written, %zu failed, %zu not started\n",
-                prog, sig_name(s), written, failed, b->n - written - failed);
+                prog, sig_name(s), written, failed, b->n + b->failed_plan - written - failed);
         signal(s, SIG_DFL);
         raise(s);
         return 128 + s;

@@ -8,7 +8,9 @@
  *
  * cli_batch_plan() turns the arguments into (input, output) pairs and
  * refuses what cannot work before anything is written (two inputs that
- * would be written to one output, a directory without -r, too many files);
+ * would be written to one output, too many files); a directory among the
+ * inputs without -r is one failed input (its error printed, counted in
+ * failed_plan), the others are still written;
  * cli_batch_run() processes each pair in a child process of its own (at
  * most `jobs` at a time), so each file is written through its own
  * temporary (cli_output), a file that fails or even crashes its process
@@ -36,6 +38,7 @@ typedef struct cli_batch {
     cli_batch_item *items;
     size_t n, cap;
     cli_progress_mode progress; /* the progress line of cli_batch_run (default: on a terminal) */
+    size_t failed_plan; /* inputs refused while planning (a directory without -r) */
 } cli_batch;
 
 typedef struct cli_batch_spec {

@@ -164,4 +164,10 @@ both_refuse "$tmp/truncated.svg" "XML: "
 head -c 4096 /dev/urandom | tr -d '<' >"$tmp/garbage.svg"
 both_refuse "$tmp/garbage.svg" "XML: |garbage\.svg"
 
+begin_case "messages say what is wrong, not which libxml2 function saw it (issue 33)"
+printf '<svg xmlns="http://www.w3.org/2000/svg"><text>&#0;</text></svg>\n' >"$tmp/charref0.svg"
+both_refuse "$tmp/charref0.svg" "charref0\.svg:1: XML: a character reference to code point 0, which XML does not allow"
+check_false_grep() { ! grep -q "$1" "$2"; }
+check_true "no libxml2 function name (xmlParseCharRef) in the message" check_false_grep xmlParse "$err"
+
 finish

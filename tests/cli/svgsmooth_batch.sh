@@ -90,8 +90,9 @@ check_exit 2 "two inputs with one base name" "$svgsmooth" "$tmp/tree/a/same.svg"
 check_grep "would both be written to" "$err" "names the clash"
 check_grep "same.svg" "$err" "names the inputs"
 check_true "nothing created" test ! -e "$tmp/dup"
-check_exit 2 "a directory without -r" "$svgsmooth" "$tmp/tree" -o "$tmp/x/"
-check_grep "is a directory \(-r" "$err" "says to use -r"
+check_exit 1 "a directory without -r: an input that fails, not a usage error" "$svgsmooth" "$tmp/tree" -o "$tmp/x/"
+check_grep "tree: is a directory, not written \(-r processes" "$err" "says to use -r"
+check_true "nothing written" sh -c 'test -z "$(ls -A "$1" 2>/dev/null)"' sh "$tmp/x"
 check_exit 2 "several inputs without -o or --in-place" "$svgsmooth" "$tmp/in/icon-000.svg" "$tmp/in/icon-001.svg"
 check_exit 2 "several inputs and -o FILE" "$svgsmooth" "$tmp/in/icon-000.svg" "$tmp/in/icon-001.svg" -o "$tmp/one.svg"
 check_true "-o FILE not created" test ! -e "$tmp/one.svg"
@@ -108,6 +109,19 @@ check "one input, -o DIR/: into the directory" "$svgsmooth" --levels 3 "$tmp/in/
 check_true "DIR/icon-005.svg as a single run" sh -c "'$svgsmooth' --levels 3 '$tmp/in/icon-005.svg' | cmp -s - '$tmp/one/icon-005.svg'"
 check_exit 1 "one input, -o an existing directory without '/': the error it always was" "$svgsmooth" --levels 3 "$tmp/in/icon-005.svg" -o "$tmp/one"
 check_grep "is a directory" "$err" "says so"
+
+begin_case "one directory among 200 inputs: 199 written, exit 1 (issue 33)"
+mkdir -p "$tmp/many" "$tmp/many/adir"
+i=0
+while [ $i -lt 199 ]; do
+    cp "$tmp/in/icon-000.svg" "$tmp/many/f$i.svg"
+    i=$((i + 1))
+done
+set -- "$tmp"/many/f*.svg
+check_exit 1 "199 files and a directory" "$svgsmooth" --levels 2 "$@" "$tmp/many/adir" -o "$tmp/manyout/"
+check_grep "adir: is a directory, not written" "$err" "names the directory"
+check_grep "199 files written, 1 failed" "$err" "the summary counts it"
+check_true "199 outputs" test "$(ls "$tmp/manyout" | wc -l)" -eq 199
 
 begin_case "scadprofile IN... -o DIR/: one module per input, a failing one alone"
 scad=$build/bin/scadprofile

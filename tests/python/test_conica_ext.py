@@ -201,6 +201,91 @@ def float32_points_are_read_as_rounded():
     assert "precision" in msg, msg
 
 
+# ---- issue 33: the hostile battery's findings in the extension
+
+
+class Raises:
+    """A number whose float() raises exc."""
+
+    def __init__(self, exc):
+        self.exc = exc
+
+    def __float__(self):
+        raise self.exc
+
+
+@case
+def float_raising_base_exceptions_propagate_unchanged():
+    c = conica()
+    for exc in (KeyboardInterrupt, SystemExit, RecursionError, MemoryError, ZeroDivisionError):
+        pts = list(SQUARE)
+        pts[3] = Raises(exc("from __float__"))
+        try:
+            c.subdivide(pts, closed=True, levels=1)
+        except exc as e:
+            assert str(e) == "from __float__", (exc, e)
+        except BaseException as e:  # noqa: B036 - the point of the case
+            raise AssertionError("%s became %s: %s" % (exc.__name__, type(e).__name__, e))
+        else:
+            raise AssertionError("%s was swallowed" % exc.__name__)
+    # a TypeError of __float__ still names the item
+    pts = list(SQUARE)
+    pts[3] = Raises(TypeError("nope"))
+    msg = expect(TypeError, c.subdivide, pts, closed=True, levels=1)
+    assert "points[3]" in msg, msg
+
+
+@case
+def endless_iterable_is_capped():
+    import itertools
+    import resource
+    c = conica()
+    # a generator is read like a list (up to the cap)
+    r = c.subdivide((v for v in SQUARE), closed=True, levels=1)
+    assert len(r[0]) == len(c.subdivide(SQUARE, closed=True, levels=1)[0])
+    # an endless one stops at the cap instead of eating all memory
+    resource.setrlimit(resource.RLIMIT_AS, (3 << 30, 3 << 30))
+    msg = expect(ValueError, c.subdivide, itertools.repeat(0.5), closed=True, levels=1)
+    assert "more than 67108864 values" in msg, msg
+    # an iterator that raises mid-way: its own exception
+    def bad():
+        yield 0.0
+        raise KeyboardInterrupt("mid-way")
+    try:
+        c.subdivide(bad(), closed=True, levels=1)
+    except KeyboardInterrupt as e:
+        assert str(e) == "mid-way"
+    else:
+        raise AssertionError("the iterator's KeyboardInterrupt was swallowed")
+
+
+BILINEAR = dict(nu=2, nv=2, degree_u=1, degree_v=1, knots_u=[0, 0, 1, 1],
+                knots_v=[0, 0, 1, 1])
+BILINEAR_CTRL = [0.0, 0, 0, 0, 1, 0, 1, 0, 0, 1, 1, 1]
+
+
+@case
+def surface_tolerance_below_resolution_refused_fast():
+    import time
+    c = conica()
+    for tol in (1e-300, 1e-16):
+        t0 = time.process_time()
+        msg = expect(c.LimitError, c.surface, BILINEAR_CTRL, tolerance=tol, **BILINEAR)
+        assert time.process_time() - t0 < 5, "took %g s" % (time.process_time() - t0)
+        assert "below what the coordinates resolve" in msg, msg
+    r = c.surface(BILINEAR_CTRL, tolerance=1e-2, **BILINEAR)
+    assert r[1] >= 2 and r[2] >= 2, r
+
+
+@case
+def surface_huge_grid_message_has_no_overflowed_product():
+    c = conica()
+    kw = dict(BILINEAR)
+    kw.update(nu=6148914691236517206, nv=3)
+    msg = expect(c.LimitError, c.surface, BILINEAR_CTRL, tolerance=1e-2, **kw)
+    assert "6148914691236517206 x 3 control points exceed the limit" in msg, msg
+
+
 def run_one(name):
     for fn in CASES:
         if fn.__name__ == name:

@@ -163,7 +163,8 @@ CONICA_API conica_code conica_bspline_eval_deriv(const conica_bspline *s, double
 
 /**
  * @brief Knot span: the index mu with t_mu <= t < t_{mu+1} and
- *        p <= mu <= n-1 (t = t_n gives the last non-empty span).
+ *        p <= mu <= n-1 (t = t_n gives the last non-empty span); 0 for
+ *        NULL or an empty (initialised, never set) spline.
  */
 CONICA_API size_t conica_bspline_find_span(const conica_bspline *s, double t);
 
@@ -193,7 +194,8 @@ CONICA_API conica_code conica_bspline_insert_knots(conica_bspline *s, const doub
 CONICA_API conica_code conica_bspline_to_bezier(const conica_bspline *s, conica_bspline *out,
         conica_status *st);
 
-/** @brief Number of non-empty knot intervals (polynomial pieces) of s. */
+/** @brief Number of non-empty knot intervals (polynomial pieces) of s; 0 for
+ *         NULL or an empty spline. */
 CONICA_API size_t conica_bspline_bezier_count(const conica_bspline *s);
 
 /**
@@ -206,20 +208,22 @@ CONICA_API size_t conica_bspline_bezier_count(const conica_bspline *s);
 CONICA_API conica_code conica_bspline_bezier_piece(const conica_bspline *s, size_t k,
         double *ctrl, double *w, double *a, double *b, conica_status *st);
 
-/** @brief Knot averages t*_j (Greville abscissae, Def. 1.10); out gets n values. */
+/** @brief Knot averages t*_j (Greville abscissae, Def. 1.10); out gets n
+ *         values. NULL or an empty spline, or out NULL: nothing written. */
 CONICA_API void conica_bspline_knot_averages(const conica_bspline *s, double *out);
 
 /**
  * @brief Control polygon (Def. 1.12): n points of dimension
  *        conica_bspline_point_dim(s) -- (t*_j, c_j) for a function,
- *        c_j (projected, for rational curves) otherwise.
+ *        c_j (projected, for rational curves) otherwise. NULL or an empty
+ *        spline, or out NULL: nothing written.
  */
 CONICA_API void conica_bspline_control_polygon(const conica_bspline *s, double *out);
 
-/** @brief Dimension of plotted points: 2 for a function, else dim. */
+/** @brief Dimension of plotted points: 2 for a function, else dim; 0 for NULL. */
 CONICA_API int conica_bspline_point_dim(const conica_bspline *s);
 
-/** @brief Domain [t_p, t_n] of s. */
+/** @brief Domain [t_p, t_n] of s; NaN and NaN for NULL or an empty spline. */
 CONICA_API void conica_bspline_domain(const conica_bspline *s, double *a, double *b);
 
 /* ------------------------------------------------------------ surfaces */

@@ -142,8 +142,9 @@ CONICA_API size_t conica_curve_line_of_point(const char *buf, size_t len, size_t
 
 /**
  * @brief Write `v` lines then `vn` lines (if the curve has normals),
- *        each number printed with %.17g so that it round-trips.
- * @return CONICA_OK or CONICA_ERR_IO
+ *        each number printed with %.17g so that it round-trips; f is
+ *        flushed, so a full disk is an error here, not later.
+ * @return CONICA_OK, CONICA_ERR_ARG, or CONICA_ERR_IO (with strerror)
  */
 CONICA_API conica_code conica_curve_write(FILE *f, const conica_curve *c, conica_status *st);
 

@@ -224,7 +224,10 @@ CONICA_API conica_code conica_path_bezier_to(conica_path *p, int degree, const d
  * @brief Elliptic arc from the current point: centre (cx, cy), radii rx, ry,
  *        x-axis rotation phi, start angle theta1 and signed sweep dtheta
  *        (radians, |dtheta| <= 2 pi), as exact rational quadratics of at most
- *        90 degrees each; the arc's end is (x1, y1) exactly.
+ *        90 degrees each; the arc's end is (x1, y1) exactly. A zero radius
+ *        gives the line to (x1, y1).
+ * @return CONICA_OK; CONICA_ERR_ARG when |dtheta| exceeds 2 pi by more than
+ *         rounding (1e-12 relative); CONICA_ERR_NONFINITE; CONICA_ERR_NOMEM
  */
 CONICA_API conica_code conica_path_arc_to(conica_path *p, double cx, double cy, double rx,
                                           double ry, double phi, double theta1, double dtheta,

@@ -206,7 +206,8 @@ CONICA_API conica_code conica_plot_bezier(int degree, const double *ctrl, const 
  *         box ((t*_j, c_j) for a function; projected points if rational). */
 CONICA_API double conica_plot_extent(const conica_bspline *s);
 
-/** @brief Absolute tolerance the settings give for s (abs_tolerance, or eq. (3.26)). */
+/** @brief Absolute tolerance the settings give for s (abs_tolerance, or eq. (3.26));
+ *         NaN when s or set is NULL. */
 CONICA_API double conica_plot_tolerance(const conica_bspline *s, const conica_plot_settings *set);
 
 /**
