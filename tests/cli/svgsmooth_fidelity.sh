@@ -1,0 +1,110 @@
+#!/bin/sh
+# SPDX-License-Identifier: MIT
+# svgsmooth within its stated tolerance, measured by build/tests/svgcheck
+# (tests/svgcheck/svgcheck.c: path data read and distances measured with
+# no svgsmooth or libcore code, dense samples both ways refined by golden
+# section): the six reproductions of issue 32 and the icons vendored under
+# tests/data/icons/ (from npm, each set with its licence), in every mode.
+# usage (from the repository root): sh tests/cli/svgsmooth_fidelity.sh BUILD_DIR
+set -u
+. "$(dirname "$0")/harness.sh"
+svgsmooth=$build/bin/svgsmooth
+svgcheck=$build/tests/svgcheck
+
+# within MODE-ARGS -- CHECK-ARGS -- IN: svgsmooth IN with MODE-ARGS, then
+# svgcheck: every subpath within the tolerance both ways, closed subpaths
+# start (and open ones start and end) where drawn, every corner a vertex,
+# no new crossing between subpaths.
+within() {
+    w_opt=
+    while [ "$1" != -- ]; do w_opt="$w_opt $1"; shift; done
+    shift
+    w_chk=
+    while [ "$1" != -- ]; do w_chk="$w_chk $1"; shift; done
+    shift
+    # shellcheck disable=SC2086
+    check "svgsmooth$w_opt $(basename "$1")" "$svgsmooth" $w_opt -o "$tmp/w.svg" "$1"
+    # shellcheck disable=SC2086
+    check "svgcheck$w_chk" "$svgcheck" $w_chk "$1" "$tmp/w.svg"
+    check_grep '^ratio=(0\.[0-9]+|1\.0000) over=0 subpaths=[0-9]+ starts=0 corners=0/[0-9]+ crossings=0 ' \
+        "$out" "$(basename "$1")$w_opt: $(cat "$out")"
+}
+
+svg() { printf '<svg xmlns="http://www.w3.org/2000/svg" viewBox="0 0 24 24"><path d="%s"/></svg>\n' "$1" >"$2"; }
+
+begin_case "the checker sees what the old output got wrong (it can fail)"
+svg 'M6.588 6.603c-2.178 .547 -3.588 1.417 -3.588 2.397c0 1.657 4.03 3 9 3' "$tmp/r1.svg"
+# the 4.69x output of before, as written then
+svg 'M6.588 6.603L6.318356 6.673435 6.050166 6.74922 5.78367 6.830777 5.519174 6.918607 5.256968 7.013345 4.997635 7.115684 4.741796 7.226519 4.490324 7.346936 4.236447 7.482814 3.99033 7.632287 3.754592 7.797904 3.533585 7.982721 3.330127 8.195205 3.160747 8.435737 3.042994 8.70722 3 9 3.201792 9.631678 3.650589 10.11986 4.18504 10.48795 4.762847 10.78336 5.344795 11.01957 5.94062 11.2182 6.545586 11.38629 7.157117 11.52865 7.75518 11.64536 8.356622 11.74319 8.960597 11.82375 9.566497 11.88825 10.17372 11.93759 10.78195 11.9724 11.39082 11.99312 12 12' "$tmp/r1.old.svg"
+check "svgcheck on the old output" "$svgcheck" "$tmp/r1.svg" "$tmp/r1.old.svg"
+check_grep '^ratio=4\.[0-9]+ over=1 ' "$out" "4.7 times the tolerance: $(cat "$out")"
+
+begin_case "1. smoothing: the chords written stay within the tolerance at every level"
+for lev in 1 2 3 4 5 6 8; do
+    within --levels $lev -- -- "$tmp/r1.svg"
+done
+within --tolerance 0.05 -- -- "$tmp/r1.svg"
+
+begin_case "2. flattening: a hook's tip beyond the chord end counts"
+svg 'M0 0Q4 0 5 0.05Q6 0.1 5 0.15Q4 0.2 0 0.2L20 5' "$tmp/r2.svg"
+within --flatten --tolerance 0.1 -- --tol 0.1 -- "$tmp/r2.svg"
+within --flatten --tolerance 0.02 -- --tol 0.02 -- "$tmp/r2.svg"
+within -- -- "$tmp/r2.svg"
+
+begin_case "3. a spike (a cubic whose ends coincide) keeps its extent in every mode"
+svg 'M10 10c4 -4 -4 4 0 0' "$tmp/r3.svg"
+within -- -- "$tmp/r3.svg"
+within --levels 2 -- -- "$tmp/r3.svg"
+within --flatten --tolerance 0.01 -- --tol 0.01 -- "$tmp/r3.svg"
+svg 'M0 0L5 0c4 -4 -4 4 0 0L5 5' "$tmp/r3b.svg"
+within --flatten --tolerance 0.01 -- --tol 0.01 -- "$tmp/r3b.svg"
+
+begin_case "4. written digits follow from the tolerance (coordinates of 1000 and more)"
+svg 'M1000 1000Q1500 0 2000 1000' "$tmp/r4.svg"
+within --flatten --tolerance 0.01 -- --tol 0.01 -- "$tmp/r4.svg"
+within --flatten --tolerance 0.001 -- --tol 0.001 -- "$tmp/r4.svg"
+svg 'M100000 100000Q150000 0 200000 100000' "$tmp/r4b.svg"
+within -- -- "$tmp/r4b.svg"
+check "--precision 7 given" "$svgsmooth" --flatten --tolerance 0.01 --precision 7 -o "$tmp/p7.svg" "$tmp/r4.svg"
+check_grep 'L1006\.636 986\.8158 ' "$tmp/p7.svg" "an explicit --precision wins"
+
+begin_case "5. closed subpaths start at their drawn vertex; corners stay vertices"
+# the start is a smooth join between two cubics, the corners are elsewhere:
+# flattening's runs passed over it
+svg 'M10 0C15 0 20 5 20 10L20 20 0 20 0 10C0 5 5 0 10 0Z' "$tmp/r5.svg"
+for m in "" "--levels 3" "--flatten --tolerance 0.01"; do
+    chk=
+    case $m in --flatten*) chk="--tol 0.01" ;; esac
+    # shellcheck disable=SC2086
+    within $m -- $chk -- "$tmp/r5.svg"
+    check_grep 'd="M10 0L' "$tmp/w.svg" "starts at 10 0 ($m)"
+done
+
+begin_case "6. --simplify keeps straight outlines straight; polygons' corner angle"
+printf '<svg xmlns="http://www.w3.org/2000/svg"><path d="M100 100L1300 100 1300 260 300 1600 1320 1600 1320 1760 80 1760 80 1600 1080 260 100 260Z"/></svg>\n' >"$tmp/z.svg"
+within --simplify 0.1 -- --tol 0.1 -- "$tmp/z.svg"
+check_grep 'd="M100 100L1300 100 1300 260 300 1600 1320 1600 1320 1760 80 1760 80 1600 1080 260 100 260Z"' "$tmp/w.svg" "the Z as drawn"
+# feather's volume: a polygon whose joins turn 38.7 degrees
+pv=tests/data/icons/feather/volume.svg
+if [ -f "$pv" ]; then
+    check "--corner-angle 30" "$svgsmooth" --corner-angle 30 -o "$tmp/v.svg" "$pv"
+    check_grep 'points="11,5 6,9 2,9 2,15 6,15 11,19"' "$tmp/v.svg" "the polygon's joins kept"
+fi
+
+begin_case "real icons from npm (tests/data/icons): every mode within the tolerance"
+found=0
+last=
+for f in tests/data/icons/*/*.svg; do
+    [ -f "$f" ] || continue
+    found=1
+    within -- -- "$f"
+    within --levels 3 -- -- "$f"
+    within --flatten --tolerance 0.01 -- --tol 0.01 --samples-too -- "$f"
+    within --simplify 0.05 -- -- "$f"
+    # 8 levels (2^8 points per sample edge) on the first icon of each set
+    set_dir=${f%/*}
+    [ "$set_dir" = "$last" ] || within --levels 8 -- -- "$f"
+    last=$set_dir
+done
+[ $found = 1 ] || skip_case "no icons under tests/data/icons"
+finish
