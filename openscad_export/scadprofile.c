@@ -21,6 +21,7 @@
 #include "cli.h"
 #include "cli_batch.h"
 #include "conica/curve.h"
+#include "conica/dxf.h"
 #include "conica/subdiv.h"
 #include "conica_scad.h"
 #include "conica_svg.h"
@@ -38,7 +39,7 @@
  * box diagonal is closed; otherwise a straight segment closes it. */
 #define SPLINE_CLOSE_REL 1e-9
 
-typedef enum kind { IN_POINTS, IN_SVG, IN_SPLINE } kind;
+typedef enum kind { IN_POINTS, IN_SVG, IN_SPLINE, IN_DXF } kind;
 typedef enum units { U_DEFAULT, U_PX, U_MM, U_IN } units;
 /* --fit: the first three are conica_path_fit values (the SVG layer's
  * conica_svg_settings.fit); clearance runs inside and outside. */
@@ -74,6 +75,13 @@ typedef struct options {
     size_t ninputs;
     int out_arg;
     int jobs;           /* -j N, 0: not given */
+    /* DXF: --layer (repeatable), --gap, --open; what the header says of
+     * the drawing read (load_dxf, freed by profile_file) */
+    const char **layers;
+    size_t nlayers;
+    double gap;
+    int dxf_open;
+    char *dxf_note;
 } options;
 
 typedef struct stats {
@@ -101,7 +109,9 @@ static void usage(FILE *f)
           "\n"
           "IN: a point-normal file (`v x y` / `vn nx ny`, refined by conic subdivision),\n"
           "    an SVG file (every closed subpath of the selected elements; y flipped),\n"
-          "    or a spline file (.spl, through the adaptive plotter); - reads stdin.\n"
+          "    a spline file (.spl, through the adaptive plotter) or an ASCII DXF drawing\n"
+          "    (.dxf: lines, arcs, circles, ellipses, polylines with bulges, splines,\n"
+          "    blocks; ends that meet are joined into closed contours); - reads stdin.\n"
           "\n"
           "  --tolerance T     largest distance between the polygon and the curve, in\n"
           "                    output units (default 0.01); fewest points that meet it.\n"
@@ -126,8 +136,9 @@ static void usage(FILE *f)
           "                    identifier, e.g. bracket-v2.svg -> bracket_v2, with a\n"
           "                    warning when it had to be changed; stdin: profile)\n",
           f);
-    fputs("  --units U         SVG only: output units px, mm (default) or in; 96 px per\n"
-          "                    inch, the document's viewBox/width/height honoured\n"
+    fputs("  --units U         SVG and DXF: output units px, mm (default) or in; 96 px per\n"
+          "                    inch, the SVG's viewBox/width/height and the DXF's\n"
+          "                    $INSUNITS / $MEASUREMENT honoured\n"
           "  --demo-call       end the file with a top-level call of NAME() (or of the\n"
           "                    wrapper below) so that it renders alone\n"
           "  --extrude H       also emit NAME_extruded(height=H, center=false); implies\n"
@@ -136,6 +147,13 @@ static void usage(FILE *f)
           "                    implies --demo-call; the profile must not have x < 0\n"
           "  --no-demo-call    no top-level call even with --extrude / --rotate-extrude\n"
           "  --select IDS      SVG only: comma-separated element ids (default: all)\n"
+          "  --layer NAME      DXF only: read this layer (repeatable; default: every layer\n"
+          "                    not frozen or off)\n"
+          "  --gap D           DXF only: join entity ends up to D apart (output units;\n"
+          "                    default 1e-9 of the drawing's size, or 4x the precision\n"
+          "                    its coordinates are written with, whichever is larger)\n"
+          "  --open            DXF only: close an outline that does not close by a\n"
+          "                    straight edge, with a warning (default: an error)\n"
           "  --max-points N    cap on the dense points of one curve (default 4194304)\n"
           "  --max-input-bytes N   input size cap (default 256 MiB, SVG 64 MiB, or the\n"
           "                        environment variable CONICA_MAX_INPUT_BYTES)\n"
@@ -171,7 +189,8 @@ static int parse_args(int argc, char **argv, options *o, int *exit_now)
     o->out_arg = -1;
     /* the inputs point into argv: at most argc of them */
     o->inputs = malloc((size_t)argc * sizeof *o->inputs);
-    if (!o->inputs)
+    o->layers = malloc((size_t)argc * sizeof *o->layers);
+    if (!o->inputs || !o->layers)
         return cli_error(PROG, NULL, "out of memory");
     o->levels = -1;
     o->module = "profile";
@@ -275,6 +294,15 @@ static int parse_args(int argc, char **argv, options *o, int *exit_now)
                 return CLI_EXIT_USAGE;
             o->max_input_given |= strcmp(a, "--max-input-bytes") == 0;
             i++;
+        } else if (strcmp(a, "--layer") == 0) {
+            NEED_ARG();
+            o->layers[o->nlayers++] = next;
+        } else if (strcmp(a, "--gap") == 0) {
+            NEED_ARG();
+            if (cli_parse_double(next, &o->gap) != 0 || !(o->gap > 0))
+                return cli_usage_error(PROG, "--gap needs a distance > 0, not '%s'", next);
+        } else if (strcmp(a, "--open") == 0) {
+            o->dxf_open = 1;
         } else if (strcmp(a, "--flatten-only") == 0) {
             o->flatten_only = 1;
         } else if (strcmp(a, "--force") == 0) {
@@ -349,6 +377,8 @@ static kind detect(const char *path, const char *buf, size_t len)
         return IN_SVG;
     if (cli_ends_with_ci(path, ".spl"))
         return IN_SPLINE;
+    if (cli_ends_with_ci(path, ".dxf") || conica_dxf_sniff(buf, len))
+        return IN_DXF;
     if (cli_ends_with_ci(path, ".txt") || cli_ends_with_ci(path, ".obj"))
         return IN_POINTS;
     size_t i = 0;
@@ -836,6 +866,117 @@ static int load_svg(const options *o, const char *name, const char *buf, size_t 
     return result;
 }
 
+/* ------------------------------------------------------------ DXF */
+
+static const char *kinds_of(kind k)
+{
+    return k == IN_DXF ? "DXF" : k == IN_SVG ? "SVG" : k == IN_SPLINE ? "spline" : "point-normal";
+}
+
+/* DXF reader warnings as `scadprofile: warning: FILE[:LINE]: what`. */
+static void dxf_warn(void *ctx, size_t line, const char *message)
+{
+    svg_warn(ctx, line, message);
+}
+
+/* The header's account of the drawing: units, layers, entities, gap. */
+static char *dxf_note(const conica_dxf_drawing *d, const char *unit)
+{
+    size_t cap = 256;
+    for (size_t i = 0; i < d->nlayers; i++)
+        cap += strlen(d->layers[i]) + 4;
+    char *t = malloc(cap), g[40];
+    if (!t)
+        return NULL;
+    conica_scad_format_double(d->gap, g, sizeof g);
+    size_t n = (size_t)snprintf(t, cap,
+                                "DXF: %zu entities read, %zu skipped; drawing units %s; %zu "
+                                "contours (%zu joined from several entities, gap %s %s)\nlayers read:",
+                                d->entities, d->skipped, d->file_unit, d->path.nsub, d->joined, g,
+                                unit);
+    for (size_t i = 0; i < d->nlayers && n < cap; i++)
+        n += (size_t)snprintf(t + n, cap - n, "%s %s", i ? "," : "", d->layers[i]);
+    return t;
+}
+
+/* A DXF drawing (conica/dxf.h) into prof[r] for each fit mode: one group
+ * of every contour, even-odd, so holes are holes whatever their layer;
+ * the curves flattened within the tolerance of the entities themselves. */
+static int load_dxf(options *o, const char *name, const char *buf, size_t len, const fit *fits,
+                    size_t nruns, conica_scad_profile *prof, stats *sx)
+{
+    conica_dxf_settings ds = conica_dxf_defaults();
+    conica_dxf_drawing d;
+    conica_path_result res;
+    conica_status st;
+    int result = 0;
+    if (o->levels >= 0)
+        return cli_error(PROG, name, "--levels applies to point-normal and SVG input; "
+                                     "use --tolerance for a DXF drawing");
+    ds.unit_mm = o->unit == U_IN ? 25.4 : o->unit == U_PX ? 25.4 / 96 : 1;
+    ds.gap = o->gap;
+    ds.open_mode = o->dxf_open ? CONICA_DXF_OPEN_CLOSE : CONICA_DXF_OPEN_ERROR;
+    ds.layers = o->layers;
+    ds.nlayers = o->nlayers;
+    ds.warn = dxf_warn;
+    ds.warn_ctx = (void *)name;
+    if (o->max_input_given)
+        ds.limits.max_bytes = o->limits.max_bytes;
+    ds.limits.max_points = o->max_points * 16;
+    conica_dxf_drawing_init(&d);
+    if (conica_dxf_read(buf, len, &ds, &d, &st) != CONICA_OK) {
+        conica_dxf_drawing_free(&d);
+        if (st.code == CONICA_ERR_PARSE && strncmp(st.message, "an outline does not close", 25) == 0) {
+            status_error(name, &st);
+            fprintf(stderr, PROG ": note: --gap D joins ends up to D apart (output units); "
+                            "--open closes such an outline by a straight edge\n");
+            return CLI_EXIT_ERROR;
+        }
+        return status_error(name, &st);
+    }
+    sx->kind = "DXF";
+    sx->elements = d.entities;
+    sx->subpaths = d.path.nsub;
+    o->dxf_note = dxf_note(&d, o->unit == U_IN ? "in" : o->unit == U_PX ? "px" : "mm");
+    if (!o->dxf_note) {
+        conica_dxf_drawing_free(&d);
+        return cli_error(PROG, name, "out of memory");
+    }
+    conica_path_settings ps = conica_path_defaults();
+    ps.tolerance = o->tolerance * (1 - CONICA_SCAD_ROUND_FRACTION);
+    ps.max_points = o->max_points * 16;
+    for (size_t r = 0; r < nruns && result == 0; r++) {
+        size_t g;
+        ps.fit = (conica_path_fit)fits[r];
+        conica_path_result_init(&res);
+        if (conica_path_flatten(&d.path, &ps, &res, &st) != CONICA_OK) {
+            if (st.offset < d.path.nsub)
+                st.line = d.sub_line[st.offset];
+            result = status_error(name, &st);
+        } else if (conica_scad_add_group(&prof[r], "", CONICA_SCAD_FILL_EVENODD, 0, &g, &st) !=
+                   CONICA_OK) {
+            result = status_error(name, &st);
+        }
+        for (size_t i = 0; i < res.n && result == 0; i++) {
+            const conica_path_polyline *pl = &res.lines[i];
+            if (r == 0)
+                sx->dense_points += pl->n;
+            if (pl->n == 0)
+                continue;
+            if (conica_scad_add_contour(&prof[r], g, pl->xy, pl->n, &st) != CONICA_OK) {
+                char where[1024];
+                snprintf(where, sizeof where, "%s:%zu", name, d.sub_line[pl->subpath]);
+                result = cli_error(PROG, where, "%s", st.message);
+            } else {
+                prof[r].contours[prof[r].ncontours - 1].subpath = pl->subpath + 1;
+            }
+        }
+        conica_path_result_free(&res);
+    }
+    conica_dxf_drawing_free(&d);
+    return result;
+}
+
 /* --fit clearance: the contours that are holes in the inside run *in
  * (arranged as *lay) take their points from the outside run *out, which
  * holds the same subpaths in the same order (*in may have lost some to
@@ -885,7 +1026,7 @@ static int take_holes(conica_scad_profile *in, const conica_scad_layout *lay,
 static char *header_text(int argc, char **argv, const options *o, const char *kind_name,
                          int exact)
 {
-    size_t cap = 1024;
+    size_t cap = 1024 + (o->dxf_note ? strlen(o->dxf_note) : 0);
     for (int i = 0; i < argc; i++)
         cap += strlen(argv[i]) + 3;
     char *h = malloc(cap), num[40], step[40];
@@ -899,7 +1040,7 @@ static char *header_text(int argc, char **argv, const options *o, const char *ki
     if (n < cap)
         n += (size_t)snprintf(h + n, cap - n, "\nsource: %s (%s)\n", o->in, kind_name);
     /* SVG output units are chosen; other inputs keep their own units */
-    const char *u = strcmp(kind_name, "SVG") != 0 ? "(input units)"
+    const char *u = strcmp(kind_name, "SVG") != 0 && strcmp(kind_name, "DXF") != 0 ? "(input units)"
                     : o->unit == U_PX                ? "px"
                     : o->unit == U_IN                ? "in"
                                                      : "mm";
@@ -919,6 +1060,8 @@ static char *header_text(int argc, char **argv, const options *o, const char *ki
     if (n < cap)
         n += (size_t)snprintf(h + n, cap - n, "\nfit: %s (%s)", fit_names[o->fit],
                               fit_meaning[o->fit]);
+    if (n < cap && o->dxf_note)
+        n += (size_t)snprintf(h + n, cap - n, "\n%s", o->dxf_note);
     if (n < cap) {
         if (exact)
             snprintf(h + n, cap - n, "\ncoordinates: exact (the shortest decimals that read "
@@ -1041,11 +1184,16 @@ static int profile_file(void *ctx, const char *in, const char *outp)
         return CLI_EXIT_ERROR;
     name = strcmp(o.in, "-") == 0 ? "<stdin>" : o.in;
     kind k = detect(o.in, buf, len);
-    if (k != IN_SVG && (o.unit != U_DEFAULT || o.select)) {
+    if (k != IN_SVG && (o.unit != U_DEFAULT || o.select) && (k != IN_DXF || o.select)) {
         free(buf);
-        return cli_usage_error(PROG, "--units and --select apply to SVG input only");
+        return cli_usage_error(PROG, "--units and --select apply to SVG input only "
+                                     "(--units also to DXF)");
     }
-    if (k != IN_SVG && o.fit != FIT_INSIDE) {
+    if (k != IN_DXF && (o.nlayers || o.gap > 0 || o.dxf_open)) {
+        free(buf);
+        return cli_usage_error(PROG, "--layer, --gap and --open apply to DXF input only");
+    }
+    if (k != IN_SVG && k != IN_DXF && o.fit != FIT_INSIDE) {
         free(buf);
         return cli_usage_error(PROG,
                                "--fit %s: %s input supports only --fit inside (for now; "
@@ -1075,6 +1223,8 @@ static int profile_file(void *ctx, const char *in, const char *outp)
         rc = load_svg(&o, name, buf, len, fits, nruns, prof, &sx);
     else if (k == IN_SPLINE)
         rc = load_spline(&o, name, buf, len, &prof[0], &sx);
+    else if (k == IN_DXF)
+        rc = load_dxf(&o, name, buf, len, fits, nruns, prof, &sx);
     else
         rc = load_points(&o, name, buf, len, &prof[0], &sx);
     if (rc != 0)
@@ -1173,8 +1323,7 @@ static int profile_file(void *ctx, const char *in, const char *outp)
         goto fail;
     }
     {
-        static const char *const kinds[3] = {"point-normal", "SVG", "spline"};
-        char *header = header_text(argc, argv, &o, kinds[k], exact);
+        char *header = header_text(argc, argv, &o, kinds_of(k), exact);
         conica_scad_write_options wo = conica_scad_write_defaults();
         cli_output out;
         if (!header) {
@@ -1209,9 +1358,10 @@ static int profile_file(void *ctx, const char *in, const char *outp)
         size_t pts = 0;
         for (size_t i = 0; i < lay.npaths; i++)
             pts += use->contours[lay.paths[i].contour].n;
-        if (k == IN_SVG)
-            fprintf(stderr, PROG ": input SVG, %zu elements, %zu closed subpaths", sx.elements,
-                    sx.subpaths);
+        if (k == IN_SVG || k == IN_DXF)
+            fprintf(stderr, PROG ": input %s, %zu %s, %zu closed %s", kinds_of(k), sx.elements,
+                    k == IN_DXF ? "entities" : "elements", sx.subpaths,
+                    k == IN_DXF ? "contours" : "subpaths");
         else
             fprintf(stderr, PROG ": input %s, %zu input points", sx.kind ? sx.kind : "?",
                     sx.input_points);
@@ -1232,9 +1382,11 @@ static int profile_file(void *ctx, const char *in, const char *outp)
     conica_scad_profile_free(&prof[1]);
     conica_scad_profile_free(&rounded);
     free(buf);
+    free(o.dxf_note);
     return CLI_EXIT_OK;
 fail:
     free(buf);
+    free(o.dxf_note);
     conica_scad_layout_free(&lay);
     conica_scad_profile_free(&prof[0]);
     conica_scad_profile_free(&prof[1]);
@@ -1288,6 +1440,7 @@ int main(int argc, char **argv)
 
     if ((rc = parse_args(argc, argv, &o, &exit_now)) != 0 || exit_now) {
         free(o.inputs);
+        free(o.layers);
         return rc;
     }
     if (o.ninputs > 1 || (o.out && o.out[strlen(o.out) - 1] == '/')) {
@@ -1315,5 +1468,6 @@ int main(int argc, char **argv)
         rc = profile_file(&r, o.in, o.out);
     }
     free(o.inputs);
+    free(o.layers);
     return rc;
 }
