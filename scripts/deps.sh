@@ -11,7 +11,7 @@
 set -eu
 
 build="gcc g++ make pkg-config liblapacke-dev libxml2-dev python3-dev"
-test="libcgal-dev libgmp-dev openscad blender librsvg2-bin libxml2-utils clang libclang-rt-14-dev valgrind libfreetype-dev fonts-dejavu-core groff-base mandoc inkscape python3-lxml python3-cssselect python3-numpy xvfb xauth"
+test="libcgal-dev libgmp-dev openscad blender librsvg2-bin libxml2-utils clang libclang-rt-14-dev valgrind libfreetype-dev fonts-dejavu-core groff-base mandoc inkscape python3-lxml python3-cssselect python3-numpy python3-ezdxf xvfb xauth"
 demo="openscad blender librsvg2-bin"
 
 case "${1:-build}" in

@@ -101,7 +101,7 @@ static conica_code build_ellipse(conica__dxf_ctx *c, const conica__dxf_ent *e,
     double cen[2] = {num(e, 10, 0), num(e, 20, 0)}, M[2] = {num(e, 11, 0), num(e, 21, 0)};
     double ratio = num(e, 40, 1), t0 = num(e, 41, 0), t1 = num(e, 42, 2 * PI), m[2];
     conica_code rc;
-    if (!(ratio > 0 && ratio <= 1 + 1e-9) || (M[0] == 0 && M[1] == 0))
+    if (!(ratio > 0 && ratio <= 1e6) || (M[0] == 0 && M[1] == 0))
         return conica__fail(st, CONICA_ERR_PARSE, c->info.line, 0,
                             "ELLIPSE with axis ratio %g or a zero major axis", ratio);
     m[0] = nz > 0 ? -ratio * M[1] : ratio * M[1];

@@ -10,6 +10,7 @@
 
 #include "cli.h"
 #include "conica/bspline.h"
+#include "conica/dxf.h"
 #include "conica/plot.h"
 
 #define PROG "conica"
@@ -25,7 +26,8 @@ static void usage(FILE *f)
             "                   [--local-weight length|angle|both] [--angle DEG]\n"
             "                   [--max-recursion N] [--max-points N] [--max-knots N]\n"
             "                   [--max-iterations N] [--max-control-points N]\n"
-            "                   [--max-degree N] [--stats] [-o OUT] IN.spl\n"
+            "                   [--max-degree N] [--entity HANDLE] [--stats] [-o OUT]\n"
+            "                   IN.spl | IN.dxf\n"
             "\n"
             "Plot a B-spline function or curve (optionally rational) as a polyline\n"
             "(after T. Dahl, \"Adaptive plotting of splines\", Oslo 2019).\n"
@@ -94,6 +96,7 @@ typedef struct options {
     conica_bspline_parse_limits read; /* caps of the .spl reader */
     int stats, have_abs, have_px, have_points, have_budget;
     const char *in, *out;
+    const char *entity; /* DXF: the handle of the SPLINE to plot */
 } options;
 
 /* "--name VALUE" or "--name=VALUE"; NULL when missing. */
@@ -143,7 +146,7 @@ static int parse_args(int argc, char **argv, options *o)
     o->set = conica_plot_defaults();
     o->read = conica_bspline_parse_limits_defaults();
     o->stats = o->have_abs = o->have_px = o->have_points = o->have_budget = 0;
-    o->in = o->out = NULL;
+    o->in = o->out = o->entity = NULL;
     for (int i = 1; i < argc; i++) {
         const char *a = argv[i], *v;
         long num;
@@ -261,6 +264,10 @@ static int parse_args(int argc, char **argv, options *o)
             NEED(v && !cli_parse_int(v, 1, CONICA_BSPLINE_MAX_DEGREE, &num),
                  "--max-degree needs an integer in 1..%d", CONICA_BSPLINE_MAX_DEGREE);
             o->read.max_degree = (int)num;
+        } else if (is_opt(a, "--entity")) {
+            v = opt_value(argc, argv, &i, a, 8);
+            NEED(v && *v, "--entity needs the handle of a DXF SPLINE (group 5)");
+            o->entity = v;
         } else if (strncmp(a, "-o", 2) == 0 || is_opt(a, "--output")) {
             size_t nl = a[1] == '-' ? 8 : 2;
             v = opt_value(argc, argv, &i, a, nl);
@@ -349,7 +356,26 @@ int conica_cmd_plot(int argc, char **argv)
     conica_status st;
     memset(&st, 0, sizeof st);
     char where[4096], hint[96];
-    conica_code code = conica_bspline_parse_ex(buf, len, &o.read, &s, &st);
+    /* a DXF drawing: one SPLINE of its model space, in drawing units */
+    int dxf = cli_ends_with_ci(o.in, ".dxf") || conica_dxf_sniff(buf, len);
+    conica_code code;
+    if (dxf) {
+        conica_dxf_limits dl = conica_dxf_limits_defaults();
+        dl.max_vertices = o.read.max_ctrl < dl.max_vertices ? o.read.max_ctrl : dl.max_vertices;
+        code = conica_dxf_spline(buf, len, o.entity, &dl, &s, NULL, &st);
+        if (code == CONICA_OK && s.degree > o.read.max_degree) {
+            snprintf(st.message, sizeof st.message,
+                     "degree %d exceeds %d (max_degree); raise the cap with --max-degree N",
+                     s.degree, o.read.max_degree);
+            st.code = code = CONICA_ERR_LIMIT;
+            conica_bspline_free(&s);
+        }
+    } else if (o.entity) {
+        free(buf);
+        return cli_usage_error(USAGE_PROG, "--entity names a SPLINE of a DXF input");
+    } else {
+        code = conica_bspline_parse_ex(buf, len, &o.read, &s, &st);
+    }
     free(buf);
     if (code != CONICA_OK) {
         if (st.line > 0)
