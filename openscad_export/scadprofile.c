@@ -922,7 +922,7 @@ static int load_dxf(options *o, const char *name, const char *buf, size_t len, c
     ds.warn_ctx = (void *)name;
     if (o->max_input_given)
         ds.limits.max_bytes = o->limits.max_bytes;
-    ds.limits.max_points = o->max_points * 16;
+    ds.limits.max_points = o->max_points; /* control points, like the dense points of one curve */
     conica_dxf_drawing_init(&d);
     if (conica_dxf_read(buf, len, &ds, &d, &st) != CONICA_OK) {
         conica_dxf_drawing_free(&d);

@@ -103,8 +103,10 @@ static int is_open_piece(const conica__dxf_geom *g, size_t p, double gap)
     return !(hypot(a[0] - b[0], a[1] - b[1]) <= gap);
 }
 
-/* Emit the current chain into the path, closed. */
-static conica_code emit(const chainer *c, conica_path *path, conica_status *st)
+/* Emit the current chain into the path, closed: its last segment ends
+ * exactly at its start when it came back there within the gap (snap),
+ * else conica_path_close() draws the straight edge back. */
+static conica_code emit(const chainer *c, int snap, conica_path *path, conica_status *st)
 {
     const conica__dxf_geom *g = c->g;
     const double *s = chain_point(c, 0);
@@ -127,7 +129,7 @@ static conica_code emit(const chainer *c, conica_path *path, conica_status *st)
                 w[i] = q[2];
                 rational |= q[2] != 1.0;
             }
-            if (k + 1 == c->len && j + 1 == pc->nseg) { /* back to the start exactly */
+            if (snap && k + 1 == c->len && j + 1 == pc->nseg) { /* back to the start exactly */
                 ctrl[2 * (d - 1)] = x0;
                 ctrl[2 * (d - 1) + 1] = y0;
             }
@@ -268,7 +270,7 @@ conica_code conica__dxf_chain(const conica__dxf_geom *g, const conica__dxf_chain
         if (c.len > 1)
             (*joined)++;
         (*lines)[nlines++] = g->pc[c.chain[c.head].piece].line;
-        rc = emit(&c, path, st);
+        rc = emit(&c, closed, path, st);
     }
 done:
     free(c.ep);

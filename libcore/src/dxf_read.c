@@ -167,9 +167,14 @@ static conica_code skip_section(reader *r, conica__dxf_lexer *lx, const char *na
 {
     conica__dxf_pair p;
     int k;
-    while ((k = read_pair(r, lx, &p, st)) > 0)
+    while ((k = read_pair(r, lx, &p, st)) > 0) {
         if (conica__dxf_is(&p, 0, "ENDSEC"))
             return CONICA_OK;
+        if (conica__dxf_is(&p, 0, "EOF")) { /* a writer that forgot the ENDSEC */
+            conica__dxf_unread(lx, &p);
+            return CONICA_OK;
+        }
+    }
     return k < 0 ? st->code : truncated(lx, name, st);
 }
 

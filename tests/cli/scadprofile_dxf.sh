@@ -56,7 +56,8 @@ check "a lone open spline is an error naming where it stops" fails_with 1 \
 check "nothing written" test ! -e "$cases/spline_open.scad"
 check "--open closes it by a straight edge, with a warning" fails_with 0 \
     "warning: .*closed by a straight edge of length 50" run spline_open --open
-check "the spline is there" deviation spline_open middle --contours 1
+check "the spline and the closing edge are there (the drawing of reproduction 2)" \
+    "$PY" tests/dxf/check.py "$cases/repro_spline.dxf" "$cases/spline_open.scad" m $T inside --contours 1
 
 begin_case "issue 35, reproduction 3: CIRCLE r = 3 within T"
 check "reads" run repro_circle
@@ -166,7 +167,13 @@ hostile overflow "f.write('0\nSECTION\n2\nENTITIES\n0\nLINE\n10\n1e400\n0\nENDSE
 hostile recursive "f.write('0\nSECTION\n2\nBLOCKS\n0\nBLOCK\n2\nA\n10\n0\n20\n0\n0\nINSERT\n2\nA\n10\n1\n20\n0\n0\nENDBLK\n0\nENDSEC\n0\nSECTION\n2\nENTITIES\n0\nINSERT\n2\nA\n10\n0\n20\n0\n0\nENDSEC\n0\nEOF\n')" \
     "recursive.dxf:13: block 'A' inserts itself (recursive blocks)"
 hostile million "f.write('0\nSECTION\n2\nENTITIES\n0\nLWPOLYLINE\n90\n1000000\n70\n1\n'); f.write(''.join('10\n%d\n20\n%d\n' % (i, i % 2) for i in range(1000000))); f.write('0\nENDSEC\n0\nEOF\n')" \
-    "million.dxf:[0-9]*: entity LWPOLYLINE has more than"
+    "million.dxf:5: LWPOLYLINE has more than 524288 vertices (max_vertices)"
+hostile deep "f.write('0\nSECTION\n2\nBLOCKS\n' + ''.join('0\nBLOCK\n2\nB%d\n0\nINSERT\n2\nB%d\n0\nENDBLK\n' % (i, i + 1) for i in range(20)) + '0\nBLOCK\n2\nB20\n0\nCIRCLE\n40\n1\n0\nENDBLK\n0\nENDSEC\n0\nSECTION\n2\nENTITIES\n0\nINSERT\n2\nB0\n0\nENDSEC\n0\nEOF\n')" \
+    "deep.dxf:[0-9]*: INSERTs nested deeper than 16 (max_depth)"
+hostile bomb "f.write('0\nSECTION\n2\nBLOCKS\n0\nBLOCK\n2\nB\n0\nCIRCLE\n10\n0\n20\n0\n40\n1\n0\nENDBLK\n0\nBLOCK\n2\nA\n0\nINSERT\n2\nB\n70\n1000\n71\n1000\n44\n3\n45\n3\n0\nENDBLK\n0\nENDSEC\n0\nSECTION\n2\nENTITIES\n0\nINSERT\n2\nA\n70\n2000\n71\n2000\n44\n3000\n45\n3000\n0\nENDSEC\n0\nEOF\n')" \
+    "bomb.dxf:[0-9]*: INSERT array of 2000 x 2000 copies exceeds max_entities (1048576)"
+hostile bomb2 "f.write('0\nSECTION\n2\nBLOCKS\n0\nBLOCK\n2\nB\n0\nCIRCLE\n10\n0\n20\n0\n40\n1\n0\nENDBLK\n0\nBLOCK\n2\nA\n0\nINSERT\n2\nB\n70\n1000\n71\n1000\n44\n3\n45\n3\n0\nENDBLK\n0\nENDSEC\n0\nSECTION\n2\nENTITIES\n0\nINSERT\n2\nA\n70\n1000\n71\n1000\n44\n3000\n45\n3000\n0\nENDSEC\n0\nEOF\n')" \
+    "bomb2.dxf:[0-9]*: the drawing has more than 4194304 control points (max_points)"
 hostile binary "f.write('AutoCAD Binary DXF\r\n\x1a\x00')" \
     "binary.dxf:1: binary DXF is not supported: save the drawing as ASCII DXF"
 hostile fitonly "f.write('0\nSECTION\n2\nENTITIES\n0\nSPLINE\n5\nAB12\n71\n3\n74\n3\n11\n0\n21\n0\n11\n1\n21\n1\n11\n2\n21\n0\n0\nENDSEC\n0\nEOF\n')" \

@@ -44,13 +44,13 @@ extern "C" {
 /** Default cap on the input size, bytes. */
 #define CONICA_DXF_DEFAULT_MAX_BYTES ((size_t)256 << 20)
 /** Default cap on the entities read (after INSERT expansion). */
-#define CONICA_DXF_DEFAULT_MAX_ENTITIES ((size_t)1 << 22)
+#define CONICA_DXF_DEFAULT_MAX_ENTITIES ((size_t)1 << 20)
 /** Default cap on the vertices (control points, polyline vertices) of one entity. */
 #define CONICA_DXF_DEFAULT_MAX_VERTICES ((size_t)1 << 19)
 /** Default cap on the knots of one spline. */
 #define CONICA_DXF_DEFAULT_MAX_KNOTS ((size_t)1 << 19)
 /** Default cap on the total control points of a drawing. */
-#define CONICA_DXF_DEFAULT_MAX_POINTS ((size_t)1 << 24)
+#define CONICA_DXF_DEFAULT_MAX_POINTS ((size_t)1 << 22)
 /** Default cap on the nesting of INSERTs in blocks. */
 #define CONICA_DXF_DEFAULT_MAX_DEPTH 16
 /** Coordinates beyond this magnitude (in the file or after transforms) are refused. */
