@@ -59,10 +59,21 @@ def spline_samples(p, knots, ctrl, w, m):
     return [de_boor(p, knots, ctrl, w, t) for t in ts]
 
 
+TOL = [1.0]  # the tolerance checked (main sets it)
+
+
+def count(r, sweep, m):
+    """Samples of an arc of radius r and sweep (radians) whose chords stay
+    within 1e-3 of the tolerance of it, at most m per turn."""
+    n = math.pi * math.sqrt(abs(r) / (2e-3 * TOL[0])) * abs(sweep) / (2 * math.pi)
+    return int(min(m * abs(sweep) / (2 * math.pi) + 2, max(16, n + 2)))
+
+
 def arc_samples(c, r, a0, a1, m):
     while a1 <= a0:
         a1 += 2 * math.pi
-    return [(c[0] + r * math.cos(t), c[1] + r * math.sin(t)) for t in np.linspace(a0, a1, m)]
+    t = np.linspace(a0, a1, count(r, a1 - a0, m))
+    return np.column_stack([c[0] + r * np.cos(t), c[1] + r * np.sin(t)])
 
 
 def poly_samples(pts, closed, ocs, m):
@@ -77,7 +88,13 @@ def poly_samples(pts, closed, ocs, m):
         else:
             c, s, e, r = bulge_to_arc((x0, y0), (x1, y1), b)
             seg = arc_samples(c, r, s, e, m)
-        out.append([tuple(ocs.to_wcs((x, y, 0)))[:2] for x, y in seg])
+        seg = np.array(seg, float)
+        z = ocs.uz
+        if abs(z.x) < 1e-12 and abs(z.y) < 1e-12:  # +-z: identity or x mirrored
+            seg[:, 0] *= 1 if z.z > 0 else -1
+            out.append(seg)
+        else:
+            out.append([tuple(ocs.to_wcs((x, y, 0)))[:2] for x, y in seg])
     return out
 
 
@@ -86,12 +103,14 @@ def entity_samples(e, m, pieces):
     if t == "LINE":
         pieces.append([tuple(e.dxf.start)[:2], tuple(e.dxf.end)[:2]])
     elif t == "CIRCLE":
-        pieces.append([tuple(v)[:2] for v in e.vertices(np.linspace(0, 360, m))])
+        k = count(e.dxf.radius, 2 * math.pi, m)
+        pieces.append([tuple(v)[:2] for v in e.vertices(np.linspace(0, 360, k))])
     elif t == "ARC":
         s, en = e.dxf.start_angle, e.dxf.end_angle
         while en <= s:
             en += 360
-        pieces.append([tuple(v)[:2] for v in e.vertices(np.linspace(s, en, m))])
+        k = count(e.dxf.radius, math.radians(en - s), m)
+        pieces.append([tuple(v)[:2] for v in e.vertices(np.linspace(s, en, k))])
     elif t == "ELLIPSE":
         s, en = e.dxf.start_param, e.dxf.end_param
         while en <= s:
@@ -198,6 +217,7 @@ def main():
             want = int(args[i + 1])
         elif a == "--hatch":
             hatch = True
+    TOL[0] = tol
     doc = ezdxf.readfile(dxf)
     scale = UNITS_MM.get(doc.header.get("$INSUNITS", 0), 1) / unit_mm
     def sample(m):
