@@ -19,6 +19,7 @@
 #include "cli_batch.h"
 #include "cli_opt.h"
 #include "conica/curve.h"
+#include "conica/dxf.h"
 #include "conica/subdiv.h"
 #include "conica_scad.h"
 #include "conica_svg.h"
@@ -38,7 +39,7 @@
  * box diagonal is closed; otherwise a straight segment closes it. */
 #define SPLINE_CLOSE_REL 1e-9
 
-typedef enum kind { IN_POINTS, IN_SVG, IN_SPLINE } kind;
+typedef enum kind { IN_POINTS, IN_SVG, IN_SPLINE, IN_DXF } kind;
 typedef enum units { U_DEFAULT, U_PX, U_MM, U_IN } units;
 /* --fit: the first three are conica_path_fit values (the SVG layer's
  * conica_svg_settings.fit); clearance runs inside and outside. */
@@ -87,6 +88,13 @@ typedef struct options {
     char **argv0;       /* the command line in the order typed */
     int out_attached;   /* -o's value is part of its argument (-oDIR/, --output=DIR/) */
     cli_progress_mode progress; /* -q, --progress */
+    /* DXF: --layer (repeatable), --gap, --open; what the header says of
+     * the drawing read (load_dxf, freed by profile_file) */
+    const char **layers;
+    size_t nlayers;
+    double gap;
+    int dxf_open;
+    char *dxf_note;
 } options;
 
 typedef struct stats {
@@ -115,6 +123,9 @@ enum {
     OPT_FORCE,
     OPT_STATS,
     OPT_PROGRESS,
+    OPT_LAYER,
+    OPT_GAP,
+    OPT_DXF_OPEN,
     OPT_LIMITS, /* CONICA_SVG_CLI_LIMIT_COUNT ids from here */
 };
 
@@ -165,9 +176,9 @@ static const cli_opt opts[] = {
      "changed; stdin: profile)",
      {0, 0, 0}},
     {OPT_UNITS, "units", CLI_ARG_REQUIRED, "U", "px|mm|in",
-     "SVG only: output units px, mm (default) or in; 96\n"
-     "px per inch, the document's viewBox/width/height\n"
-     "honoured",
+     "SVG and DXF: output units px, mm (default) or in;\n"
+     "96 px per inch, the SVG's viewBox/width/height and\n"
+     "the DXF's $INSUNITS / $MEASUREMENT honoured",
      {0, 0, 0}},
     {OPT_DEMO_CALL, "demo-call", CLI_ARG_NONE, NULL, NULL,
      "end the file with a top-level call of NAME() (or of\n"
@@ -187,6 +198,20 @@ static const cli_opt opts[] = {
      "no top-level call even with --extrude /\n--rotate-extrude", {0, 0, 0}},
     {OPT_SELECT, "select", CLI_ARG_REQUIRED, "IDS", NULL,
      "SVG only: comma-separated element ids (default:\nall)", {0, 0, 0}},
+    {OPT_LAYER, "layer", CLI_ARG_REQUIRED, "NAME", NULL,
+     "DXF only: read this layer (repeatable; default:\n"
+     "every layer not frozen or off)",
+     {0, 0, 0}},
+    {OPT_GAP, "gap", CLI_ARG_REQUIRED, "D", NULL,
+     "DXF only: join entity ends up to D apart (output\n"
+     "units; default 1e-9 of the drawing's size, or 4x\n"
+     "the precision its coordinates are written with,\n"
+     "whichever is larger)",
+     {0, 0, 0}},
+    {OPT_DXF_OPEN, "open", CLI_ARG_NONE, NULL, NULL,
+     "DXF only: close an outline that does not close by\n"
+     "a straight edge, with a warning (default: an error)",
+     {0, 0, 0}},
     {OPT_MAX_POINTS, "max-points", CLI_ARG_REQUIRED, "N", NULL,
      "cap on the dense points of one curve (default\n%.0f)",
      {(double)CONICA_SCAD_DEFAULT_MAX_DENSE, 0, 0}},
@@ -235,7 +260,9 @@ static const cli_tool tool = {
     "\n"
     "IN: a point-normal file (`v x y` / `vn nx ny`, refined by conic subdivision),\n"
     "    an SVG file (every closed subpath of the selected elements; y flipped),\n"
-    "    or a spline file (.spl, through the adaptive plotter); - reads stdin.\n",
+    "    a spline file (.spl, through the adaptive plotter) or an ASCII DXF drawing\n"
+    "    (.dxf: lines, arcs, circles, ellipses, polylines with bulges, splines,\n"
+    "    blocks; ends that meet are joined into closed contours); - reads stdin.\n",
     opts,
     "Subpaths that enclose no area (fewer than 3 points, all on one line) are\n"
     "skipped with a warning; messages name a subpath as the SVG does: the element\n"
@@ -335,6 +362,12 @@ static int take_option(cli_parser *p, int c, void *ctx)
         o->revolve = 1;
         break;
     case OPT_SELECT: o->select = v; break;
+    case OPT_LAYER: o->layers[o->nlayers++] = v; break;
+    case OPT_GAP:
+        if (cli_parse_double(v, &o->gap) != 0 || !(o->gap > 0))
+            return cli_usage_error(PROG, "--gap needs a distance > 0, not '%s'", v);
+        break;
+    case OPT_DXF_OPEN: o->dxf_open = 1; break;
     case OPT_MAX_POINTS:
         if (cli_parse_int(v, 16, (long)CONICA_SCAD_MAX_POINTS, &l) != 0)
             return cli_usage_error(PROG, "--max-points needs an integer in 16..%zu",
@@ -380,7 +413,8 @@ static int parse_args(int argc, char **argv, options *o, int *exit_now)
      * order as typed (getopt_long moves the operands to the end) */
     o->inputs = malloc((size_t)argc * sizeof *o->inputs);
     o->argv0 = malloc(((size_t)argc + 1) * sizeof *o->argv0);
-    if (!o->inputs || !o->argv0)
+    o->layers = malloc((size_t)argc * sizeof *o->layers); /* each --layer */
+    if (!o->inputs || !o->argv0 || !o->layers)
         return cli_error(PROG, NULL, "out of memory");
     memcpy(o->argv0, argv, ((size_t)argc + 1) * sizeof *argv);
     o->levels = -1;
@@ -443,6 +477,8 @@ static kind detect(const char *path, const char *buf, size_t len)
         return IN_SVG;
     if (cli_ends_with_ci(path, ".spl"))
         return IN_SPLINE;
+    if (cli_ends_with_ci(path, ".dxf") || conica_dxf_sniff(buf, len))
+        return IN_DXF;
     if (cli_ends_with_ci(path, ".txt") || cli_ends_with_ci(path, ".obj"))
         return IN_POINTS;
     size_t i = 0;
@@ -1022,6 +1058,117 @@ done:
     return result;
 }
 
+/* ------------------------------------------------------------ DXF */
+
+static const char *kinds_of(kind k)
+{
+    return k == IN_DXF ? "DXF" : k == IN_SVG ? "SVG" : k == IN_SPLINE ? "spline" : "point-normal";
+}
+
+/* DXF reader warnings as `scadprofile: warning: FILE[:LINE]: what`. */
+static void dxf_warn(void *ctx, size_t line, const char *message)
+{
+    svg_warn(ctx, line, message);
+}
+
+/* The header's account of the drawing: units, layers, entities, gap. */
+static char *dxf_note(const conica_dxf_drawing *d, const char *unit)
+{
+    size_t cap = 256;
+    for (size_t i = 0; i < d->nlayers; i++)
+        cap += strlen(d->layers[i]) + 4;
+    char *t = malloc(cap), g[40];
+    if (!t)
+        return NULL;
+    conica_scad_format_double(d->gap, g, sizeof g);
+    size_t n = (size_t)snprintf(t, cap,
+                                "DXF: %zu entities read, %zu skipped; drawing units %s; %zu "
+                                "contours (%zu joined from several entities, gap %s %s)\nlayers read:",
+                                d->entities, d->skipped, d->file_unit, d->path.nsub, d->joined, g,
+                                unit);
+    for (size_t i = 0; i < d->nlayers && n < cap; i++)
+        n += (size_t)snprintf(t + n, cap - n, "%s %s", i ? "," : "", d->layers[i]);
+    return t;
+}
+
+/* A DXF drawing (conica/dxf.h) into prof[r] for each fit mode: one group
+ * of every contour, even-odd, so holes are holes whatever their layer;
+ * the curves flattened within the tolerance of the entities themselves. */
+static int load_dxf(options *o, const char *name, const char *buf, size_t len, const fit *fits,
+                    size_t nruns, conica_scad_profile *prof, stats *sx)
+{
+    conica_dxf_settings ds = conica_dxf_defaults();
+    conica_dxf_drawing d;
+    conica_path_result res;
+    conica_status st;
+    int result = 0;
+    if (o->levels >= 0)
+        return cli_error(PROG, name, "--levels applies to point-normal and SVG input; "
+                                     "use --tolerance for a DXF drawing");
+    ds.unit_mm = o->unit == U_IN ? 25.4 : o->unit == U_PX ? 25.4 / 96 : 1;
+    ds.gap = o->gap;
+    ds.open_mode = o->dxf_open ? CONICA_DXF_OPEN_CLOSE : CONICA_DXF_OPEN_ERROR;
+    ds.layers = o->layers;
+    ds.nlayers = o->nlayers;
+    ds.warn = dxf_warn;
+    ds.warn_ctx = (void *)name;
+    if (o->max_input_given)
+        ds.limits.max_bytes = o->limits.max_bytes;
+    ds.limits.max_points = o->max_points; /* control points, like the dense points of one curve */
+    conica_dxf_drawing_init(&d);
+    if (conica_dxf_read(buf, len, &ds, &d, &st) != CONICA_OK) {
+        conica_dxf_drawing_free(&d);
+        if (st.code == CONICA_ERR_PARSE && strncmp(st.message, "an outline does not close", 25) == 0) {
+            status_error(name, &st);
+            fprintf(stderr, PROG ": note: --gap D joins ends up to D apart (output units); "
+                            "--open closes such an outline by a straight edge\n");
+            return CLI_EXIT_ERROR;
+        }
+        return status_error(name, &st);
+    }
+    sx->kind = "DXF";
+    sx->elements = d.entities;
+    sx->subpaths = d.path.nsub;
+    o->dxf_note = dxf_note(&d, o->unit == U_IN ? "in" : o->unit == U_PX ? "px" : "mm");
+    if (!o->dxf_note) {
+        conica_dxf_drawing_free(&d);
+        return cli_error(PROG, name, "out of memory");
+    }
+    conica_path_settings ps = conica_path_defaults();
+    ps.tolerance = o->tolerance * (1 - CONICA_SCAD_ROUND_FRACTION);
+    ps.max_points = o->max_points * 16;
+    for (size_t r = 0; r < nruns && result == 0; r++) {
+        size_t g;
+        ps.fit = (conica_path_fit)fits[r];
+        conica_path_result_init(&res);
+        if (conica_path_flatten(&d.path, &ps, &res, &st) != CONICA_OK) {
+            if (st.offset < d.path.nsub)
+                st.line = d.sub_line[st.offset];
+            result = status_error(name, &st);
+        } else if (conica_scad_add_group(&prof[r], "", CONICA_SCAD_FILL_EVENODD, 0, &g, &st) !=
+                   CONICA_OK) {
+            result = status_error(name, &st);
+        }
+        for (size_t i = 0; i < res.n && result == 0; i++) {
+            const conica_path_polyline *pl = &res.lines[i];
+            if (r == 0)
+                sx->dense_points += pl->n;
+            if (pl->n == 0)
+                continue;
+            if (conica_scad_add_contour(&prof[r], g, pl->xy, pl->n, &st) != CONICA_OK) {
+                char where[1024];
+                snprintf(where, sizeof where, "%s:%zu", name, d.sub_line[pl->subpath]);
+                result = cli_error(PROG, where, "%s", st.message);
+            } else {
+                prof[r].contours[prof[r].ncontours - 1].subpath = pl->subpath + 1;
+            }
+        }
+        conica_path_result_free(&res);
+    }
+    conica_dxf_drawing_free(&d);
+    return result;
+}
+
 /* --fit clearance: the contours that are holes in the inside run *in
  * (arranged as *lay) take their points from the outside run *out, which
  * holds the same subpaths in the same order (*in may have lost some to
@@ -1071,7 +1218,7 @@ static int take_holes(conica_scad_profile *in, const conica_scad_layout *lay,
 static char *header_text(int argc, char **argv, const options *o, const char *kind_name,
                          int exact, const stats *sx, int region)
 {
-    size_t cap = 1024;
+    size_t cap = 1024 + (o->dxf_note ? strlen(o->dxf_note) : 0);
     for (int i = 0; i < argc; i++)
         cap += strlen(argv[i]) + 3;
     char *h = malloc(cap), num[40], step[40];
@@ -1085,7 +1232,7 @@ static char *header_text(int argc, char **argv, const options *o, const char *ki
     if (n < cap)
         n += (size_t)snprintf(h + n, cap - n, "\nsource: %s (%s)\n", o->in, kind_name);
     /* SVG output units are chosen; other inputs keep their own units */
-    const char *u = strcmp(kind_name, "SVG") != 0 ? "(input units)"
+    const char *u = strcmp(kind_name, "SVG") != 0 && strcmp(kind_name, "DXF") != 0 ? "(input units)"
                     : o->unit == U_PX                ? "px"
                     : o->unit == U_IN                ? "in"
                                                      : "mm";
@@ -1106,6 +1253,8 @@ static char *header_text(int argc, char **argv, const options *o, const char *ki
     if (n < cap)
         n += (size_t)snprintf(h + n, cap - n, "\nfit: %s (%s)", fit_names[o->fit],
                               fit_meaning[o->fit]);
+    if (n < cap && o->dxf_note)
+        n += (size_t)snprintf(h + n, cap - n, "\n%s", o->dxf_note);
     if (n < cap && region)
         n += (size_t)snprintf(h + n, cap - n,
                               "\npaint: %s (%s): %zu fill%s and %zu stroke%s made material",
@@ -1233,16 +1382,21 @@ static int profile_file(void *ctx, const char *in, const char *outp)
         return CLI_EXIT_ERROR;
     name = strcmp(o.in, "-") == 0 ? "<stdin>" : o.in;
     kind k = detect(o.in, buf, len);
-    if (k != IN_SVG && (o.unit != U_DEFAULT || o.select || o.paint_given)) {
+    if (k != IN_DXF && (o.nlayers || o.gap > 0 || o.dxf_open)) {
         free(buf);
-        return cli_usage_error(PROG, "--units, --select and --paint apply to SVG input only");
+        return cli_usage_error(PROG, "--layer, --gap and --open apply to DXF input only");
+    }
+    if (k != IN_SVG && (o.select || o.paint_given || (o.unit != U_DEFAULT && k != IN_DXF))) {
+        free(buf);
+        return cli_usage_error(PROG, "--units, --select and --paint apply to SVG input only "
+                                     "(--units also to DXF)");
     }
     if (k == IN_SVG && o.levels >= 0 && o.paint_given) {
         free(buf);
         return cli_usage_error(PROG, "--paint applies to --tolerance (the painted region); "
                                      "--levels smooths each path's fill as it is");
     }
-    if (k != IN_SVG && o.fit != FIT_INSIDE) {
+    if (k != IN_SVG && k != IN_DXF && o.fit != FIT_INSIDE) {
         free(buf);
         return cli_usage_error(PROG,
                                "--fit %s: %s input supports only --fit inside (for now; "
@@ -1277,6 +1431,8 @@ static int profile_file(void *ctx, const char *in, const char *outp)
         rc = load_svg(&o, name, buf, len, fits, nruns, prof, &sx);
     else if (k == IN_SPLINE)
         rc = load_spline(&o, name, buf, len, &prof[0], &sx);
+    else if (k == IN_DXF)
+        rc = load_dxf(&o, name, buf, len, fits, nruns, prof, &sx);
     else
         rc = load_points(&o, name, buf, len, &prof[0], &sx);
     if (rc != 0)
@@ -1375,8 +1531,7 @@ static int profile_file(void *ctx, const char *in, const char *outp)
         goto fail;
     }
     {
-        static const char *const kinds[3] = {"point-normal", "SVG", "spline"};
-        char *header = header_text(argc, argv, &o, kinds[k], exact, &sx, k == IN_SVG && o.levels < 0);
+        char *header = header_text(argc, argv, &o, kinds_of(k), exact, &sx, k == IN_SVG && o.levels < 0);
         conica_scad_write_options wo = conica_scad_write_defaults();
         cli_output out;
         if (!header) {
@@ -1414,6 +1569,9 @@ static int profile_file(void *ctx, const char *in, const char *outp)
         if (k == IN_SVG)
             fprintf(stderr, PROG ": input SVG, %zu element%s, %zu closed subpath%s", sx.elements,
                     cli_plural(sx.elements), sx.subpaths, cli_plural(sx.subpaths));
+        else if (k == IN_DXF)
+            fprintf(stderr, PROG ": input DXF, %zu entit%s, %zu closed contour%s", sx.elements,
+                    sx.elements == 1 ? "y" : "ies", sx.subpaths, cli_plural(sx.subpaths));
         else
             fprintf(stderr, PROG ": input %s, %zu input points", sx.kind ? sx.kind : "?",
                     sx.input_points);
@@ -1434,9 +1592,11 @@ static int profile_file(void *ctx, const char *in, const char *outp)
     conica_scad_profile_free(&prof[1]);
     conica_scad_profile_free(&rounded);
     free(buf);
+    free(o.dxf_note);
     return CLI_EXIT_OK;
 fail:
     free(buf);
+    free(o.dxf_note);
     conica_scad_layout_free(&lay);
     conica_scad_profile_free(&prof[0]);
     conica_scad_profile_free(&prof[1]);
@@ -1522,5 +1682,6 @@ int main(int argc, char **argv)
     }
     free(o.inputs);
     free(o.argv0);
+    free(o.layers);
     return rc;
 }

@@ -11,6 +11,7 @@
 #include "cli.h"
 #include "cli_opt.h"
 #include "conica/bspline.h"
+#include "conica/dxf.h"
 #include "conica/plot.h"
 
 #define PROG "conica"
@@ -37,6 +38,7 @@ enum {
     OPT_MAX_ITERATIONS,
     OPT_MAX_CTRL,
     OPT_MAX_DEGREE,
+    OPT_ENTITY,
 };
 
 static const cli_opt opts[] = {
@@ -113,17 +115,20 @@ static const cli_opt opts[] = {
     {OPT_MAX_DEGREE, "max-degree", CLI_ARG_REQUIRED, "N", NULL,
      "limit: refuse input splines of degree above N\n(default and maximum %.0f)",
      {CONICA_BSPLINE_MAX_DEGREE, 0, 0}},
+    {OPT_ENTITY, "entity", CLI_ARG_REQUIRED, "HANDLE", NULL,
+     "DXF: the SPLINE with this handle (default: the\nonly one)", {0, 0, 0}},
     {0, NULL, 0, NULL, NULL, NULL, {0, 0, 0}},
 };
 
 static const cli_tool tool = {
     USAGE_PROG,
-    "[OPTION]... IN.spl",
+    "[OPTION]... IN.spl | IN.dxf",
     "Plot a B-spline function or curve (optionally rational) as a polyline\n"
     "(after T. Dahl, \"Adaptive plotting of splines\", Oslo 2019).\n"
     "\n"
     "Input: `degree P`, `knots ...`, one `c x [y [z]]` line per control point,\n"
-    "optional `w ...` weights; `#` starts a comment. IN of `-`: stdin.\n"
+    "optional `w ...` weights; `#` starts a comment. IN of `-`: stdin. Or an\n"
+    "ASCII DXF drawing (.dxf): one SPLINE of its model space, in drawing units.\n"
     "Output: one `x y` line per vertex (`t f(t)` for a spline function, `x y z`\n"
     "for a 3-D curve); a blank line separates pieces split at discontinuities.\n",
     opts,
@@ -143,6 +148,7 @@ typedef struct options {
     conica_bspline_parse_limits read; /* caps of the .spl reader */
     int stats, have_abs, have_px, have_points, have_budget;
     const char *in, *out;
+    const char *entity; /* DXF: the handle of the SPLINE to plot */
 } options;
 
 static int parse_viewport(const char *v, double *w, double *h)
@@ -291,6 +297,11 @@ static int take_option(cli_parser *p, int c, void *ctx)
     case 'o':
         o->out = v;
         break;
+    case OPT_ENTITY:
+        if (!*v)
+            return cli_opt_bad(p, "needs the handle of a DXF SPLINE (group 5)");
+        o->entity = v;
+        break;
     default:
         return cli_opt_bad(p, "is not handled"); /* a table entry without a case */
     }
@@ -304,7 +315,7 @@ static int parse_args(int argc, char **argv, options *o)
     o->set = conica_plot_defaults();
     o->read = conica_bspline_parse_limits_defaults();
     o->stats = o->have_abs = o->have_px = o->have_points = o->have_budget = 0;
-    o->in = o->out = NULL;
+    o->in = o->out = o->entity = NULL;
     if ((rc = cli_opt_parse(&tool, argc, argv, take_option, o, &first)) >= 0)
         return rc;
     if ((rc = cli_opt_one_operand(&tool, argc, argv, first, 1, &o->in)) >= 0)
@@ -387,7 +398,26 @@ int conica_cmd_plot(int argc, char **argv)
     conica_status st;
     memset(&st, 0, sizeof st);
     char where[4096], hint[96];
-    conica_code code = conica_bspline_parse_ex(buf, len, &o.read, &s, &st);
+    /* a DXF drawing: one SPLINE of its model space, in drawing units */
+    int dxf = cli_ends_with_ci(o.in, ".dxf") || conica_dxf_sniff(buf, len);
+    conica_code code;
+    if (dxf) {
+        conica_dxf_limits dl = conica_dxf_limits_defaults();
+        dl.max_vertices = o.read.max_ctrl < dl.max_vertices ? o.read.max_ctrl : dl.max_vertices;
+        code = conica_dxf_spline(buf, len, o.entity, &dl, &s, NULL, &st);
+        if (code == CONICA_OK && s.degree > o.read.max_degree) {
+            snprintf(st.message, sizeof st.message,
+                     "degree %d exceeds %d (max_degree); raise the cap with --max-degree N",
+                     s.degree, o.read.max_degree);
+            st.code = code = CONICA_ERR_LIMIT;
+            conica_bspline_free(&s);
+        }
+    } else if (o.entity) {
+        free(buf);
+        return cli_usage_error(USAGE_PROG, "--entity names a SPLINE of a DXF input");
+    } else {
+        code = conica_bspline_parse_ex(buf, len, &o.read, &s, &st);
+    }
     free(buf);
     if (code != CONICA_OK) {
         if (st.line > 0)

@@ -14,7 +14,7 @@ case $build in
 *) san=0 ;;
 esac
 
-for name in curve_parse spline_parse svg_path svgsmooth svg_render scadprofile subdivide plot; do
+for name in curve_parse spline_parse svg_path svgsmooth svg_render scadprofile subdivide plot dxf; do
     bin=$fb/bin/fuzz_$name
     begin_case "fuzz_$name"
     if [ "$san" -eq 1 ]; then

@@ -8,7 +8,7 @@
 # The libraries are rebuilt by a recursive make in $(BUILD)/fuzz with clang
 # and SAN="-fsanitize=fuzzer-no-link,address,undefined" (SAN reaches CFLAGS
 # and LDFLAGS); only the final link of a target adds the fuzzer's main.
-FUZZ_NAMES   := curve_parse spline_parse svg_path svgsmooth svg_render scadprofile subdivide plot
+FUZZ_NAMES   := curve_parse spline_parse svg_path svgsmooth svg_render scadprofile subdivide plot dxf
 FUZZ_CC      ?= clang
 FUZZ_SAN     := -fsanitize=fuzzer-no-link,address,undefined -fno-sanitize-recover=undefined \
                 -fno-omit-frame-pointer

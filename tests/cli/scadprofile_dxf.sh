@@ -1,0 +1,238 @@
+#!/bin/sh
+# SPDX-License-Identifier: MIT
+# CLI suite of scadprofile's DXF input (conica/dxf.h):
+#   sh tests/cli/scadprofile_dxf.sh BUILD_DIR      (from the repository root)
+# The drawings are made at run time by ezdxf (python3-ezdxf, an independent
+# DXF writer: tests/dxf/make_cases.py); tests/dxf/check.py evaluates their
+# exact geometry itself (de Boor, ezdxf's construction tools) and checks
+# the two-sided deviation, the fit sign and the contours of each module.
+# Public sample files (tests/data/dxf/) are read too.
+set -u
+. "$(dirname "$0")/harness.sh"
+bin=$build/bin/scadprofile
+conica=$build/bin/conica
+cases=$tmp/cases
+T=0.01
+
+begin_case "scadprofile is built; ezdxf is present"
+check_true "$bin exists" test -x "$bin"
+if ! py 'import ezdxf, numpy' 2>/dev/null; then
+    skip_case "python3-ezdxf or python3-numpy not installed (scripts/deps.sh test)"
+    finish
+fi
+check "the drawings are made" "$PY" tests/dxf/make_cases.py "$cases"
+
+# run NAME [scadprofile options]: $cases/NAME.dxf -> $cases/NAME.scad (module m)
+run() {
+    n=$1
+    shift
+    "$bin" --module m --tolerance $T "$@" -o "$cases/$n.scad" "$cases/$n.dxf"
+}
+# deviation NAME FIT [check.py options]
+deviation() {
+    n=$1
+    f=$2
+    shift 2
+    "$PY" tests/dxf/check.py "$cases/$n.dxf" "$cases/$n.scad" m $T "$f" "$@"
+}
+
+begin_case "issue 35, reproduction 1: the bulged LWPOLYLINE edge is an arc"
+check "reads" run repro_bulge
+check "the arc is there: points beyond x = 40, up to the arc's top x = 45" py '
+import re
+t = open("'"$cases"'/repro_bulge.scad").read()
+xs = [float(x) for x in re.findall(r"\[([-0-9.e+]+),[-0-9.e+]+\]", t.split("function m_points")[1].split("function m_paths")[0])]
+assert max(xs) > 44.99 and max(xs) <= 45.0 + 1e-5, max(xs)
+assert sum(1 for x in xs if x > 40.001) >= 10
+'
+check "within T of the drawn edge, both ways; vertices on it" deviation repro_bulge inside --contours 1
+
+begin_case "issue 35, reproduction 2: the SPLINE is there"
+check "reads" run repro_spline
+check "within T of the spline (de Boor), both ways" deviation repro_spline inside --contours 1
+check "a lone open spline is an error naming where it stops" fails_with 1 \
+    "spline_open.dxf:[0-9]*: an outline does not close: it stops at (50, 0), an end of SPLINE handle" \
+    "$bin" -o "$cases/spline_open.scad" "$cases/spline_open.dxf"
+check "nothing written" test ! -e "$cases/spline_open.scad"
+check "--open closes it by a straight edge, with a warning" fails_with 0 \
+    "warning: .*closed by a straight edge of length 50" run spline_open --open
+check "the spline and the closing edge are there (the drawing of reproduction 2)" \
+    "$PY" tests/dxf/check.py "$cases/repro_spline.dxf" "$cases/spline_open.scad" m $T inside --contours 1
+
+begin_case "issue 35, reproduction 3: CIRCLE r = 3 within T"
+check "reads" run repro_circle
+check "within T, both ways; vertices on the circle" deviation repro_circle inside --contours 1
+for f in outside middle; do
+    check "--fit $f reads" run repro_circle --fit $f
+    check "--fit $f: within T and on its side" deviation repro_circle $f --contours 1
+done
+
+begin_case "every entity type within T of its exact geometry"
+# name, contours
+for c in slot_chain:3 mixed_chain:1 ellipses:2 nurbs_knots:1 periodic:1 r12_polyline:2 \
+         mirrored_ocs:1 blocks:26; do
+    n=${c%%:*}
+    k=${c##*:}
+    check "$n reads" run $n
+    check "$n: $k contours, within T both ways, vertices on the curves" deviation $n inside --contours $k
+    check "$n --fit middle reads" run $n --fit middle
+    check "$n --fit middle: within T both ways" deviation $n middle --contours $k
+done
+check "HATCH boundaries read when nothing else is drawn" run hatch_only
+check "hatch: 2 contours within T" deviation hatch_only inside --hatch --contours 2
+check "LINE/ARC chain: a slot with 2 holes (outer and holes by containment)" \
+    grep -q '^// 1 outer contour, 2 holes' "$cases/slot_chain.scad"
+check "blocks: 13 outlines and their 13 holes" grep -q '^// 13 outer contours, 13 holes' "$cases/blocks.scad"
+
+begin_case "--fit outside keeps every drawn region inside the polygon"
+# (smooth outlines and straight corners; curve-to-line corners: see
+# docs/scadprofile.md, DXF)
+for c in slot_chain:3 periodic:1 repro_circle:1; do
+    n=${c%%:*}
+    check "$n --fit outside reads" run $n --fit outside
+    check "$n --fit outside: within T and outside" deviation $n outside --contours ${c##*:}
+done
+check "--fit clearance reads (holes from the outside run)" run slot_chain --fit clearance
+
+begin_case "units: \$INSUNITS inches and metres to millimetres, --units in"
+check "inch drawing" run inch
+check "inch: 2 x 1 in = 50.8 x 25.4 mm" grep -q '^function m_bbox() = \[\[0,0\],\[50.8,25.4\]\];' "$cases/inch.scad"
+check "inch: within T of the drawing in mm" deviation inch inside --contours 2
+check "the header names the drawing's units" grep -q '^// DXF: .*drawing units in;' "$cases/inch.scad"
+check "metre drawing" run metre
+check "metre: 2 x 1 m = 2000 x 1000 mm" grep -q '^function m_bbox() = \[\[0,0\],\[2000,1000\]\];' "$cases/metre.scad"
+check "--units in on the inch drawing keeps its numbers" run inch --units in
+check "bbox in inches" grep -q '^function m_bbox() = \[\[0,0\],\[2,1\]\];' "$cases/inch.scad"
+check "within T in inches" deviation inch inside --unit-mm 25.4 --contours 2
+
+begin_case "layers: frozen and off layers skipped, --layer selects, the header lists them"
+check "every visible layer, one warning per skipped kind" fails_with 0 \
+    "warning: .*2 CIRCLE entities skipped: on a frozen or switched-off layer" run layers
+check_grep "2 TEXT entities skipped: not profile geometry" "$tmp/fw.err" "TEXT counted once"
+check_grep "1 MTEXT entity skipped" "$tmp/fw.err"
+check "A and B read: 2 contours within T" deviation layers inside --layers A,B --contours 2
+check "header lists the layers read" grep -q '^// layers read: A, B$' "$cases/layers.scad"
+check "--layer B alone" run layers --layer B
+check "only B: 1 contour" deviation layers inside --layers B --contours 1
+check "header lists B" grep -q '^// layers read: B$' "$cases/layers.scad"
+check "--layer C reads a frozen layer on request" run layers --layer C
+check "--layer X: nothing to read is an error" fails_with 1 "no profile geometry" \
+    "$bin" --layer X -o "$cases/none.scad" "$cases/layers.dxf"
+
+begin_case "chaining: a gap is an error with where it stops; --gap joins it"
+check "0.5 gap refused" fails_with 1 \
+    "open_outline.dxf:[0-9]*: an outline does not close: it stops at (0.5, 0)" \
+    "$bin" -o "$cases/open_outline.scad" "$cases/open_outline.dxf"
+check_grep "note: --gap D joins" "$tmp/fw.err" "the way out is named"
+check "nothing written" test ! -e "$cases/open_outline.scad"
+check "--gap 0.6 joins it" run open_outline --gap 0.6
+check "a triangle of 3 points" py '
+import re
+t = open("'"$cases"'/open_outline.scad").read()
+assert len(re.findall(r"^  \[", t.split("function m_points")[1].split("function m_paths")[0], re.M)) == 3
+'
+check "--gap 0.4 does not" fails_with 1 "does not close" \
+    "$bin" --gap 0.4 -o "$cases/open_outline.scad" "$cases/open_outline.dxf"
+
+begin_case "the modules render in OpenSCAD without a warning"
+if command -v openscad >/dev/null 2>&1; then
+    for n in repro_bulge repro_spline repro_circle slot_chain blocks nurbs_knots; do
+        run $n >/dev/null 2>&1
+        printf 'include <%s.scad>\nlinear_extrude(2) m();\n' "$n" >"$cases/r_$n.scad"
+        check "$n renders" sh -c "openscad -o '$cases/r_$n.stl' '$cases/r_$n.scad' >'$cases/r_$n.log' 2>&1 && ! grep -q WARNING '$cases/r_$n.log' && test -s '$cases/r_$n.stl'"
+    done
+else
+    skip_case "openscad not installed"
+fi
+
+begin_case "hostile DXF: a clear error with file:line, nothing written"
+# hostile NAME 'python writing $f' 'expected message'
+hostile() {
+    py "f = open('$cases/$1.dxf', 'w'); $2; f.close()"
+    check "$1: refused" fails_with 1 "$3" "$bin" -o "$cases/$1.scad" "$cases/$1.dxf"
+    check "$1: nothing written" test ! -e "$cases/$1.scad"
+}
+hostile truncated "f.write('0\nSECTION\n2\nENTITIES\n0\nLINE\n10\n')" \
+    "truncated.dxf:7: truncated: group code 10 has no value line"
+hostile odd_pairs "f.write('0\nSECTION\n2\nENTITIES\n0\nLINE\n10\n1\n20\n')" \
+    "odd_pairs.dxf:9: truncated: group code 20 has no value"
+hostile bad_code "f.write('0\nSECTION\n2\nENTITIES\n0\nLINE\nten\n1\n')" \
+    "bad_code.dxf:7: expected a group code"
+hostile nan "f.write('0\nSECTION\n2\nENTITIES\n0\nCIRCLE\n10\nnan\n20\n0\n40\n1\n0\nENDSEC\n0\nEOF\n')" \
+    "nan.dxf:8: group 10: 'nan' is not a finite number"
+hostile huge "f.write('0\nSECTION\n2\nENTITIES\n0\nCIRCLE\n10\n1e300\n20\n0\n40\n1\n0\nENDSEC\n0\nEOF\n')" \
+    "huge.dxf:5: a coordinate (1e+300) is beyond +-1e+15"
+hostile overflow "f.write('0\nSECTION\n2\nENTITIES\n0\nLINE\n10\n1e400\n0\nENDSEC\n0\nEOF\n')" \
+    "overflow.dxf:8: group 10: '1e400' is not a finite number"
+hostile recursive "f.write('0\nSECTION\n2\nBLOCKS\n0\nBLOCK\n2\nA\n10\n0\n20\n0\n0\nINSERT\n2\nA\n10\n1\n20\n0\n0\nENDBLK\n0\nENDSEC\n0\nSECTION\n2\nENTITIES\n0\nINSERT\n2\nA\n10\n0\n20\n0\n0\nENDSEC\n0\nEOF\n')" \
+    "recursive.dxf:13: block 'A' inserts itself (recursive blocks)"
+hostile million "f.write('0\nSECTION\n2\nENTITIES\n0\nLWPOLYLINE\n90\n1000000\n70\n1\n'); f.write(''.join('10\n%d\n20\n%d\n' % (i, i % 2) for i in range(1000000))); f.write('0\nENDSEC\n0\nEOF\n')" \
+    "million.dxf:5: LWPOLYLINE has more than 524288 vertices (max_vertices)"
+hostile deep "f.write('0\nSECTION\n2\nBLOCKS\n' + ''.join('0\nBLOCK\n2\nB%d\n0\nINSERT\n2\nB%d\n0\nENDBLK\n' % (i, i + 1) for i in range(20)) + '0\nBLOCK\n2\nB20\n0\nCIRCLE\n40\n1\n0\nENDBLK\n0\nENDSEC\n0\nSECTION\n2\nENTITIES\n0\nINSERT\n2\nB0\n0\nENDSEC\n0\nEOF\n')" \
+    "deep.dxf:[0-9]*: INSERTs nested deeper than 16 (max_depth)"
+hostile bomb "f.write('0\nSECTION\n2\nBLOCKS\n0\nBLOCK\n2\nB\n0\nCIRCLE\n10\n0\n20\n0\n40\n1\n0\nENDBLK\n0\nBLOCK\n2\nA\n0\nINSERT\n2\nB\n70\n1000\n71\n1000\n44\n3\n45\n3\n0\nENDBLK\n0\nENDSEC\n0\nSECTION\n2\nENTITIES\n0\nINSERT\n2\nA\n70\n2000\n71\n2000\n44\n3000\n45\n3000\n0\nENDSEC\n0\nEOF\n')" \
+    "bomb.dxf:[0-9]*: INSERT array of 2000 x 2000 copies exceeds max_entities (1048576)"
+hostile bomb2 "f.write('0\nSECTION\n2\nBLOCKS\n0\nBLOCK\n2\nB\n0\nCIRCLE\n10\n0\n20\n0\n40\n1\n0\nENDBLK\n0\nBLOCK\n2\nA\n0\nINSERT\n2\nB\n70\n1000\n71\n1000\n44\n3\n45\n3\n0\nENDBLK\n0\nENDSEC\n0\nSECTION\n2\nENTITIES\n0\nINSERT\n2\nA\n70\n1000\n71\n1000\n44\n3000\n45\n3000\n0\nENDSEC\n0\nEOF\n')" \
+    "bomb2.dxf:[0-9]*: the drawing has more than 4194304 control points (max_points)"
+hostile binary "f.write('AutoCAD Binary DXF\r\n\x1a\x00')" \
+    "binary.dxf:1: binary DXF is not supported: save the drawing as ASCII DXF"
+hostile fitonly "f.write('0\nSECTION\n2\nENTITIES\n0\nSPLINE\n5\nAB12\n71\n3\n74\n3\n11\n0\n21\n0\n11\n1\n21\n1\n11\n2\n21\n0\n0\nENDSEC\n0\nEOF\n')" \
+    "fitonly.dxf:5: SPLINE (handle AB12) has fit points only"
+hostile knots "f.write('0\nSECTION\n2\nENTITIES\n0\nSPLINE\n5\n7\n71\n3\n40\n0\n40\n1\n10\n0\n20\n0\n10\n1\n20\n1\n0\nENDSEC\n0\nEOF\n')" \
+    "knots.dxf:5: SPLINE (handle 7): degree 3, 2 control points, 2 knots"
+hostile nosection "f.write('0\nLINE\n10\n0\n')" "nosection.dxf:1: expected '0 SECTION'"
+
+begin_case "CRLF line ends and a comment read as LF"
+check "CRLF copy" py '
+t = open("'"$cases"'/repro_circle.dxf", newline="").read().replace("\r\n", "\n")
+open("'"$cases"'/crlf.dxf", "w", newline="").write("999\r\nmade by a test\r\n" + t.replace("\n", "\r\n"))
+'
+check "CRLF reads" run crlf
+check "the LF original reads" "$bin" --module m -o "$cases/lf.scad" "$cases/repro_circle.dxf"
+check "same points" py '
+import re
+a = re.findall(r"^  \[.*", open("'"$cases"'/lf.scad").read(), re.M)
+b = re.findall(r"^  \[.*", open("'"$cases"'/crlf.scad").read(), re.M)
+assert a == b and len(a) > 10
+'
+check "a DXF on stdin is recognised by its content" sh -c "'$bin' --module m - < '$cases/repro_circle.dxf' | grep -q '^// source: - (DXF)'"
+check "--layer on SVG input is a usage error" fails_with 2 "apply to DXF input only" \
+    "$bin" --layer A examples/bracket.svg
+
+begin_case "conica plot takes a DXF SPLINE"
+check "the only SPLINE of a drawing" sh -c "'$conica' plot --abs-tolerance 0.001 '$cases/spline_open.dxf' > '$tmp/plot.txt'"
+check "the polyline runs from (0, 0) to (50, 0), within 0.001 of the spline (de Boor)" py '
+import ezdxf, numpy as np, sys
+sys.path.insert(0, "tests/dxf")
+pts = np.loadtxt("'"$tmp"'/plot.txt")
+sp = [e for e in ezdxf.readfile("'"$cases"'/spline_open.dxf").modelspace() if e.dxftype() == "SPLINE"][0]
+exec(open("tests/dxf/check.py").read().split("def main")[0])
+ex = np.array(spline_samples(3, list(sp.knots), [tuple(v)[:2] for v in sp.control_points], [1.0] * 6, 20000))
+assert np.allclose(pts[0], [0, 0]) and np.allclose(pts[-1], [50, 0])
+d = seg_dist(ex, pts[:-1], pts[1:], 0.01).max()
+print(len(pts), "points, deviation", d)
+assert d <= 0.001
+'
+check "two SPLINEs: the handles are named" fails_with 1 "2 SPLINE entities (handles" \
+    "$conica" plot "$cases/nurbs_two.dxf"
+check "--entity picks one" sh -c "'$conica' plot --entity 2F '$cases/nurbs_two.dxf' | grep -q '^0 0$'"
+check "--entity of no SPLINE" fails_with 1 "no SPLINE with handle 'ZZ'" "$conica" plot --entity ZZ "$cases/nurbs_two.dxf"
+check "--entity on a .spl is a usage error" fails_with 2 "names a SPLINE of a DXF input" \
+    "$conica" plot --entity 2F examples/nurbs-circle.spl
+
+begin_case "public DXF files (tests/data/dxf/)"
+for f in tests/data/dxf/*.dxf; do
+    [ -e "$f" ] || { skip_case "no public samples"; break; }
+    b=$(basename "$f" .dxf)
+    expect=$(sed -n "s/^$b\.dxf: *//p" tests/data/dxf/EXPECTED)
+    [ -n "$expect" ] || continue
+    case $expect in
+    error*) check "$b: refused (${expect#error })" fails_with 1 "${expect#error }" \
+                "$bin" -o "$tmp/pub_$b.scad" "$f" ;;
+    *) check "$b reads: $expect" "$bin" --module m -o "$tmp/pub_$b.scad" "$f"
+       check_grep "^// $expect" "$tmp/pub_$b.scad" "$b: $expect"
+       check "$b within T of its geometry" "$PY" tests/dxf/check.py "$f" "$tmp/pub_$b.scad" m $T inside ;;
+    esac
+done
+
+finish

@@ -1,0 +1,287 @@
+# SPDX-License-Identifier: MIT
+"""Check a scadprofile module against the exact geometry of its DXF:
+
+    python3 tests/dxf/check.py IN.dxf OUT.scad MODULE TOL [FIT] [options]
+
+FIT is inside (default), outside or middle. Options:
+    --unit-mm F      millimetres per output unit (default 1)
+    --layers A,B     only entities on these layers
+    --contours N     the module must have exactly N contours
+    --hatch          the exact geometry is the HATCH boundaries
+
+The exact geometry is evaluated here, independently of Conica: lines and
+the arcs of bulges by their formulas, ARC / CIRCLE / ELLIPSE by ezdxf's
+own vertices() (which apply the entity's OCS), SPLINEs by a de Boor
+evaluation of the rational B-spline written below, INSERTs expanded by
+ezdxf's virtual_entities(). Densely sampled (the samples' own chord error
+is below 1e-6 of the tolerance), then
+
+  - deviation, both ways: every exact sample within TOL of the module's
+    polygons and every point of the polygons (edges sampled) within TOL of
+    the exact geometry;
+  - fit sign: inside: every vertex on the exact geometry (within the
+    written digits and the samples, 2.5 TOL/1000); outside: every exact sample inside or on
+    the polygon nearest to it;
+  - every contour kept: each contour of the module lies along the exact
+    geometry and each exact entity is near some contour (the two-sided
+    deviation), and --contours N when given.
+Prints the figures; exit 1 on a failed check."""
+import math
+import re
+import sys
+
+import ezdxf
+import numpy as np
+from ezdxf.math import bulge_to_arc
+
+UNITS_MM = {0: 1, 1: 25.4, 2: 304.8, 4: 1, 5: 10, 6: 1000}
+
+
+def de_boor(p, knots, ctrl, w, t):
+    """Point of the rational B-spline at t (homogeneous de Boor)."""
+    n = len(ctrl)
+    k = p
+    while k + 1 < n and knots[k + 1] <= t:
+        k += 1
+    d = [np.array([ctrl[j][0] * w[j], ctrl[j][1] * w[j], w[j]], float) for j in range(k - p, k + 1)]
+    for r in range(1, p + 1):
+        for j in range(p, r - 1, -1):
+            i = j + k - p
+            den = knots[i + p - r + 1] - knots[i]
+            a = 0.0 if den == 0 else (t - knots[i]) / den
+            d[j] = (1 - a) * d[j - 1] + a * d[j]
+    return d[p][:2] / d[p][2]
+
+
+def spline_samples(p, knots, ctrl, w, m):
+    a, b = knots[p], knots[len(ctrl)]
+    ts = np.linspace(a, b, m)
+    return [de_boor(p, knots, ctrl, w, t) for t in ts]
+
+
+TOL = [1.0]  # the tolerance checked (main sets it)
+
+
+def count(r, sweep, m):
+    """Samples of an arc of radius r and sweep (radians) whose chords stay
+    within 1e-3 of the tolerance of it, at most m per turn."""
+    n = math.pi * math.sqrt(abs(r) / (2e-3 * TOL[0])) * abs(sweep) / (2 * math.pi)
+    return int(min(m * abs(sweep) / (2 * math.pi) + 2, max(16, n + 2)))
+
+
+def arc_samples(c, r, a0, a1, m):
+    while a1 <= a0:
+        a1 += 2 * math.pi
+    t = np.linspace(a0, a1, count(r, a1 - a0, m))
+    return np.column_stack([c[0] + r * np.cos(t), c[1] + r * np.sin(t)])
+
+
+def poly_samples(pts, closed, ocs, m):
+    """LWPOLYLINE / POLYLINE vertices (x, y, bulge) as polylines of samples."""
+    out = []
+    n = len(pts)
+    for i in range(n if closed else n - 1):
+        x0, y0, b = pts[i]
+        x1, y1, _ = pts[(i + 1) % n]
+        if b == 0:
+            seg = [(x0, y0), (x1, y1)]
+        else:
+            c, s, e, r = bulge_to_arc((x0, y0), (x1, y1), b)
+            seg = arc_samples(c, r, s, e, m)
+        seg = np.array(seg, float)
+        z = ocs.uz
+        if abs(z.x) < 1e-12 and abs(z.y) < 1e-12:  # +-z: identity or x mirrored
+            seg[:, 0] *= 1 if z.z > 0 else -1
+            out.append(seg)
+        else:
+            out.append([tuple(ocs.to_wcs((x, y, 0)))[:2] for x, y in seg])
+    return out
+
+
+def entity_samples(e, m, pieces):
+    t = e.dxftype()
+    if t == "LINE":
+        pieces.append([tuple(e.dxf.start)[:2], tuple(e.dxf.end)[:2]])
+    elif t == "CIRCLE":
+        k = count(e.dxf.radius, 2 * math.pi, m)
+        pieces.append([tuple(v)[:2] for v in e.vertices(np.linspace(0, 360, k))])
+    elif t == "ARC":
+        s, en = e.dxf.start_angle, e.dxf.end_angle
+        while en <= s:
+            en += 360
+        k = count(e.dxf.radius, math.radians(en - s), m)
+        pieces.append([tuple(v)[:2] for v in e.vertices(np.linspace(s, en, k))])
+    elif t == "ELLIPSE":
+        s, en = e.dxf.start_param, e.dxf.end_param
+        while en <= s:
+            en += 2 * math.pi
+        pieces.append([tuple(v)[:2] for v in e.vertices(np.linspace(s, en, m))])
+    elif t == "LWPOLYLINE":
+        pts = [(x, y, b) for x, y, _, _, b in e.get_points("xyseb")]
+        pieces.extend(poly_samples(pts, e.closed, e.ocs(), m))
+    elif t == "POLYLINE":
+        pts = [(v.dxf.location.x, v.dxf.location.y, v.dxf.bulge) for v in e.vertices]
+        pieces.extend(poly_samples(pts, e.is_closed, e.ocs(), m))
+    elif t == "SPLINE":
+        ctrl = [tuple(v)[:2] for v in e.control_points]
+        w = list(e.weights) or [1.0] * len(ctrl)
+        pieces.append(spline_samples(e.dxf.degree, list(e.knots), ctrl, w, 4 * m))
+    elif t == "INSERT":
+        for one in e.multi_insert():  # a column/row array, copy by copy
+            for v in one.virtual_entities():
+                entity_samples(v, m, pieces)
+
+
+def hatch_samples(h, m, pieces):
+    for path in h.paths:
+        if hasattr(path, "vertices"):
+            pts = [(x, y, b) for x, y, b in path.vertices]
+            pieces.extend(poly_samples(pts, True, h.ocs(), m))
+            continue
+        for edge in path.edges:
+            k = type(edge).__name__
+            if k == "LineEdge":
+                pieces.append([tuple(edge.start)[:2], tuple(edge.end)[:2]])
+            elif k == "ArcEdge":
+                pieces.append(arc_samples(edge.center, edge.radius, math.radians(edge.start_angle),
+                                          math.radians(edge.end_angle), m))
+            elif k == "EllipseEdge":
+                ce = edge.construction_tool()
+                s, en = ce.start_param, ce.end_param
+                while en <= s:
+                    en += 2 * math.pi
+                pieces.append([tuple(v)[:2] for v in ce.vertices(np.linspace(s, en, m))])
+            elif k == "SplineEdge":
+                ctrl = [tuple(v)[:2] for v in edge.control_points]
+                w = list(edge.weights) or [1.0] * len(ctrl)
+                pieces.append(spline_samples(edge.degree, list(edge.knot_values), ctrl, w, 4 * m))
+
+
+def seg_dist(P, A, B, w=None):
+    """Distance of each point of P (k x 2) to the nearest segment A[i]B[i]
+    (inf beyond w when w is given: only segments whose middle lies within
+    w + their length in x are looked at)."""
+    AB = B - A
+    L = np.maximum((AB ** 2).sum(1), 1e-300)
+    if w is None:
+        w = np.inf
+    mid = 0.5 * (A[:, 0] + B[:, 0])
+    order = np.argsort(mid)
+    A, AB, L, mid = A[order], AB[order], L[order], mid[order]
+    reach = w + np.sqrt(L).max()
+    best = np.full(len(P), np.inf)
+    qo = np.argsort(P[:, 0])
+    k = 0
+    while k < len(P):
+        # a run of queries sorted by x against the segments near them
+        n = 512
+        while True:
+            idx = qo[k:k + n]
+            a = np.searchsorted(mid, P[idx, 0].min() - reach)
+            b = np.searchsorted(mid, P[idx, 0].max() + reach, side="right")
+            if n == 1 or len(idx) * (b - a) <= 4000000:
+                break
+            n //= 2
+        if b > a:
+            Q = P[idx][:, None, :]
+            t = np.clip(((Q - A[a:b]) * AB[a:b]).sum(2) / L[a:b], 0, 1)
+            best[idx] = np.sqrt(((A[a:b] + t[..., None] * AB[a:b] - Q) ** 2).sum(2)).min(1)
+        k += len(idx)
+    return best
+
+
+def inside(poly, P):
+    """Winding test (non-zero) of points P against a closed polygon."""
+    x, y = P[:, 0], P[:, 1]
+    res = np.zeros(len(P), bool)
+    n = len(poly)
+    for i in range(n):
+        x0, y0 = poly[i]
+        x1, y1 = poly[(i + 1) % n]
+        c = ((y0 > y) != (y1 > y)) & (x < (x1 - x0) * (y - y0) / ((y1 - y0) or 1e-300) + x0)
+        res ^= c
+    return res
+
+
+def main():
+    args = sys.argv[1:]
+    dxf, scad, module, tol = args[0], args[1], args[2], float(args[3])
+    fit = args[4] if len(args) > 4 and not args[4].startswith("--") else "inside"
+    unit_mm, layers, want, hatch = 1.0, None, None, False
+    for i, a in enumerate(args):
+        if a == "--unit-mm":
+            unit_mm = float(args[i + 1])
+        elif a == "--layers":
+            layers = set(args[i + 1].split(","))
+        elif a == "--contours":
+            want = int(args[i + 1])
+        elif a == "--hatch":
+            hatch = True
+    TOL[0] = tol
+    doc = ezdxf.readfile(dxf)
+    scale = UNITS_MM.get(doc.header.get("$INSUNITS", 0), 1) / unit_mm
+    def sample(m):
+        pieces = []
+        for e in doc.modelspace():
+            if layers is not None and e.dxf.layer not in layers:
+                continue
+            if hatch and e.dxftype() == "HATCH":
+                hatch_samples(e, m, pieces)
+            elif not hatch:
+                entity_samples(e, m, pieces)
+        return pieces
+    # samples per entity: their chords within 1e-4 of the tolerance of the
+    # curves (radius at most the drawing's size)
+    rough = np.concatenate([np.array(p, float) for p in sample(200)]) * scale
+    size = max(np.ptp(rough[:, 0]), np.ptp(rough[:, 1]), 1e-9)
+    m = int(min(100000, max(1000, math.pi * math.sqrt(size / (4e-3 * tol)))))
+    pieces = sample(m)
+    pieces = [np.array(p, float) * scale for p in pieces if len(p) >= 2]
+    A0 = np.concatenate([p[:-1] for p in pieces])
+    A1 = np.concatenate([p[1:] for p in pieces])
+    exact = np.concatenate(pieces)
+
+    text = open(scad).read()
+    pts = re.search(r"function %s_points\(\) = \[(.*?)\];" % module, text, re.S).group(1)
+    P = np.array([[float(a), float(b)] for a, b in re.findall(r"\[([-0-9.e+]+),([-0-9.e+]+)\]", pts)])
+    paths = re.search(r"function %s_paths\(\) = \[(.*?)\];\s*\n" % module, text, re.S).group(1)
+    polys = [P[[int(i) for i in re.findall(r"\d+", p)]] for p in re.findall(r"\[([0-9, \n]+)\]", paths)]
+    E0 = np.concatenate([q for q in polys])
+    E1 = np.concatenate([np.roll(q, -1, 0) for q in polys])
+    # polygon points: vertices and 16 points along every edge
+    f = np.linspace(0, 1, 17)[:-1]
+    dense = np.concatenate([E0 + t * (E1 - E0) for t in f])
+    d_out = seg_dist(dense, A0, A1, 2 * tol).max()          # polygon -> exact
+    d_in = seg_dist(exact, E0, E1, 2 * tol).max()           # exact -> polygon
+    ok = True
+    print("contours %d, points %d, exact samples %d" % (len(polys), len(P), len(exact)))
+    print("deviation polygon->exact %.3g, exact->polygon %.3g, tolerance %g" % (d_out, d_in, tol))
+    if not (d_out <= tol and d_in <= tol):
+        print("FAIL: deviation beyond the tolerance")
+        ok = False
+    if want is not None and len(polys) != want:
+        print("FAIL: %d contours, expected %d" % (len(polys), want))
+        ok = False
+    if fit == "inside":
+        dv = seg_dist(P, A0, A1, 2 * tol).max()
+        print("inside: vertices off the exact geometry by at most %.3g" % dv)
+        if dv > 2.5e-3 * tol:
+            print("FAIL: a vertex is not on the curve")
+            ok = False
+    elif fit == "outside":
+        worst = 0.0
+        for k, q in enumerate(polys):
+            # the exact samples nearest this contour must lie inside or on it
+            near = seg_dist(exact, q, np.roll(q, -1, 0), 2 * tol)
+            mine = exact[near <= tol]
+            bad = mine[~inside(q, mine)]
+            if len(bad):
+                worst = max(worst, seg_dist(bad, q, np.roll(q, -1, 0), 2 * tol).max())
+        print("outside: exact samples outside their contour by at most %.3g" % worst)
+        if worst > 2.5e-3 * tol:
+            print("FAIL: the polygon cuts into the drawn region")
+            ok = False
+    sys.exit(0 if ok else 1)
+
+
+main()
