@@ -1212,7 +1212,7 @@ static conica_code save_to(const conica_svg_doc *doc, save_sink *k, conica_statu
         splice(doc, k, 1);
         if (k->failed)
             return conica__fail(st, k->f ? CONICA_ERR_IO : CONICA_ERR_NOMEM, 0, 0,
-                                k->f ? sink_why(k) : "out of memory");
+                                "%s", k->f ? sink_why(k) : "out of memory");
         return CONICA_OK;
     }
     /* the input's declaration verbatim in place of libxml2's */
@@ -1239,7 +1239,7 @@ static conica_code save_to(const conica_svg_doc *doc, save_sink *k, conica_statu
         sink_put(k, "\n", 1);
     if (k->failed)
         return conica__fail(st, k->f ? CONICA_ERR_IO : CONICA_ERR_NOMEM, 0, 0,
-                            k->f ? sink_why(k) : "out of memory");
+                            "%s", k->f ? sink_why(k) : "out of memory");
     return CONICA_OK;
 }
 
