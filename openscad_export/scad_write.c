@@ -5,6 +5,7 @@
 #include <math.h>
 #include <stdint.h>
 #include <stdlib.h>
+#include <errno.h>
 #include <string.h>
 
 size_t conica_scad_format_double(double v, char *buf, size_t cap)
@@ -349,8 +350,10 @@ conica_code conica_scad_write(FILE *f, const conica_scad_profile *p, const conic
         else
             fprintf(f, "%s();\n", name);
     }
-    if (ferror(f))
-        return conica__fail(st, CONICA_ERR_IO, 0, 0, "write error");
+    /* flushed here, so a full disk is named with its reason (issue 33) */
+    if (fflush(f) != 0 || ferror(f))
+        return conica__fail(st, CONICA_ERR_IO, 0, 0, "write error: %s",
+                            strerror(errno ? errno : EIO));
     conica__ok(st);
     return CONICA_OK;
 }

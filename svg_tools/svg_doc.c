@@ -4,6 +4,7 @@
  * high-level calls (extract polylines / rewrite geometry in place). */
 #include "svg_internal.h"
 
+#include <errno.h>
 #include <math.h>
 #include <stdint.h>
 #include <stdio.h>
@@ -722,6 +723,7 @@ typedef struct save_sink {
     conica_svg__buf b; /* into memory, or */
     FILE *f;           /* into a file */
     int failed;        /* out of memory or a write error */
+    char why[96];      /* "write error: <strerror>" once a write failed */
     int skip_decl;
     char last;     /* previous byte while skipping ("?>" may straddle two writes) */
     char last_out; /* last byte written (the file ends with a newline) */
@@ -736,8 +738,10 @@ static void sink_raw(void *ctx, const char *data, size_t n)
     if (!n || k->failed)
         return;
     if (k->f) {
-        if (fwrite(data, 1, n, k->f) != n)
+        if (fwrite(data, 1, n, k->f) != n) {
             k->failed = 1;
+            snprintf(k->why, sizeof k->why, "write error: %s", strerror(errno));
+        }
     } else {
         conica_svg__buf_put(&k->b, data, n);
         k->failed = k->b.oom;
@@ -751,6 +755,13 @@ static void sink_put(save_sink *k, const char *data, size_t n)
     if (conica_svg__encoder_put(&k->enc, data, n, sink_raw, k) != 0)
         k->failed = k->enc_failed = 1;
     k->last_out = data[n - 1];
+}
+
+/* The write error with its reason, for messages ("write error: No space
+ * left on device": the output and the reason, issue 33). */
+static const char *sink_why(const save_sink *k)
+{
+    return k->why[0] ? k->why : "write error";
 }
 
 /* A sink into f (NULL: memory) for doc: its byte-order mark first, then
@@ -779,7 +790,7 @@ static conica_code sink_end(save_sink *k, const conica_svg_doc *doc, conica_code
     if (rc == CONICA_OK && k->failed)
         rc = conica__fail(st, CONICA_ERR_IO, 0, 0, "%s",
                           k->enc_failed ? "a character the document's encoding cannot hold"
-                          : k->f        ? "write error"
+                          : k->f        ? sink_why(k)
                                         : "out of memory");
     (void)doc;
     conica_svg__encoder_close(&k->enc);
@@ -1196,7 +1207,7 @@ static conica_code save_to(const conica_svg_doc *doc, save_sink *k, conica_statu
         splice(doc, k, 1);
         if (k->failed)
             return conica__fail(st, k->f ? CONICA_ERR_IO : CONICA_ERR_NOMEM, 0, 0,
-                                k->f ? "write error" : "out of memory");
+                                "%s", k->f ? sink_why(k) : "out of memory");
         return CONICA_OK;
     }
     /* the input's declaration verbatim in place of libxml2's */
@@ -1213,7 +1224,7 @@ static conica_code save_to(const conica_svg_doc *doc, save_sink *k, conica_statu
     r = xmlSaveDoc(sc, doc->xml);
     if (xmlSaveClose(sc) < 0 || r < 0 || k->failed) {
         if (k->f && k->failed)
-            return conica__fail(st, CONICA_ERR_IO, 0, 0, "write error");
+            return conica__fail(st, CONICA_ERR_IO, 0, 0, "%s", sink_why(k));
         if (k->failed)
             return conica__fail(st, CONICA_ERR_NOMEM, 0, 0, "out of memory");
         return conica__fail(st, CONICA_ERR_IO, 0, 0, "cannot serialise the document");
@@ -1223,7 +1234,7 @@ static conica_code save_to(const conica_svg_doc *doc, save_sink *k, conica_statu
         sink_put(k, "\n", 1);
     if (k->failed)
         return conica__fail(st, k->f ? CONICA_ERR_IO : CONICA_ERR_NOMEM, 0, 0,
-                            k->f ? "write error" : "out of memory");
+                            "%s", k->f ? sink_why(k) : "out of memory");
     return CONICA_OK;
 }
 
@@ -2110,7 +2121,7 @@ static conica_code format_element(void *ctx, conica_svg_shapes *sh, size_t idx, 
             return conica__fail(st, CONICA_ERR_IO, 0, 0,
                                 "cannot match the document's bytes to its elements");
         if (pd->stream->k->failed)
-            return conica__fail(st, CONICA_ERR_IO, 0, 0, "write error");
+            return conica__fail(st, CONICA_ERR_IO, 0, 0, "%s", sink_why(pd->stream->k));
         return CONICA_OK;
     }
     if (idx >= pd->cap) {
@@ -2174,7 +2185,7 @@ static conica_code process(conica_svg_doc *doc, const conica_svg_settings *s,
             rc = conica__fail(st, CONICA_ERR_IO, 0, 0,
                               "cannot match the document's bytes to its elements");
         else if (stream->k->failed)
-            rc = conica__fail(st, CONICA_ERR_IO, 0, 0, "write error");
+            rc = conica__fail(st, CONICA_ERR_IO, 0, 0, "%s", sink_why(stream->k));
     } else if (rc == CONICA_OK) {
         xmlNodePtr *texts = pd.texts;
         xmlAttrPtr *fresh = pd.fresh;

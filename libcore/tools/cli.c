@@ -822,6 +822,6 @@ int cli_version(const char *tool)
 {
     printf("%s (Conica) %s\n", tool, conica_version());
     if (fflush(stdout) != 0 || ferror(stdout))
-        return cli_error(tool, "<stdout>", "write error");
+        return cli_error(tool, "<stdout>", "write error: %s", strerror(errno ? errno : EIO));
     return CLI_EXIT_OK;
 }

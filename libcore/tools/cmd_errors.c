@@ -4,6 +4,7 @@
  * the input is sampled from one conic) and the normal angle error (scheme
  * normals vs normals estimated from the points, Section 3.2, Figures 3-5);
  * a table on stdout and optionally a log-scale SVG plot. */
+#include <errno.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -239,7 +240,7 @@ int conica_cmd_errors(int argc, char **argv)
         printf("%16.3e %15.3e\n", e[k].n_mean, e[k].n_max);
     }
     if (fflush(stdout) != 0) {
-        cli_error(prog, "<stdout>", "write error");
+        cli_error(prog, "<stdout>", "write error: %s", strerror(errno ? errno : EIO));
         goto done;
     }
     if (plot_path && write_plot(plot_path, in_path, variant, have_conic, e, (int)kmax + 1))

@@ -3,6 +3,7 @@
  * polyline with any method of seed 004 or the guaranteed plotter
  * (README.md). Output: one `x y` (or `x y z`) line per vertex, a blank
  * line between pieces split at discontinuities. */
+#include <errno.h>
 #include <limits.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -447,7 +448,7 @@ int conica_cmd_plot(int argc, char **argv)
     rc = write_polyline(co.f, &pl);
     conica_polyline_free(&pl);
     if (rc) {
-        cli_error(PROG, o.out && strcmp(o.out, "-") != 0 ? o.out : "<stdout>", "write error");
+        cli_error(PROG, o.out && strcmp(o.out, "-") != 0 ? o.out : "<stdout>", "write error: %s", strerror(errno ? errno : EIO));
         cli_output_abort(&co);
         return CLI_EXIT_ERROR;
     }

@@ -338,7 +338,7 @@ int conica_cmd_subdivide(int argc, char **argv)
     conica_curve_free(&out);
     conica_curvel_free(&outl);
     if (rc) {
-        cli_error(PROG, o.out && strcmp(o.out, "-") != 0 ? o.out : "<stdout>", "write error");
+        cli_error(PROG, o.out && strcmp(o.out, "-") != 0 ? o.out : "<stdout>", "write error: %s", strerror(errno ? errno : EIO));
         cli_output_abort(&co);
         conica_subdiv_info_free(&info);
         return CLI_EXIT_ERROR;

@@ -110,7 +110,9 @@ full() {
     f_name=$1
     shift
     check_exit 1 "$f_name: a write error (/dev/full) is exit 1" "$@"
-    check_grep 'error' "$err" "$f_name: the write error is reported"
+    # the output named (not <output>) and the reason (issue 33)
+    check_grep 'error: /dev/full: .*No space left on device' "$err" \
+        "$f_name: the write error names /dev/full and the reason"
 }
 
 # perms_of FILE: the permission column of `ls -l` (e.g. -rw-r-----).
