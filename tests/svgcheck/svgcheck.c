@@ -5,7 +5,7 @@
  * distances by tests/support/fidelity.c (dense samples on both sides, the
  * worst refined by golden section).
  *
- *   svgcheck [--tol T | --rel R] [--samples-too] [--corner DEG] IN OUT
+ *   svgcheck [--tol T | --rel R] [--lines-tol L] [--samples-too] [--corner DEG] IN OUT
  *
  * Pairs the `d` of every <path> (and, with --samples-too, the `points` of
  * <polygon>/<polyline>: straight edges, as --flatten reads them) of IN and
@@ -15,7 +15,8 @@
  *
  * R: the largest Hausdorff distance (both ways) over the tolerance: T, or
  * R times the subpath's control-point bounding-box diagonal (svgsmooth's
- * default fidelity); N: subpaths over it; K: subpaths whose first output
+ * default fidelity), at least L for a subpath made only of lines (what
+ * --simplify L may move); N: subpaths over it; K: subpaths whose first output
  * point (and, open, last) is not the drawn one (within 2 % of the
  * tolerance); M of C corners (joins turning by more than DEG, default 45,
  * between segments longer than twice the tolerance) with no output vertex
@@ -189,7 +190,7 @@ static double diag(const ts_svg_subpath *s)
 
 int main(int argc, char **argv)
 {
-    double tol = 0, rel = 1e-3, corner = 45, worst = 0;
+    double tol = 0, rel = 1e-3, corner = 45, worst = 0, lines_tol = 0;
     int samples_too = 0, a;
     size_t over = 0, nsub = 0, starts = 0, ncorner = 0, missing = 0, cross = 0, points = 0;
     size_t nin, nout, lin, lout, i;
@@ -200,6 +201,8 @@ int main(int argc, char **argv)
             tol = atof(argv[++a]);
         else if (!strcmp(argv[a], "--rel") && a + 1 < argc - 2)
             rel = atof(argv[++a]);
+        else if (!strcmp(argv[a], "--lines-tol") && a + 1 < argc - 2)
+            lines_tol = atof(argv[++a]);
         else if (!strcmp(argv[a], "--corner") && a + 1 < argc - 2)
             corner = atof(argv[++a]);
         else if (!strcmp(argv[a], "--samples-too"))
@@ -210,7 +213,8 @@ int main(int argc, char **argv)
         }
     }
     if (a != argc - 2) {
-        fprintf(stderr, "usage: svgcheck [--tol T | --rel R] [--samples-too] [--corner DEG] IN OUT\n");
+        fprintf(stderr, "usage: svgcheck [--tol T | --rel R] [--lines-tol L] [--samples-too] "
+                        "[--corner DEG] IN OUT\n");
         return 2;
     }
     din = slurp(argv[a], &lin);
@@ -248,6 +252,7 @@ int main(int argc, char **argv)
         for (k = 0; k < ni; k++) {
             double t = tol > 0 ? tol : rel * diag(&si[k]);
             ts_hausdorff h;
+            ts_sampling smp;
             ts_corner *cs = NULL;
             size_t nc = 0;
             bufs[k] = poly_of(&so[k], &polys[k]);
@@ -255,9 +260,19 @@ int main(int argc, char **argv)
             if (si[k].c.n == 0)
                 continue;
             nsub++;
+            if (lines_tol > t) {
+                size_t q;
+                for (q = 0; q < si[k].c.n && si[k].c.seg[q].degree == 1; q++)
+                    ;
+                if (q == si[k].c.n)
+                    t = lines_tol;
+            }
             if (!(t > 0))
                 t = 1e-300;
-            if (ts_hausdorff_measure(&si[k].c, 1, &polys[k], 1, NULL, &h) != TS_OK) {
+            smp = ts_sampling_defaults();
+            if (polys[k].n > 2000)
+                smp.per_edge = 2; /* dense output: its edges are short */
+            if (ts_hausdorff_measure(&si[k].c, 1, &polys[k], 1, &smp, &h) != TS_OK) {
                 fprintf(stderr, "svgcheck: %s: element %zu subpath %zu: not measured\n",
                         argv[a], i + 1, k + 1);
                 return 2;
