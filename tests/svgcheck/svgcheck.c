@@ -19,11 +19,13 @@
  * --simplify L may move); N: subpaths over it; K: subpaths whose first output
  * point (and, open, last) is not the drawn one (within 2 % of the
  * tolerance); M of C corners (joins turning by more than DEG, default 45,
- * between segments longer than twice the tolerance) with no output vertex
- * within the tolerance that turns by at least the corner less 20 degrees; X: crossings between different subpaths of one
- * element in the output beyond those of the input (lines by their ends,
- * curves sampled 64 per segment); P: output vertices. Exit 0 when measured, 2 on a usage or
- * read error (a pairing mismatch is an error).
+ * between segments longer than twice the tolerance, with handles at the
+ * join none or longer than the tolerance) with no output vertex within
+ * 2 % of the tolerance of them (corners are vertices); X: crossings
+ * between different subpaths of one element in the output beyond those of
+ * the input (lines by their ends, curves sampled 64 per segment); P:
+ * output vertices. Exit 0 when measured, 2 on a usage or read error (a
+ * pairing mismatch is an error).
  */
 #include <math.h>
 #include <stdio.h>
@@ -303,11 +305,19 @@ int main(int argc, char **argv)
                                       g0->p[g0->degree][1] - g0->p[0][1]);
                     double l1 = hypot(g1->p[g1->degree][0] - g1->p[0][0],
                                       g1->p[g1->degree][1] - g1->p[0][1]);
-                    if (l0 > 2 * t && l1 > 2 * t)
+                    /* and a handle shorter than T: a kink below the
+                     * tolerance's scale, no corner there */
+                    double h0 = hypot(g0->p[g0->degree][0] - g0->p[g0->degree - 1][0],
+                                      g0->p[g0->degree][1] - g0->p[g0->degree - 1][1]);
+                    double h1 = hypot(g1->p[1][0] - g1->p[0][0], g1->p[1][1] - g1->p[0][1]);
+                    if (l0 > 2 * t && l1 > 2 * t && (h0 == 0 || h0 > t) && (h1 == 0 || h1 > t))
                         cs[kept++] = cs[q];
                 }
                 nc = kept;
-                if (nc && ts_corners_kept(cs, nc, &polys[k], 1, t, 20 * M_PI / 180, &cc) == TS_OK) {
+                /* kept: an output vertex at the corner (to the rounding of
+                 * the digits written, 2 % of T); how the output turns there
+                 * is the chords' business, not asked */
+                if (nc && ts_corners_kept(cs, nc, &polys[k], 1, 0.02 * t, 4 * M_PI, &cc) == TS_OK) {
                     ncorner += nc;
                     missing += cc.missing;
                     if (cc.missing && getenv("SVGCHECK_VERBOSE"))
