@@ -49,7 +49,7 @@ for spec in $sets; do
         levels3) opt='--levels 3' ; chk= ;;
         levels8) opt='--levels 8' ; chk= ;;
         flatten) opt='--flatten --tolerance 0.01' ; chk='--tol 0.01 --samples-too' ;;
-        simplify) opt='--simplify 0.05' ; chk= ;;
+        simplify) opt="--simplify 0.05" ; chk="--lines-tol 0.05" ;;
         *) echo "unknown mode $mode" >&2; exit 2 ;;
         esac
         : > "$tmp/rows"

@@ -5,7 +5,7 @@
  * distances by tests/support/fidelity.c (dense samples on both sides, the
  * worst refined by golden section).
  *
- *   svgcheck [--tol T | --rel R] [--samples-too] [--corner DEG] IN OUT
+ *   svgcheck [--tol T | --rel R] [--lines-tol L] [--samples-too] [--corner DEG] IN OUT
  *
  * Pairs the `d` of every <path> (and, with --samples-too, the `points` of
  * <polygon>/<polyline>: straight edges, as --flatten reads them) of IN and
@@ -15,14 +15,17 @@
  *
  * R: the largest Hausdorff distance (both ways) over the tolerance: T, or
  * R times the subpath's control-point bounding-box diagonal (svgsmooth's
- * default fidelity); N: subpaths over it; K: subpaths whose first output
+ * default fidelity), at least L for a subpath made only of lines (what
+ * --simplify L may move); N: subpaths over it; K: subpaths whose first output
  * point (and, open, last) is not the drawn one (within 2 % of the
  * tolerance); M of C corners (joins turning by more than DEG, default 45,
- * between segments longer than twice the tolerance) with no output vertex
- * within the tolerance that turns by at least the corner less 20 degrees; X: crossings between different subpaths of one
- * element in the output beyond those of the input (lines by their ends,
- * curves sampled 64 per segment); P: output vertices. Exit 0 when measured, 2 on a usage or
- * read error (a pairing mismatch is an error).
+ * between segments longer than twice the tolerance, with handles at the
+ * join none or longer than the tolerance) with no output vertex within
+ * 2 % of the tolerance of them (corners are vertices); X: crossings
+ * between different subpaths of one element in the output beyond those of
+ * the input (lines by their ends, curves sampled 64 per segment); P:
+ * output vertices. Exit 0 when measured, 2 on a usage or read error (a
+ * pairing mismatch is an error).
  */
 #include <math.h>
 #include <stdio.h>
@@ -189,7 +192,7 @@ static double diag(const ts_svg_subpath *s)
 
 int main(int argc, char **argv)
 {
-    double tol = 0, rel = 1e-3, corner = 45, worst = 0;
+    double tol = 0, rel = 1e-3, corner = 45, worst = 0, lines_tol = 0;
     int samples_too = 0, a;
     size_t over = 0, nsub = 0, starts = 0, ncorner = 0, missing = 0, cross = 0, points = 0;
     size_t nin, nout, lin, lout, i;
@@ -200,6 +203,8 @@ int main(int argc, char **argv)
             tol = atof(argv[++a]);
         else if (!strcmp(argv[a], "--rel") && a + 1 < argc - 2)
             rel = atof(argv[++a]);
+        else if (!strcmp(argv[a], "--lines-tol") && a + 1 < argc - 2)
+            lines_tol = atof(argv[++a]);
         else if (!strcmp(argv[a], "--corner") && a + 1 < argc - 2)
             corner = atof(argv[++a]);
         else if (!strcmp(argv[a], "--samples-too"))
@@ -210,7 +215,8 @@ int main(int argc, char **argv)
         }
     }
     if (a != argc - 2) {
-        fprintf(stderr, "usage: svgcheck [--tol T | --rel R] [--samples-too] [--corner DEG] IN OUT\n");
+        fprintf(stderr, "usage: svgcheck [--tol T | --rel R] [--lines-tol L] [--samples-too] "
+                        "[--corner DEG] IN OUT\n");
         return 2;
     }
     din = slurp(argv[a], &lin);
@@ -248,6 +254,7 @@ int main(int argc, char **argv)
         for (k = 0; k < ni; k++) {
             double t = tol > 0 ? tol : rel * diag(&si[k]);
             ts_hausdorff h;
+            ts_sampling smp;
             ts_corner *cs = NULL;
             size_t nc = 0;
             bufs[k] = poly_of(&so[k], &polys[k]);
@@ -255,9 +262,19 @@ int main(int argc, char **argv)
             if (si[k].c.n == 0)
                 continue;
             nsub++;
+            if (lines_tol > t) {
+                size_t q;
+                for (q = 0; q < si[k].c.n && si[k].c.seg[q].degree == 1; q++)
+                    ;
+                if (q == si[k].c.n)
+                    t = lines_tol;
+            }
             if (!(t > 0))
                 t = 1e-300;
-            if (ts_hausdorff_measure(&si[k].c, 1, &polys[k], 1, NULL, &h) != TS_OK) {
+            smp = ts_sampling_defaults();
+            if (polys[k].n > 2000)
+                smp.per_edge = 2; /* dense output: its edges are short */
+            if (ts_hausdorff_measure(&si[k].c, 1, &polys[k], 1, &smp, &h) != TS_OK) {
                 fprintf(stderr, "svgcheck: %s: element %zu subpath %zu: not measured\n",
                         argv[a], i + 1, k + 1);
                 return 2;
@@ -288,11 +305,19 @@ int main(int argc, char **argv)
                                       g0->p[g0->degree][1] - g0->p[0][1]);
                     double l1 = hypot(g1->p[g1->degree][0] - g1->p[0][0],
                                       g1->p[g1->degree][1] - g1->p[0][1]);
-                    if (l0 > 2 * t && l1 > 2 * t)
+                    /* and a handle shorter than T: a kink below the
+                     * tolerance's scale, no corner there */
+                    double h0 = hypot(g0->p[g0->degree][0] - g0->p[g0->degree - 1][0],
+                                      g0->p[g0->degree][1] - g0->p[g0->degree - 1][1]);
+                    double h1 = hypot(g1->p[1][0] - g1->p[0][0], g1->p[1][1] - g1->p[0][1]);
+                    if (l0 > 2 * t && l1 > 2 * t && (h0 == 0 || h0 > t) && (h1 == 0 || h1 > t))
                         cs[kept++] = cs[q];
                 }
                 nc = kept;
-                if (nc && ts_corners_kept(cs, nc, &polys[k], 1, t, 20 * M_PI / 180, &cc) == TS_OK) {
+                /* kept: an output vertex at the corner (to the rounding of
+                 * the digits written, 2 % of T); how the output turns there
+                 * is the chords' business, not asked */
+                if (nc && ts_corners_kept(cs, nc, &polys[k], 1, 0.02 * t, 4 * M_PI, &cc) == TS_OK) {
                     ncorner += nc;
                     missing += cc.missing;
                     if (cc.missing && getenv("SVGCHECK_VERBOSE"))
