@@ -21,6 +21,7 @@
  * Calls: libcore (path storage, path_fit.h, status helpers), the SVG
  * layer's scene types, scad_clip.h. */
 #include <math.h>
+#include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -93,7 +94,13 @@ static conica_code build_local(const conica_svg_path *p, conica_path *cp, conica
                                     g->x1, g->y1, i, st);
             break;
         case CONICA_SVG_SEG_CLOSE:
-            rc = conica_path_close(cp, st);
+            /* the closing line as drawn: conica_path_close() would take an
+             * end within 1e-12 of the subpath's extent for its start, which
+             * on a 1e12 x 1 rectangle is a corner */
+            if (g->x0 != g->x1 || g->y0 != g->y1)
+                rc = conica_path_line_to(cp, g->x1, g->y1, i, st);
+            if (rc == CONICA_OK)
+                rc = conica_path_close(cp, st);
             break;
         default:
             break;
@@ -162,9 +169,35 @@ typedef struct buf {
     size_t n, cap;
 } buf;
 
-/* Every subpath of path as a polygon (fit per side; CHORDS: dense) into raw. */
+/* Does the polygon enclose no area: fewer than 3 distinct points, or all
+ * on one line (exact orientation tests)? *distinct gets its point count
+ * without repeats. */
+static int encloses_nothing(const double *xy, size_t n, size_t *distinct)
+{
+    size_t m = 0, a = 0, b = SIZE_MAX;
+    for (size_t k = 0; k < n; k++)
+        if (k == 0 || xy[2 * k] != xy[2 * k - 2] || xy[2 * k + 1] != xy[2 * k - 1]) {
+            m++;
+            if (b == SIZE_MAX && (xy[2 * k] != xy[0] || xy[2 * k + 1] != xy[1]))
+                b = k;
+        }
+    if (m > 1 && xy[2 * n - 2] == xy[0] && xy[2 * n - 1] == xy[1])
+        m--;
+    *distinct = m;
+    if (m < 3)
+        return 1;
+    for (size_t k = 0; k < n; k++)
+        if (conica__orient2d(xy + 2 * a, xy + 2 * b, xy + 2 * k) != 0)
+            return 0;
+    return 1;
+}
+
+/* Every subpath of path as a polygon (fit per side; CHORDS: dense) into raw.
+ * it: warn (s->warn) about the subpaths that enclose no area, naming them
+ * (NULL: quiet). */
 static conica_code fill_polys(const conica_path *path, double tol, conica__fit_side side,
                               const conica__polys *dense, double eps, size_t max_points,
+                              const conica_svg_item *it, const conica__region_settings *s,
                               conica__polys *raw, conica_status *st)
 {
     buf b = {NULL, 0, 0};
@@ -178,6 +211,17 @@ static conica_code fill_polys(const conica_path *path, double tol, conica__fit_s
         b.n = 0;
         rc = conica__path_fit(path, i, tol, side, dense ? painted_side : NULL, &sc, max_points,
                               &b.xy, &b.n, &b.cap, st);
+        size_t m;
+        if (rc == CONICA_OK && it && s->warn && b.n && encloses_nothing(b.xy, b.n, &m)) {
+            char msg[256];
+            if (m < 3)
+                snprintf(msg, sizeof msg, "%.100s: subpath %zu has %zu point%s (a polygon needs 3); "
+                         "skipped", it->name, i + 1, m, m == 1 ? "" : "s");
+            else
+                snprintf(msg, sizeof msg, "%.100s: subpath %zu has zero area (its points are "
+                         "collinear or it encloses no area); skipped", it->name, i + 1);
+            s->warn(s->warn_ctx, it->line, msg);
+        }
         if (rc == CONICA_OK && b.n >= 3 && conica__polys_add(raw, b.xy, b.n) != 0)
             rc = conica__fail(st, CONICA_ERR_NOMEM, 0, 0, "out of memory");
     }
@@ -399,7 +443,8 @@ static conica_code item_region(const conica_svg_item *it, int fill, int stroke,
         rc = map_path(&ip.local, &m, &ip.out, st);
     if (rc == CONICA_OK && fill) {
         /* the reference fill first: the fit reads its painted sides from it */
-        rc = fill_polys(&ip.out, dT, CONICA__FIT_CHORDS, NULL, 0, s->max_points, &raw, st);
+        rc = fill_polys(&ip.out, dT, CONICA__FIT_CHORDS, NULL, 0, s->max_points,
+                        stroke ? NULL : it, s, &raw, st);
         if (rc == CONICA_OK)
             rc = conica__clip_fill_region(&raw, it->fill_rule == CONICA_SVG_EVENODD
                                                     ? CONICA__CLIP_EVENODD
@@ -412,7 +457,7 @@ static conica_code item_region(const conica_svg_item *it, int fill, int stroke,
             else
                 rc = fill_polys(&ip.out, fT,
                                 s->fit == CONICA__REGION_INSIDE ? CONICA__FIT_IN : CONICA__FIT_OUT,
-                                &res, 0.25 * T, s->max_points, &raw, st);
+                                &res, 0.25 * T, s->max_points, NULL, s, &raw, st);
         }
         if (rc == CONICA_OK && conica__polys_append(dense, &res) != 0)
             rc = conica__fail(st, CONICA_ERR_NOMEM, 0, 0, "out of memory");
