@@ -587,6 +587,69 @@ static conica_code check(const conica__polys *fit, const conica__polys *ref,
     return rc;
 }
 
+/* ------------------------------------------------------------ touching */
+
+static int cmp_pt(const void *a, const void *b)
+{
+    const double *p = a, *q = b;
+    if (p[0] != q[0])
+        return p[0] < q[0] ? -1 : 1;
+    if (p[1] != q[1])
+        return p[1] < q[1] ? -1 : 1;
+    return 0;
+}
+
+/* Clipper's strictly simple output can still have two contours meet at a
+ * vertex (two squares corner to corner, a hole touching its outline),
+ * which OpenSCAD's polygon() and a later extrusion must not be given: each
+ * copy of such a vertex moves into its own contour's material (to the left
+ * of travel: outlines run counter-clockwise, holes clockwise) by
+ * CONICA__REGION_TOUCH_FRACTION of the tolerance, along the bisector of
+ * its edges' normals. Returns how many moved, or SIZE_MAX when out of
+ * memory. */
+static size_t separate_touching(conica__polys *r, double tol)
+{
+    double *key = malloc(3 * (r->npts ? r->npts : 1) * sizeof *key);
+    size_t moved = 0;
+    if (!key)
+        return SIZE_MAX;
+    for (size_t k = 0; k < r->npts; k++) {
+        key[3 * k] = r->xy[2 * k];
+        key[3 * k + 1] = r->xy[2 * k + 1];
+        key[3 * k + 2] = (double)k;
+    }
+    qsort(key, r->npts, 3 * sizeof *key, cmp_pt);
+    for (size_t i = 0; i + 1 < r->npts; i++) {
+        if (cmp_pt(key + 3 * i, key + 3 * (i + 1)) != 0)
+            continue;
+        size_t j = i;
+        while (j + 1 < r->npts && cmp_pt(key + 3 * j, key + 3 * (j + 1)) == 0)
+            j++;
+        for (size_t g = i; g <= j; g++) {
+            size_t k = (size_t)key[3 * g + 2], c = 0;
+            while (r->start[c + 1] <= k)
+                c++;
+            size_t a = r->start[c], n = r->start[c + 1] - a, at = k - a;
+            const double *v = r->xy + 2 * k, *pv = r->xy + 2 * (a + (at + n - 1) % n),
+                         *nx = r->xy + 2 * (a + (at + 1) % n);
+            double e0x = v[0] - pv[0], e0y = v[1] - pv[1], e1x = nx[0] - v[0], e1y = nx[1] - v[1];
+            double l0 = hypot(e0x, e0y), l1 = hypot(e1x, e1y);
+            if (!(l0 > 0) || !(l1 > 0))
+                continue;
+            double bx = -e0y / l0 - e1y / l1, by = e0x / l0 + e1x / l1, bl = hypot(bx, by);
+            if (!(bl > 0))
+                continue;
+            double step = fmin(tol * CONICA__REGION_TOUCH_FRACTION, 0.25 * fmin(l0, l1));
+            r->xy[2 * k] = v[0] + step * bx / bl;
+            r->xy[2 * k + 1] = v[1] + step * by / bl;
+            moved++;
+        }
+        i = j;
+    }
+    free(key);
+    return moved;
+}
+
 /* ------------------------------------------------------------ driver */
 
 static double scene_max_abs(const conica_svg_scene *sc, double height)
@@ -671,6 +734,8 @@ conica_code conica__scad_region(const conica_svg_scene *sc, const conica__region
         rc = conica__clip_fill_region(&fitted, CONICA__CLIP_NONZERO, scale, 1, &ufit, st);
     if (rc == CONICA_OK)
         rc = conica__clip_fill_region(&dense, CONICA__CLIP_NONZERO, scale, 0, &uref, st);
+    if (rc == CONICA_OK && separate_touching(&ufit, s->tolerance) == SIZE_MAX)
+        rc = conica__fail(st, CONICA_ERR_NOMEM, 0, 0, "out of memory");
     if (rc == CONICA_OK)
         rc = check(&ufit, &uref, s, scale, st);
     if (rc == CONICA_OK) {

@@ -10,8 +10,8 @@
 # Prints what it installs; does nothing when everything is present.
 set -eu
 
-build="gcc g++ make pkg-config liblapacke-dev libxml2-dev python3-dev"
-test="libcgal-dev libgmp-dev openscad blender librsvg2-bin libxml2-utils clang libclang-rt-14-dev valgrind libfreetype-dev fonts-dejavu-core groff-base mandoc inkscape python3-lxml python3-cssselect python3-numpy xvfb xauth"
+build="gcc g++ make pkg-config liblapacke-dev libxml2-dev python3-dev libpolyclipping-dev"
+test="libcgal-dev libgmp-dev openscad blender librsvg2-bin libxml2-utils clang libclang-rt-14-dev valgrind libfreetype-dev fonts-dejavu-core groff-base mandoc inkscape python3-lxml python3-cssselect python3-numpy python3-pyclipper xvfb xauth"
 demo="openscad blender librsvg2-bin"
 
 case "${1:-build}" in
