@@ -470,7 +470,10 @@ static conica_code item_region(const conica_svg_item *it, int fill, int stroke,
             rc = conica__fail(st, CONICA_ERR_NOMEM, 0, 0, "out of memory");
     }
     if (rc == CONICA_OK && stroke && it->st.width > 0) {
-        double lt = T * CONICA__REGION_STROKE_LINE, at = T * CONICA__REGION_STROKE_ARC;
+        /* the stroke is moved by (lt + at) towards the fit's side; at a miter
+         * the tip moves by that times the miter ratio (up to the limit) */
+        double mk = it->st.join == CONICA_SVG_JOIN_MITER ? 1.0 / fmax(1.0, it->st.miterlimit) : 1.0;
+        double lt = T * CONICA__REGION_STROKE_LINE * mk, at = T * CONICA__REGION_STROKE_ARC * mk;
         double bias = s->fit == CONICA__REGION_INSIDE    ? -(lt + at)
                       : s->fit == CONICA__REGION_OUTSIDE ? lt + at
                                                          : 0.0;
