@@ -21,6 +21,7 @@
  * Calls: libcore (path storage, path_fit.h, status helpers), the SVG
  * layer's scene types, scad_clip.h. */
 #include <math.h>
+#include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -93,7 +94,13 @@ static conica_code build_local(const conica_svg_path *p, conica_path *cp, conica
                                     g->x1, g->y1, i, st);
             break;
         case CONICA_SVG_SEG_CLOSE:
-            rc = conica_path_close(cp, st);
+            /* the closing line as drawn: conica_path_close() would take an
+             * end within 1e-12 of the subpath's extent for its start, which
+             * on a 1e12 x 1 rectangle is a corner */
+            if (g->x0 != g->x1 || g->y0 != g->y1)
+                rc = conica_path_line_to(cp, g->x1, g->y1, i, st);
+            if (rc == CONICA_OK)
+                rc = conica_path_close(cp, st);
             break;
         default:
             break;
@@ -162,9 +169,35 @@ typedef struct buf {
     size_t n, cap;
 } buf;
 
-/* Every subpath of path as a polygon (fit per side; CHORDS: dense) into raw. */
+/* Does the polygon enclose no area: fewer than 3 distinct points, or all
+ * on one line (exact orientation tests)? *distinct gets its point count
+ * without repeats. */
+static int encloses_nothing(const double *xy, size_t n, size_t *distinct)
+{
+    size_t m = 0, a = 0, b = SIZE_MAX;
+    for (size_t k = 0; k < n; k++)
+        if (k == 0 || xy[2 * k] != xy[2 * k - 2] || xy[2 * k + 1] != xy[2 * k - 1]) {
+            m++;
+            if (b == SIZE_MAX && (xy[2 * k] != xy[0] || xy[2 * k + 1] != xy[1]))
+                b = k;
+        }
+    if (m > 1 && xy[2 * n - 2] == xy[0] && xy[2 * n - 1] == xy[1])
+        m--;
+    *distinct = m;
+    if (m < 3)
+        return 1;
+    for (size_t k = 0; k < n; k++)
+        if (conica__orient2d(xy + 2 * a, xy + 2 * b, xy + 2 * k) != 0)
+            return 0;
+    return 1;
+}
+
+/* Every subpath of path as a polygon (fit per side; CHORDS: dense) into raw.
+ * it: warn (s->warn) about the subpaths that enclose no area, naming them
+ * (NULL: quiet). */
 static conica_code fill_polys(const conica_path *path, double tol, conica__fit_side side,
                               const conica__polys *dense, double eps, size_t max_points,
+                              const conica_svg_item *it, const conica__region_settings *s,
                               conica__polys *raw, conica_status *st)
 {
     buf b = {NULL, 0, 0};
@@ -178,6 +211,17 @@ static conica_code fill_polys(const conica_path *path, double tol, conica__fit_s
         b.n = 0;
         rc = conica__path_fit(path, i, tol, side, dense ? painted_side : NULL, &sc, max_points,
                               &b.xy, &b.n, &b.cap, st);
+        size_t m;
+        if (rc == CONICA_OK && it && s->warn && b.n && encloses_nothing(b.xy, b.n, &m)) {
+            char msg[256];
+            if (m < 3)
+                snprintf(msg, sizeof msg, "%.100s: subpath %zu has %zu point%s (a polygon needs 3); "
+                         "skipped", it->name, i + 1, m, m == 1 ? "" : "s");
+            else
+                snprintf(msg, sizeof msg, "%.100s: subpath %zu has zero area (its points are "
+                         "collinear or it encloses no area); skipped", it->name, i + 1);
+            s->warn(s->warn_ctx, it->line, msg);
+        }
         if (rc == CONICA_OK && b.n >= 3 && conica__polys_add(raw, b.xy, b.n) != 0)
             rc = conica__fail(st, CONICA_ERR_NOMEM, 0, 0, "out of memory");
     }
@@ -399,7 +443,8 @@ static conica_code item_region(const conica_svg_item *it, int fill, int stroke,
         rc = map_path(&ip.local, &m, &ip.out, st);
     if (rc == CONICA_OK && fill) {
         /* the reference fill first: the fit reads its painted sides from it */
-        rc = fill_polys(&ip.out, dT, CONICA__FIT_CHORDS, NULL, 0, s->max_points, &raw, st);
+        rc = fill_polys(&ip.out, dT, CONICA__FIT_CHORDS, NULL, 0, s->max_points,
+                        stroke ? NULL : it, s, &raw, st);
         if (rc == CONICA_OK)
             rc = conica__clip_fill_region(&raw, it->fill_rule == CONICA_SVG_EVENODD
                                                     ? CONICA__CLIP_EVENODD
@@ -412,7 +457,7 @@ static conica_code item_region(const conica_svg_item *it, int fill, int stroke,
             else
                 rc = fill_polys(&ip.out, fT,
                                 s->fit == CONICA__REGION_INSIDE ? CONICA__FIT_IN : CONICA__FIT_OUT,
-                                &res, 0.25 * T, s->max_points, &raw, st);
+                                &res, 0.25 * T, s->max_points, NULL, s, &raw, st);
         }
         if (rc == CONICA_OK && conica__polys_append(dense, &res) != 0)
             rc = conica__fail(st, CONICA_ERR_NOMEM, 0, 0, "out of memory");
@@ -425,7 +470,10 @@ static conica_code item_region(const conica_svg_item *it, int fill, int stroke,
             rc = conica__fail(st, CONICA_ERR_NOMEM, 0, 0, "out of memory");
     }
     if (rc == CONICA_OK && stroke && it->st.width > 0) {
-        double lt = T * CONICA__REGION_STROKE_LINE, at = T * CONICA__REGION_STROKE_ARC;
+        /* the stroke is moved by (lt + at) towards the fit's side; at a miter
+         * the tip moves by that times the miter ratio (up to the limit) */
+        double mk = it->st.join == CONICA_SVG_JOIN_MITER ? 1.0 / fmax(1.0, it->st.miterlimit) : 1.0;
+        double lt = T * CONICA__REGION_STROKE_LINE * mk, at = T * CONICA__REGION_STROKE_ARC * mk;
         double bias = s->fit == CONICA__REGION_INSIDE    ? -(lt + at)
                       : s->fit == CONICA__REGION_OUTSIDE ? lt + at
                                                          : 0.0;
@@ -542,6 +590,69 @@ static conica_code check(const conica__polys *fit, const conica__polys *ref,
     return rc;
 }
 
+/* ------------------------------------------------------------ touching */
+
+static int cmp_pt(const void *a, const void *b)
+{
+    const double *p = a, *q = b;
+    if (p[0] != q[0])
+        return p[0] < q[0] ? -1 : 1;
+    if (p[1] != q[1])
+        return p[1] < q[1] ? -1 : 1;
+    return 0;
+}
+
+/* Clipper's strictly simple output can still have two contours meet at a
+ * vertex (two squares corner to corner, a hole touching its outline),
+ * which OpenSCAD's polygon() and a later extrusion must not be given: each
+ * copy of such a vertex moves into its own contour's material (to the left
+ * of travel: outlines run counter-clockwise, holes clockwise) by
+ * CONICA__REGION_TOUCH_FRACTION of the tolerance, along the bisector of
+ * its edges' normals. Returns how many moved, or SIZE_MAX when out of
+ * memory. */
+static size_t separate_touching(conica__polys *r, double tol)
+{
+    double *key = malloc(3 * (r->npts ? r->npts : 1) * sizeof *key);
+    size_t moved = 0;
+    if (!key)
+        return SIZE_MAX;
+    for (size_t k = 0; k < r->npts; k++) {
+        key[3 * k] = r->xy[2 * k];
+        key[3 * k + 1] = r->xy[2 * k + 1];
+        key[3 * k + 2] = (double)k;
+    }
+    qsort(key, r->npts, 3 * sizeof *key, cmp_pt);
+    for (size_t i = 0; i + 1 < r->npts; i++) {
+        if (cmp_pt(key + 3 * i, key + 3 * (i + 1)) != 0)
+            continue;
+        size_t j = i;
+        while (j + 1 < r->npts && cmp_pt(key + 3 * j, key + 3 * (j + 1)) == 0)
+            j++;
+        for (size_t g = i; g <= j; g++) {
+            size_t k = (size_t)key[3 * g + 2], c = 0;
+            while (r->start[c + 1] <= k)
+                c++;
+            size_t a = r->start[c], n = r->start[c + 1] - a, at = k - a;
+            const double *v = r->xy + 2 * k, *pv = r->xy + 2 * (a + (at + n - 1) % n),
+                         *nx = r->xy + 2 * (a + (at + 1) % n);
+            double e0x = v[0] - pv[0], e0y = v[1] - pv[1], e1x = nx[0] - v[0], e1y = nx[1] - v[1];
+            double l0 = hypot(e0x, e0y), l1 = hypot(e1x, e1y);
+            if (!(l0 > 0) || !(l1 > 0))
+                continue;
+            double bx = -e0y / l0 - e1y / l1, by = e0x / l0 + e1x / l1, bl = hypot(bx, by);
+            if (!(bl > 0))
+                continue;
+            double step = fmin(tol * CONICA__REGION_TOUCH_FRACTION, 0.25 * fmin(l0, l1));
+            r->xy[2 * k] = v[0] + step * bx / bl;
+            r->xy[2 * k + 1] = v[1] + step * by / bl;
+            moved++;
+        }
+        i = j;
+    }
+    free(key);
+    return moved;
+}
+
 /* ------------------------------------------------------------ driver */
 
 static double scene_max_abs(const conica_svg_scene *sc, double height)
@@ -626,6 +737,8 @@ conica_code conica__scad_region(const conica_svg_scene *sc, const conica__region
         rc = conica__clip_fill_region(&fitted, CONICA__CLIP_NONZERO, scale, 1, &ufit, st);
     if (rc == CONICA_OK)
         rc = conica__clip_fill_region(&dense, CONICA__CLIP_NONZERO, scale, 0, &uref, st);
+    if (rc == CONICA_OK && separate_touching(&ufit, s->tolerance) == SIZE_MAX)
+        rc = conica__fail(st, CONICA_ERR_NOMEM, 0, 0, "out of memory");
     if (rc == CONICA_OK)
         rc = check(&ufit, &uref, s, scale, st);
     if (rc == CONICA_OK) {

@@ -42,6 +42,10 @@ typedef enum conica__region_fit {
  * span many grid steps). */
 #define CONICA__REGION_GRID_FRACTION 0.01
 #define CONICA__REGION_GRID_FINE 3e-4
+/* Where two contours of the result meet at a vertex, each copy moves this
+ * fraction of the tolerance into its own material (less than the check's
+ * slack). */
+#define CONICA__REGION_TOUCH_FRACTION 0.01
 /* The check's slack spans at least this many grid steps. */
 #define CONICA__REGION_CHECK_STEPS 16.0
 

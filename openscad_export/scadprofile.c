@@ -966,6 +966,47 @@ static int load_svg(const options *o, const char *name, const char *buf, size_t 
     return result;
 }
 
+/* 0, or an error naming the item, subpath and point of the first
+ * coordinate (in output units, y up) beyond CONICA_SCAD_MAX_COORD: before
+ * the booleans, whose grid could not hold it, and in the words
+ * conica_scad_check_range() uses. */
+static int scene_in_range(const options *o, const char *name, const conica_svg_scene *sc)
+{
+    double height = sc->has_size ? sc->height : 0.0;
+    for (size_t i = 0; i < sc->n; i++) {
+        const conica_svg_item *it = &sc->items[i];
+        size_t sub = 0, pt = 0;
+        for (size_t k = 0; k < it->path.n; k++) {
+            const conica_svg_seg *g = &it->path.seg[k];
+            double q[2];
+            if (g->type == CONICA_SVG_SEG_CLOSE)
+                continue;
+            if (g->type == CONICA_SVG_SEG_MOVE) {
+                sub++;
+                pt = 0;
+            } else if (k == 0 || it->path.seg[k - 1].type == CONICA_SVG_SEG_CLOSE) {
+                pt = 1; /* drawn on from the start of the closed subpath */
+            }
+            pt++;
+            conica_svg_matrix_apply(&it->ctm, g->x1, g->y1, q);
+            q[1] = height - q[1];
+            if (!(fabs(q[0]) <= CONICA_SCAD_MAX_COORD && fabs(q[1]) <= CONICA_SCAD_MAX_COORD)) {
+                char where[1024], xs[40], ys[40];
+                snprintf(where, sizeof where, "%s:%zu", name, it->line);
+                conica_scad_format_double(q[0], xs, sizeof xs);
+                conica_scad_format_double(q[1], ys, sizeof ys);
+                return cli_error(PROG, where,
+                                 "%s: subpath %zu: point %zu (%s, %s) is out of range: coordinates "
+                                 "must lie within +-%g (OpenSCAD ignores points beyond about "
+                                 "1e15); the numbers are in %s, after unit conversion",
+                                 it->name, sub ? sub : 1, pt, xs, ys, CONICA_SCAD_MAX_COORD,
+                                 o->unit == U_PX ? "px" : o->unit == U_IN ? "in" : "mm");
+            }
+        }
+    }
+    return 0;
+}
+
 /* What the document paints (the SVG layer's render: <use>, viewports,
  * styles, transforms) as one region: fills under their fill rule and
  * strokes as areas, clipped and unioned with Clipper, fitted to one side
@@ -1002,12 +1043,33 @@ static int load_svg_region(const options *o, const char *name, const char *buf, 
     }
     conica_svg_scene_init(&scene);
     conica__polys_init(&region);
+    {
+        /* the document's caps on path data and points (--max-path-bytes,
+         * --max-points), which the render does not read: a pass that only
+         * reads the vertices */
+        conica_svg_settings ks = conica_svg_defaults();
+        conica_svg_shapes sh;
+        ks.mode = CONICA_SVG_KEEP;
+        ks.convert_shapes = 1;
+        ks.limits = o->limits;
+        ks.select = rs.select;
+        ks.nselect = rs.nselect;
+        conica_svg_shapes_init(&sh);
+        conica_code kc = conica_svg_extract(doc, &ks, &sh, &st);
+        conica_svg_shapes_free(&sh);
+        if (kc == CONICA_ERR_LIMIT) {
+            result = status_error(name, &st);
+            goto done;
+        }
+    }
     if (conica_svg_render(doc, &rs, &scene, &st) != CONICA_OK) {
         result = status_error(name, &st);
         goto done;
     }
     if (!scene.has_size)
         cli_warning(PROG, name, "the document's size is relative or missing: 1 user unit = 1 px");
+    if ((result = scene_in_range(o, name, &scene)) != 0)
+        goto done;
     memset(&gs, 0, sizeof gs);
     /* the written digits get tolerance * ROUND_FRACTION of the tolerance */
     gs.tolerance = o->tolerance * (1 - CONICA_SCAD_ROUND_FRACTION);
@@ -1015,6 +1077,8 @@ static int load_svg_region(const options *o, const char *name, const char *buf, 
              : o->fit == FIT_MIDDLE ? CONICA__REGION_MIDDLE
                                     : CONICA__REGION_INSIDE;
     gs.paint = o->paint;
+    gs.warn = svg_warn;
+    gs.warn_ctx = (void *)name;
     gs.max_points = o->max_points * 16;
     memset(&gx, 0, sizeof gx);
     sx->kind = "SVG";
@@ -1027,11 +1091,14 @@ static int load_svg_region(const options *o, const char *name, const char *buf, 
     sx->dense_points = gx.dense_points;
     sx->fills = gx.fills;
     sx->strokes = gx.strokes;
+    if (region.n == 0 && gx.subpaths > 0) {
+        result = cli_error(PROG, name, "nothing to write: none of the %zu subpaths encloses an area",
+                           gx.subpaths);
+        goto done;
+    }
     if (region.n == 0) {
-        result = cli_error(PROG, name,
-                           "nothing is painted: %s%s",
-                           scene.n ? "the painted shapes cover no area"
-                                   : "no shape of the document is filled or stroked",
+        result = cli_error(PROG, name, "nothing is painted: no shape of the document is filled or "
+                                       "stroked%s",
                            o->paint == CONICA__PAINT_AS_DRAWN
                                ? " (--paint fill fills every shape, painted or not)"
                                : "");

@@ -17,7 +17,7 @@
 set -eu
 
 build="gcc g++ make pkg-config liblapacke-dev libxml2-dev python3-dev libpolyclipping-dev"
-test="libcgal-dev libgmp-dev openscad blender librsvg2-bin libxml2-utils clang libclang-rt-14-dev valgrind libfreetype-dev fonts-dejavu-core groff-base mandoc inkscape python3-lxml python3-cssselect python3-numpy python3-ezdxf xvfb xauth zsh"
+test="libcgal-dev libgmp-dev openscad blender librsvg2-bin libxml2-utils clang libclang-rt-14-dev valgrind libfreetype-dev fonts-dejavu-core groff-base mandoc inkscape python3-lxml python3-cssselect python3-numpy python3-ezdxf python3-pyclipper xvfb xauth zsh"
 demo="openscad blender librsvg2-bin"
 
 case "${1:-build}" in
@@ -61,6 +61,7 @@ probe() {
     python3-cssselect) has_py cssselect ;;
     python3-numpy) has_py numpy ;;
     python3-ezdxf) has_py ezdxf ;;
+    python3-pyclipper) has_py pyclipper ;;
     libpolyclipping-dev) has_pc polyclipping || has_header polyclipping/clipper.hpp "${CXX:-c++}" c++ ;;
     xvfb) has_cmd Xvfb && has_cmd xvfb-run ;;
     *) has_cmd dpkg-query && dpkg-query -W -f='${Status}' "$1" 2>/dev/null | grep -q "install ok installed" ;;

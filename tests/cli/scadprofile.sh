@@ -295,8 +295,9 @@ print(max(xs), 60 / 25.4)
 sys.exit(0 if abs(max(xs) - 60 / 25.4) <= 1e-12 else 1)
 '
 
-check "unknown id selects nothing" fails_with 1 "no closed subpath" "$bin" --select nope "$tmp/plate.svg"
-check_grep "warning: $tmp/plate.svg: --select: no element has id 'nope'" "$tmp/fw.err" "the unknown id is named"
+# (the painted region's message: nothing of the selection is painted)
+check "unknown id selects nothing" fails_with 1 "nothing is painted" "$bin" --select nope "$tmp/plate.svg"
+check_grep "warning: $tmp/plate.svg: .*no element has id 'nope'" "$tmp/fw.err" "the unknown id is named"
 
 begin_case "--units px on a px document keeps the numbers exactly"
 cat >"$tmp/px.svg" <<'EOF'

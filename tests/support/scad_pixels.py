@@ -14,9 +14,11 @@ least half. Painted pixels of the document that the module does not paint
 are lost, the other way added; pixels within 1 px of the document's edge
 (the band where antialiasing decides) are not counted.
 
-Prints `painted P lost L added A` and exits 1 when lost or added exceeds
---limit of the painted pixels (default 0.1 %), 2 on a usage or tool error.
-Reads PNG itself (8-bit RGBA from rsvg-convert), so needs only numpy.
+The comparison is tests/support/pixdiff.py's (alpha >= 128 is painted; a
+pixel counts as lost or added only outside the 1 px band round the other
+image's painted pixels): its line `painted A B lost L added D` is printed,
+exit 1 when lost or added exceeds --limit of the painted pixels (default
+0.1 %), 2 on a usage or tool error.
 """
 import os
 import re
@@ -24,63 +26,8 @@ import struct
 import subprocess
 import sys
 import tempfile
-import zlib
 
-import numpy as np
-
-
-def read_png(path):
-    data = open(path, "rb").read()
-    if data[:8] != b"\x89PNG\r\n\x1a\n":
-        raise ValueError("not a PNG")
-    pos, idat, w = 8, [], 0
-    h = depth = ctype = 0
-    while pos < len(data):
-        (n,) = struct.unpack(">I", data[pos:pos + 4])
-        kind = data[pos + 4:pos + 8]
-        body = data[pos + 8:pos + 8 + n]
-        pos += 12 + n
-        if kind == b"IHDR":
-            w, h, depth, ctype = struct.unpack(">IIBB", body[:10])
-        elif kind == b"IDAT":
-            idat.append(body)
-    if depth != 8 or ctype != 6:
-        raise ValueError("expected 8-bit RGBA")
-    raw = zlib.decompress(b"".join(idat))
-    stride = 4 * w
-    img = np.zeros((h, stride), dtype=np.int32)
-    prev = np.zeros(stride, dtype=np.int32)
-    for y in range(h):
-        f = raw[y * (stride + 1)]
-        line = np.frombuffer(raw, dtype=np.uint8, count=stride, offset=y * (stride + 1) + 1).astype(np.int32)
-        if f == 0:
-            cur = line
-        elif f == 1:
-            cur = line.copy()
-            for x in range(4, stride):
-                cur[x] = (cur[x] + cur[x - 4]) & 255
-        elif f == 2:
-            cur = (line + prev) & 255
-        elif f == 3:
-            cur = line.copy()
-            for x in range(stride):
-                a = cur[x - 4] if x >= 4 else 0
-                cur[x] = (cur[x] + ((a + prev[x]) >> 1)) & 255
-        elif f == 4:
-            cur = line.copy()
-            for x in range(stride):
-                a = cur[x - 4] if x >= 4 else 0
-                b = prev[x]
-                c = prev[x - 4] if x >= 4 else 0
-                p = a + b - c
-                pa, pb, pc = abs(p - a), abs(p - b), abs(p - c)
-                pr = a if (pa <= pb and pa <= pc) else (b if pb <= pc else c)
-                cur[x] = (cur[x] + pr) & 255
-        else:
-            raise ValueError("bad PNG filter")
-        img[y] = cur
-        prev = cur
-    return img.reshape(h, w, 4)
+PIXDIFF = os.path.join(os.path.dirname(os.path.abspath(__file__)), "pixdiff.py")
 
 
 def module_polygon(text):
@@ -114,16 +61,6 @@ def polygon_svg(contours, w, h):
 def render(svg_path, px, out):
     subprocess.run(["rsvg-convert", "-w", str(px[0]), "-h", str(px[1]), "-o", out, svg_path],
                    check=True)
-    return read_png(out)[:, :, 3] >= 128
-
-
-def shift_or(m):
-    o = m.copy()
-    o[1:, :] |= m[:-1, :]
-    o[:-1, :] |= m[1:, :]
-    o[:, 1:] |= m[:, :-1]
-    o[:, :-1] |= m[:, 1:]
-    return o
 
 
 def main(argv):
@@ -153,19 +90,11 @@ def main(argv):
     poly_svg = os.path.join(d, "module.svg")
     with open(poly_svg, "w") as f:
         f.write(polygon_svg(contours, w, h))
-    ref = render(svg, size, os.path.join(d, "doc.png"))
-    got = render(poly_svg, size, os.path.join(d, "module.png"))
-    # the 1 px band round the document's edge: pixels whose 4-neighbourhood
-    # holds both painted and unpainted pixels, grown by one
-    edge = shift_or(ref) & shift_or(~ref)
-    band = shift_or(edge)
-    painted = int(ref.sum())
-    lost = int((ref & ~got & ~band).sum())
-    added = int((got & ~ref & ~band).sum())
-    print("painted %d lost %d added %d" % (painted, lost, added))
-    if painted == 0:
-        return 1 if added else 0
-    return 1 if (lost > limit * painted or added > limit * painted) else 0
+    render(svg, size, os.path.join(d, "doc.png"))
+    render(poly_svg, size, os.path.join(d, "module.png"))
+    r = subprocess.run([sys.executable, PIXDIFF, os.path.join(d, "doc.png"),
+                        os.path.join(d, "module.png"), "--alpha", "128", "--max-frac", str(limit)])
+    return r.returncode
 
 
 if __name__ == "__main__":
