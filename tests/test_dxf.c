@@ -252,6 +252,9 @@ TEST_CASE("dxf: malformed and hostile input is an error with its line", "[dxf]")
         {"0\nSECTION\n2\nENTITIES\n0\nCIRCLE\n10\n1e300\n40\n1\n0\nEOF\n", CONICA_ERR_LIMIT, 5, "beyond"},
         {"0\nSECTION\n2\nENTITIES\n0\nCIRCLE\n10\n0\n40\n-1\n0\nEOF\n", CONICA_ERR_PARSE, 5, "not positive"},
         {"AutoCAD Binary DXF\r\n\x1a", CONICA_ERR_UNSUPPORTED, 1, "binary DXF"},
+        /* fuzz finding: an integer group beyond 32 bits (the cast was undefined) */
+        {"0\nSECTION\n2\nENTITIES\n0\nLWPOLYLINE\n70\n1e44\n", CONICA_ERR_PARSE, 8,
+         "group 70: expected an integer"},
         {"0\nSECTION\n2\nENTITIES\n0\nTEXT\n1\nhi\n0\nENDSEC\n0\nEOF\n", CONICA_ERR_DEGENERATE, 0, "no profile"},
         {"0\nSECTION\n2\nBLOCKS\n0\nBLOCK\n2\nA\n0\nINSERT\n2\nA\n0\nENDBLK\n0\nENDSEC\n0\nSECTION\n2\n"
          "ENTITIES\n0\nINSERT\n2\nA\n0\nENDSEC\n0\nEOF\n", CONICA_ERR_PARSE, 9, "inserts itself"},

@@ -5,6 +5,7 @@
  * conica__parse_double (no C locale) and checked as they are read, so a
  * malformed or non-finite number is an error at its line wherever it is.
  * Calls numparse only. */
+#include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -14,6 +15,10 @@
 
 /* Group codes are at most four digits (and a sign) in every DXF version. */
 #define DXF_MAX_CODE 9999
+/* Largest magnitude of an integer group (32-bit codes; 160-169 are 64-bit,
+ * held to what a double represents exactly). */
+#define DXF_MAX_INT32 2147483647.0
+#define DXF_MAX_INT64 9007199254740992.0
 
 /* Value type of each range of group codes (DXF reference, "Group Code
  * Value Types"); codes in no range are strings. */
@@ -172,9 +177,12 @@ int conica__dxf_next(conica__dxf_lexer *lx, conica__dxf_pair *p, conica_status *
                      v);
         return -1;
     }
+    /* integers: 16 and 32 bits (codes 160-169: 64), so that every cast to
+     * int of a group's value is defined */
+    double imax = p->code >= 160 && p->code <= 169 ? DXF_MAX_INT64 : DXF_MAX_INT32;
     if (r != CONICA__NUM_OK || used != vn ||
-        (p->type == CONICA__DXF_INT && (p->num != (double)(long long)p->num || p->num > 9e15 ||
-                                        p->num < -9e15))) {
+        (p->type == CONICA__DXF_INT &&
+         (!(p->num >= -imax && p->num <= imax) || p->num != floor(p->num)))) {
         conica__fail(st, CONICA_ERR_PARSE, lx->line, lx->pos, "group %d: expected %s, found '%.*s'",
                      p->code, p->type == CONICA__DXF_INT ? "an integer" : "a number",
                      (int)(vn < 40 ? vn : 40), v);

@@ -753,10 +753,23 @@ conica_code conica_dxf_read(const char *buf, size_t len, const conica_dxf_settin
         goto fail;
     d.entities = r.drawn;
     d.skipped = r.skipped;
-    d.layers = r.used;
-    d.nlayers = r.nused;
-    r.used = NULL;
-    r.nused = 0;
+    /* the layers geometry came from (an entity that drew nothing, a TEXT,
+     * a skipped HATCH, names its layer without adding one) */
+    d.layers = calloc(r.nused + 1, sizeof *d.layers);
+    unsigned char *drew = calloc(r.nused + 1, 1);
+    if (!d.layers || !drew) {
+        free(drew);
+        rc = conica__fail(st, CONICA_ERR_NOMEM, 0, 0, "out of memory");
+        goto fail;
+    }
+    for (size_t k = 0; k < g->npc; k++)
+        drew[g->pc[k].layer] = 1;
+    for (size_t i = 0; i < r.nused; i++)
+        if (drew[i]) {
+            d.layers[d.nlayers++] = r.used[i];
+            r.used[i] = NULL;
+        }
+    free(drew);
     reader_free(&r);
     conica_dxf_drawing_free(out);
     *out = d;
