@@ -84,3 +84,12 @@ $(BENCH_ARCS): $(BUILD)/obj/bench/bench_arcs.o $(BUILD)/lib/libconica_testsuppor
 	$(CC) $(LDFLAGS) -o $@ $< $(BUILD)/lib/libconica_testsupport.a $(CORE_A) $(CORE_LIBS) \
 	    $(FT_LIBS) $(if $(CAIRO_FOUND),$(shell $(PKG_CONFIG) --libs cairo))
 BENCH_BINS += $(BENCH_ARCS)
+
+# ---- bench_scaling (issue 38): local slopes and peak memory, 10^3..10^6, of
+# plot, path flatten (vs plot_bezier), svg one-path / many-path, subdivision
+BENCH_SCALING := $(BUILD)/bench/bench_scaling
+$(BUILD)/obj/bench/bench_scaling.o: CPPFLAGS += -Isvg_tools $(XML_CFLAGS)
+$(BENCH_SCALING): $(BUILD)/obj/bench/bench_scaling.o $(BUILD)/lib/libconica_svg.a $(CORE_A)
+	@mkdir -p $(@D)
+	$(CC) $(LDFLAGS) -o $@ $< $(BUILD)/lib/libconica_svg.a $(CORE_A) $(ALL_LDLIBS) -lpthread
+BENCH_BINS += $(BENCH_SCALING)
