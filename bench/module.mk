@@ -91,3 +91,12 @@ $(BENCH_CORNERS): $(BUILD)/obj/bench/bench_corners.o $(CORE_A)
 	@mkdir -p $(@D)
 	$(CC) $(LDFLAGS) -o $@ $< $(CORE_A) $(CORE_LIBS)
 BENCH_BINS += $(BENCH_CORNERS)
+
+# ---- bench_scaling (issue 38): local slopes and peak memory, 10^3..10^6, of
+# plot, path flatten (vs plot_bezier), svg one-path / many-path, subdivision
+BENCH_SCALING := $(BUILD)/bench/bench_scaling
+$(BUILD)/obj/bench/bench_scaling.o: CPPFLAGS += -Isvg_tools $(XML_CFLAGS)
+$(BENCH_SCALING): $(BUILD)/obj/bench/bench_scaling.o $(BUILD)/lib/libconica_svg.a $(CORE_A)
+	@mkdir -p $(@D)
+	$(CC) $(LDFLAGS) -o $@ $< $(BUILD)/lib/libconica_svg.a $(CORE_A) $(ALL_LDLIBS) -lpthread
+BENCH_BINS += $(BENCH_SCALING)

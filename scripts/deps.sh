@@ -8,6 +8,8 @@
 #                           Inkscape with the Python modules its inkex needs
 #                           and Xvfb (the extension test), zsh (completions)
 #   scripts/deps.sh demo    build + OpenSCAD, Blender, rsvg
+#   scripts/deps.sh bench   build + cairo's headers (the cairo columns of
+#                           bench_flatten and bench_arcs)
 # Prints what it installs; does nothing when everything is present.
 # What is present is found by what each package provides (a command, a
 # pkg-config module, a header, a Python module, a file: probe() below),
@@ -19,12 +21,14 @@ set -eu
 build="gcc g++ make pkg-config liblapacke-dev libxml2-dev python3-dev libpolyclipping-dev"
 test="libcgal-dev libgmp-dev openscad blender librsvg2-bin libxml2-utils clang libclang-rt-14-dev valgrind libfreetype-dev fonts-dejavu-core groff-base mandoc inkscape python3-lxml python3-cssselect python3-numpy python3-ezdxf python3-pyclipper xvfb xauth zsh"
 demo="openscad blender librsvg2-bin"
+bench="libcairo2-dev"
 
 case "${1:-build}" in
     build) want="$build" ;;
     test) want="$build $test" ;;
     demo) want="$build $demo" ;;
-    *) echo "deps.sh: error: unknown target '$1' (build, test or demo)" >&2; exit 2 ;;
+    bench) want="$build $bench" ;;
+    *) echo "deps.sh: error: unknown target '$1' (build, test, demo or bench)" >&2; exit 2 ;;
 esac
 
 # probe PKG: is what the Debian package PKG provides here? A package
@@ -55,6 +59,7 @@ probe() {
         has_cmd clang && printf 'int main(void) { return 0; }\n' |
             clang -fsanitize=address,undefined -x c - -o /dev/null >/dev/null 2>&1 ;;
     libfreetype-dev) has_pc freetype2 ;;
+    libcairo2-dev) has_pc cairo ;;
     fonts-dejavu-core) [ -f /usr/share/fonts/truetype/dejavu/DejaVuSans.ttf ] ;;
     groff-base) has_cmd groff ;;
     python3-lxml) has_py lxml ;;

@@ -91,7 +91,7 @@ static inline size_t conica__size_clamp(double x, size_t hi)
  * (subdiv_infl.c): need[e] (edge e, e + 1; n edges closed, n - 1 open)
  * holds the exact side tests' result on entry; between two vertices whose
  * turn is outside the rounding (the larger of noise and a few ulps of the
- * largest |coordinate|), two or more sign changes become their parity.
+ * |coordinate| of the turn's three points), two or more sign changes become their parity.
  * The points are xyd (double) or, when it is NULL, xyl. Returns the
  * number of edges left marked. */
 size_t conica__infl_at_rounding(const double *xyd, const long double *xyl, size_t n, int closed,

@@ -23,16 +23,16 @@
  * A turn is uncertain when it is within INFL_NOISE_SIDE rounding units of
  * zero: |tau_j| <= INFL_NOISE_SIDE nu (|e_{j-1}| + |e_j|), the change three
  * points moved by up to nu can make, with nu the larger of settings.noise
- * and INFL_ULPS units in the last place of the largest coordinate
- * magnitude (the data's own rounding, relative to where it sits, as
- * conica/path.h's precision is for the front end). */
+ * and INFL_ULPS units in the last place of the three points' largest
+ * coordinate magnitude (the data's own rounding, relative to where it
+ * sits, as conica/path.h's precision is for the front end). */
 #include <float.h>
 #include <math.h>
 #include <stddef.h>
 
 #include "internal.h"
 
-/* The data's own rounding: this many ulps of the largest |coordinate|. */
+/* The data's own rounding: this many ulps of the largest |coordinate| of a turn's three points. */
 #define INFL_ULPS 4.0
 /* A turn this many rounding units (times the edge lengths) from zero is
  * uncertain (as CONICA__NOISE_SIDE for settings.noise). */
@@ -57,13 +57,18 @@ static void pt(const pts *p, size_t k, long double *x, long double *y)
 /* Sign of the turn at vertex j (-1, 1), 0 when uncertain (see the top).
  * In long double whatever the mode, so that both modes decide alike (its
  * rounding is far below the threshold). */
-static int turn_sign(const pts *p, size_t n, int closed, size_t j, long double nu)
+static int turn_sign(const pts *p, size_t n, int closed, size_t j, long double noise)
 {
     size_t a = closed ? (j + n - 1) % n : j - 1, c = closed ? (j + 1) % n : j + 1;
-    long double x0, y0, x1, y1, x2, y2;
+    long double x0, y0, x1, y1, x2, y2, big = 0, nu;
     pt(p, a, &x0, &y0);
     pt(p, j, &x1, &y1);
     pt(p, c, &x2, &y2);
+    const long double v[6] = {x0, y0, x1, y1, x2, y2};
+    for (int k = 0; k < 6; k++)
+        big = fabsl(v[k]) > big ? fabsl(v[k]) : big;
+    nu = INFL_ULPS * DBL_EPSILON * big; /* the three points' own rounding */
+    nu = noise > nu ? noise : nu;
     long double ux = x1 - x0, uy = y1 - y0, vx = x2 - x1, vy = y2 - y1;
     long double t = ux * vy - uy * vx;
     long double lim = INFL_NOISE_SIDE * nu * (sqrtl(ux * ux + uy * uy) + sqrtl(vx * vx + vy * vy));
@@ -95,13 +100,7 @@ size_t conica__infl_at_rounding(const double *xyd, const long double *xyl, size_
 {
     pts p = {xyd, xyl};
     size_t ne = closed ? n : n - 1, count = 0, jfirst = (size_t)-1, jprev = (size_t)-1;
-    long double big = 0;
-    for (size_t k = 0; k < 2 * n; k++) {
-        long double v = fabsl(xyd ? (long double)xyd[k] : xyl[k]);
-        big = v > big ? v : big;
-    }
-    long double nu = INFL_ULPS * DBL_EPSILON * big;
-    nu = (long double)noise > nu ? (long double)noise : nu;
+    long double nu = noise;
     int sfirst = 0, sprev = 0;
     /* vertices with a turn: 1 .. n-2 open, all closed */
     for (size_t j = closed ? 0 : 1; n >= 3 && j + (closed ? 0 : 1) < n; j++) {

@@ -167,6 +167,9 @@ typedef struct conica_plot_stats {
  * End points are on the curve. The spline is clamped to its domain and
  * split at knots of multiplicity >= p into continuous pieces (Section
  * 1.1.2); pieces that meet in the same point are joined in the output.
+ * The guaranteed method does not split where the curve is
+ * tangent-continuous at a knot of multiplicity p (the joins of a NURBS
+ * circle): its chords may cross such a join, as the greedy optimum's do.
  * @return CONICA_OK, CONICA_ERR_ARG (bad settings or spline),
  *         CONICA_ERR_LIMIT (a cap was reached), CONICA_ERR_NOMEM,
  *         CONICA_ERR_UNSUPPORTED (guaranteed/adaptive on a rational function)

@@ -55,7 +55,7 @@ typedef struct conica_subdiv_settings {
      *  points), so rounding noise makes no inflection points and no
      *  S-shaped edges. Whatever its value, default mode reads the sign
      *  changes of the polygon's turn at the coordinates' own rounding too
-     *  (a few ulps of the largest |coordinate|): several sign changes
+     *  (a few ulps of the largest |coordinate| at each vertex): several sign changes
      *  between two turns clear of it count as their parity (one inflection
      *  point or none), so a curve gets the same inflection points wherever
      *  it sits. */
