@@ -14,6 +14,11 @@ scene=$build/tests/svgscene
 pixdiff=tests/support/pixdiff.py
 data=tests/data/render
 
+if [ ! -x "$scene" ]; then
+    begin_case "svg render suite"
+    skip_case "$scene is not built (make $scene)"
+    finish
+fi
 have_rsvg=1
 command -v rsvg-convert >/dev/null 2>&1 || have_rsvg=0
 
