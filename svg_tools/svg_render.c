@@ -41,7 +41,6 @@ typedef struct frame {
     int hidden;            /* an ancestor group has opacity 0 */
     size_t use_depth;
     const use_chain *uses;
-    double ovr_w, ovr_h;   /* a `<use>`'s width/height for the svg it instantiates (< 0: none) */
 } frame;
 
 typedef struct rctx {
@@ -788,7 +787,6 @@ static void render_viewport(rctx *c, xmlNodePtr n, const frame *f, const conica_
         warn(c, n, W_PAR, "preserveAspectRatio is not valid: not drawn (as librsvg 2.54)");
         return;
     }
-    f2.ovr_w = f2.ovr_h = -1.0;
     if (clip && !st->overflow_visible) {
         int r = push_clip(f, ctm, x, y, w, h, &f2, &owned);
         if (r < 0) {
@@ -855,7 +853,6 @@ static void render_use(rctx *c, xmlNodePtr n, const frame *f, const conica_svg_m
     f2.ctm = mat_mul(ctm, &tr);
     f2.use_depth = f->use_depth + 1;
     f2.uses = &link;
-    f2.ovr_w = f2.ovr_h = -1.0;
     if (conica_svg__is_svg(t) && is(t, "symbol")) {
         conica_svg__style *sst;
         if (!enter(c, t, level + 1))
@@ -874,8 +871,8 @@ static void render_use(rctx *c, xmlNodePtr n, const frame *f, const conica_svg_m
                         level + 1, sst);
         return;
     }
-    f2.ovr_w = w;
-    f2.ovr_h = h;
+    /* an <svg> target keeps its own width and height: librsvg 2.54 does
+     * not take the use's (SVG 1.1, 5.6 would) */
     render_node(c, t, &f2, level + 1, st);
 }
 
@@ -920,7 +917,6 @@ static void render_node(rctx *c, xmlNodePtr n, const frame *f, size_t level,
     }
     f2 = *f;
     f2.selected = f->selected || selected_id(c, n);
-    f2.ovr_w = f2.ovr_h = -1.0;
     if ((tf = attr(n, "transform")) != NULL) {
         conica_svg_matrix m;
         if (!parse_transform(tf, &m)) {
@@ -960,10 +956,6 @@ static void render_node(rctx *c, xmlNodePtr n, const frame *f, size_t level,
         len_attr(n, "y", f->vh, st->font_size, &y);
         len_attr(n, "width", f->vw, st->font_size, &w);
         len_attr(n, "height", f->vh, st->font_size, &h);
-        if (f->ovr_w >= 0)
-            w = f->ovr_w;
-        if (f->ovr_h >= 0)
-            h = f->ovr_h;
         render_viewport(c, n, &f2, &ctm, x, y, w, h, 1, level, st);
     } else if (is(n, "use")) {
         render_use(c, n, &f2, &ctm, level, st);
@@ -1094,7 +1086,6 @@ conica_code conica_svg_render(const conica_svg_doc *doc, const conica_svg_render
     hh = root_len(root, "height", sc.unit, &H, &Hpx);
     hvb = root && conica_svg__is_svg(root) && is(root, "svg") ? parse_viewbox(root, vb) : 0;
     memset(&f, 0, sizeof f);
-    f.ovr_w = f.ovr_h = -1.0;
     f.selected = !c.nselect;
     if (hvb == 1) {
         if (!hw && !hh) {
