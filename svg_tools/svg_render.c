@@ -51,6 +51,7 @@ typedef struct rctx {
     conica_svg__style **lv; /* one style per level (stable pointers) */
     size_t nlv;
     size_t instances, segments;
+    size_t css_budget;      /* selector-matching steps left */
     uintptr_t *warned;      /* open-addressing set of node | kind */
     size_t nwarned, capwarned;
     const char **select;    /* sorted --select ids */
@@ -697,6 +698,20 @@ static void draw_shape(rctx *c, xmlNodePtr n, const frame *f, const conica_svg_m
 
 /* ------------------------------------------------------------ walk */
 
+/* The computed style of n (svg_style.c) into *out; 0 on failure (c->rc set). */
+static int compute_style(rctx *c, xmlNodePtr n, const conica_svg__style *parent,
+                         conica_svg__style *out)
+{
+    int r = conica_svg__style_compute(n, parent, c->sheet, &c->ids, &c->css_budget, out);
+    if (r == -2)
+        c->rc = conica__fail(c->st, CONICA_ERR_LIMIT, (size_t)xmlGetLineNo(n), 0,
+                             "CSS selector matching takes more than %zu steps",
+                             CONICA_SVG_MAX_CSS_MATCH_STEPS);
+    else if (r != 0)
+        c->rc = conica__fail(c->st, CONICA_ERR_NOMEM, 0, 0, "out of memory");
+    return r == 0;
+}
+
 /* Counts element n drawn at level (caps on nesting and instances) and
  * makes sure the styles of that level and the next exist; 0 on failure
  * (c->rc set). */
@@ -859,10 +874,8 @@ static void render_use(rctx *c, xmlNodePtr n, const frame *f, const conica_svg_m
             return;
         /* the symbol's style inherits from the use */
         sst = c->lv[level + 1];
-        if (conica_svg__style_compute(t, st, c->sheet, &c->ids, sst) != 0) {
-            c->rc = conica__fail(c->st, CONICA_ERR_NOMEM, 0, 0, "out of memory");
+        if (!compute_style(c, t, st, sst))
             return;
-        }
         if (sst->display_none)
             return;
         f2.selected = f2.selected || selected_id(c, t);
@@ -897,10 +910,8 @@ static void render_node(rctx *c, xmlNodePtr n, const frame *f, size_t level,
     if (!enter(c, n, level))
         return;
     st = c->lv[level];
-    if (conica_svg__style_compute(n, parent, c->sheet, &c->ids, st) != 0) {
-        c->rc = conica__fail(c->st, CONICA_ERR_NOMEM, 0, 0, "out of memory");
+    if (!compute_style(c, n, parent, st))
         return;
-    }
     if (st->display_none)
         return;
     if (is(n, "text") || is(n, "tspan") || is(n, "textPath")) {
@@ -1066,6 +1077,7 @@ conica_code conica_svg_render(const conica_svg_doc *doc, const conica_svg_render
     c.out = &sc;
     c.st = st;
     c.rc = CONICA_OK;
+    c.css_budget = CONICA_SVG_MAX_CSS_MATCH_STEPS;
     if (conica_svg__ids_build(root, &c.ids) != 0)
         return conica__fail(st, CONICA_ERR_NOMEM, 0, 0, "out of memory");
     c.rc = conica_svg__sheet_read(root, s->warn, s->warn_ctx, &c.sheet, st);
@@ -1140,8 +1152,8 @@ conica_code conica_svg_render(const conica_svg_doc *doc, const conica_svg_render
             c.rc = conica__fail(st, CONICA_ERR_NOMEM, 0, 0, "out of memory");
         } else if (!conica_svg__is_svg(root) || !is(root, "svg")) {
             /* not an SVG document: nothing is painted */
-        } else if (conica_svg__style_compute(root, &initial, c.sheet, &c.ids, c.lv[0]) != 0) {
-            c.rc = conica__fail(st, CONICA_ERR_NOMEM, 0, 0, "out of memory");
+        } else if (!compute_style(&c, root, &initial, c.lv[0])) {
+            /* c.rc says why */
         } else if (!c.lv[0]->display_none) {
             char *tf = attr(root, "transform");
             conica_svg_matrix m;
