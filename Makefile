@@ -211,11 +211,12 @@ test: deps
 	echo "sanitizer build: $$(( $$(date +%s) - start )) s since the start" && \
 	CONICA_TEST_START=$$start scripts/run-tests.sh $(BUILD)
 
-# The unit and CLI suites again under AddressSanitizer + UBSan (clang).
+# The unit and CLI suites again under AddressSanitizer + UBSan (clang);
+# modules add the test tools their CLI suites run to SAN_EXTRA.
 SAN_FLAGS := -fsanitize=address,undefined -fno-sanitize-recover=all -fno-omit-frame-pointer
 test-san:
 	$(MAKE) --no-print-directory BUILD=$(BUILD)/san CC=clang CXX=clang++ OPT=-O1 \
-	  SAN="$(SAN_FLAGS)" $(patsubst $(BUILD)/%,$(BUILD)/san/%,$(BINS) $(UNIT_BINS))
+	  SAN="$(SAN_FLAGS)" $(patsubst $(BUILD)/%,$(BUILD)/san/%,$(BINS) $(UNIT_BINS) $(SAN_EXTRA))
 
 # ---------------------------------------------------------------- bench, demo
 # cairo's headers first (bench_flatten / bench_arcs compare with cairo;

@@ -206,8 +206,17 @@ static conica_code fill_polys(const conica_path *path, double tol, conica__fit_s
     sc.dense = dense;
     sc.eps = eps;
     for (size_t i = 0; i < path->nsub && rc == CONICA_OK; i++) {
-        if (path->sub[i].kind != CONICA_PATH_DRAWN || path->sub[i].n == 0)
+        if (path->sub[i].kind != CONICA_PATH_DRAWN)
             continue;
+        if (path->sub[i].n == 0) { /* a lone point */
+            if (it && s->warn) {
+                char msg[256];
+                snprintf(msg, sizeof msg, "%.100s: subpath %zu has 1 point (a polygon needs 3); "
+                         "skipped", it->name, i + 1);
+                s->warn(s->warn_ctx, it->line, msg);
+            }
+            continue;
+        }
         b.n = 0;
         rc = conica__path_fit(path, i, tol, side, dense ? painted_side : NULL, &sc, max_points,
                               &b.xy, &b.n, &b.cap, st);

@@ -1092,8 +1092,14 @@ static int load_svg_region(const options *o, const char *name, const char *buf, 
     sx->fills = gx.fills;
     sx->strokes = gx.strokes;
     if (region.n == 0 && gx.subpaths > 0) {
-        result = cli_error(PROG, name, "nothing to write: none of the %zu subpaths encloses an area",
-                           gx.subpaths);
+        /* one element: its line, as the warnings before name it */
+        char where[1024];
+        if (scene.n == 1)
+            snprintf(where, sizeof where, "%s:%zu", name, scene.items[0].line);
+        else
+            snprintf(where, sizeof where, "%s", name);
+        result = cli_error(PROG, where, "nothing to write: none of the %zu subpath%s encloses an area",
+                           gx.subpaths, gx.subpaths == 1 ? "" : "s");
         goto done;
     }
     if (region.n == 0) {

@@ -120,6 +120,11 @@ typedef struct conica_svg_scene {
 #define CONICA_SVG_MAX_CSS_BYTES ((size_t)1 << 20)  /**< text of all `<style>` elements */
 #define CONICA_SVG_MAX_CSS_RULES ((size_t)4096)     /**< selectors, over all rules */
 #define CONICA_SVG_MAX_CSS_DECLS ((size_t)16384)    /**< declarations, over all rules */
+/** Steps of selector matching over the whole render (elements times
+ *  selectors, and the ancestors and siblings a selector walks): a document
+ *  beyond it is refused with CONICA_ERR_LIMIT rather than matched for
+ *  hours. */
+#define CONICA_SVG_MAX_CSS_MATCH_STEPS ((size_t)1 << 30)
 
 /** Settings; start from conica_svg_render_defaults(). */
 typedef struct conica_svg_render_settings {

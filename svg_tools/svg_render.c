@@ -41,7 +41,6 @@ typedef struct frame {
     int hidden;            /* an ancestor group has opacity 0 */
     size_t use_depth;
     const use_chain *uses;
-    double ovr_w, ovr_h;   /* a `<use>`'s width/height for the svg it instantiates (< 0: none) */
 } frame;
 
 typedef struct rctx {
@@ -52,6 +51,7 @@ typedef struct rctx {
     conica_svg__style **lv; /* one style per level (stable pointers) */
     size_t nlv;
     size_t instances, segments;
+    size_t css_budget;      /* selector-matching steps left */
     uintptr_t *warned;      /* open-addressing set of node | kind */
     size_t nwarned, capwarned;
     const char **select;    /* sorted --select ids */
@@ -698,6 +698,20 @@ static void draw_shape(rctx *c, xmlNodePtr n, const frame *f, const conica_svg_m
 
 /* ------------------------------------------------------------ walk */
 
+/* The computed style of n (svg_style.c) into *out; 0 on failure (c->rc set). */
+static int compute_style(rctx *c, xmlNodePtr n, const conica_svg__style *parent,
+                         conica_svg__style *out)
+{
+    int r = conica_svg__style_compute(n, parent, c->sheet, &c->ids, &c->css_budget, out);
+    if (r == -2)
+        c->rc = conica__fail(c->st, CONICA_ERR_LIMIT, (size_t)xmlGetLineNo(n), 0,
+                             "CSS selector matching takes more than %zu steps",
+                             CONICA_SVG_MAX_CSS_MATCH_STEPS);
+    else if (r != 0)
+        c->rc = conica__fail(c->st, CONICA_ERR_NOMEM, 0, 0, "out of memory");
+    return r == 0;
+}
+
 /* Counts element n drawn at level (caps on nesting and instances) and
  * makes sure the styles of that level and the next exist; 0 on failure
  * (c->rc set). */
@@ -788,7 +802,6 @@ static void render_viewport(rctx *c, xmlNodePtr n, const frame *f, const conica_
         warn(c, n, W_PAR, "preserveAspectRatio is not valid: not drawn (as librsvg 2.54)");
         return;
     }
-    f2.ovr_w = f2.ovr_h = -1.0;
     if (clip && !st->overflow_visible) {
         int r = push_clip(f, ctm, x, y, w, h, &f2, &owned);
         if (r < 0) {
@@ -855,17 +868,14 @@ static void render_use(rctx *c, xmlNodePtr n, const frame *f, const conica_svg_m
     f2.ctm = mat_mul(ctm, &tr);
     f2.use_depth = f->use_depth + 1;
     f2.uses = &link;
-    f2.ovr_w = f2.ovr_h = -1.0;
     if (conica_svg__is_svg(t) && is(t, "symbol")) {
         conica_svg__style *sst;
         if (!enter(c, t, level + 1))
             return;
         /* the symbol's style inherits from the use */
         sst = c->lv[level + 1];
-        if (conica_svg__style_compute(t, st, c->sheet, &c->ids, sst) != 0) {
-            c->rc = conica__fail(c->st, CONICA_ERR_NOMEM, 0, 0, "out of memory");
+        if (!compute_style(c, t, st, sst))
             return;
-        }
         if (sst->display_none)
             return;
         f2.selected = f2.selected || selected_id(c, t);
@@ -874,8 +884,8 @@ static void render_use(rctx *c, xmlNodePtr n, const frame *f, const conica_svg_m
                         level + 1, sst);
         return;
     }
-    f2.ovr_w = w;
-    f2.ovr_h = h;
+    /* an <svg> target keeps its own width and height: librsvg 2.54 does
+     * not take the use's (SVG 1.1, 5.6 would) */
     render_node(c, t, &f2, level + 1, st);
 }
 
@@ -900,10 +910,8 @@ static void render_node(rctx *c, xmlNodePtr n, const frame *f, size_t level,
     if (!enter(c, n, level))
         return;
     st = c->lv[level];
-    if (conica_svg__style_compute(n, parent, c->sheet, &c->ids, st) != 0) {
-        c->rc = conica__fail(c->st, CONICA_ERR_NOMEM, 0, 0, "out of memory");
+    if (!compute_style(c, n, parent, st))
         return;
-    }
     if (st->display_none)
         return;
     if (is(n, "text") || is(n, "tspan") || is(n, "textPath")) {
@@ -920,7 +928,6 @@ static void render_node(rctx *c, xmlNodePtr n, const frame *f, size_t level,
     }
     f2 = *f;
     f2.selected = f->selected || selected_id(c, n);
-    f2.ovr_w = f2.ovr_h = -1.0;
     if ((tf = attr(n, "transform")) != NULL) {
         conica_svg_matrix m;
         if (!parse_transform(tf, &m)) {
@@ -960,10 +967,6 @@ static void render_node(rctx *c, xmlNodePtr n, const frame *f, size_t level,
         len_attr(n, "y", f->vh, st->font_size, &y);
         len_attr(n, "width", f->vw, st->font_size, &w);
         len_attr(n, "height", f->vh, st->font_size, &h);
-        if (f->ovr_w >= 0)
-            w = f->ovr_w;
-        if (f->ovr_h >= 0)
-            h = f->ovr_h;
         render_viewport(c, n, &f2, &ctm, x, y, w, h, 1, level, st);
     } else if (is(n, "use")) {
         render_use(c, n, &f2, &ctm, level, st);
@@ -1074,6 +1077,7 @@ conica_code conica_svg_render(const conica_svg_doc *doc, const conica_svg_render
     c.out = &sc;
     c.st = st;
     c.rc = CONICA_OK;
+    c.css_budget = CONICA_SVG_MAX_CSS_MATCH_STEPS;
     if (conica_svg__ids_build(root, &c.ids) != 0)
         return conica__fail(st, CONICA_ERR_NOMEM, 0, 0, "out of memory");
     c.rc = conica_svg__sheet_read(root, s->warn, s->warn_ctx, &c.sheet, st);
@@ -1094,7 +1098,6 @@ conica_code conica_svg_render(const conica_svg_doc *doc, const conica_svg_render
     hh = root_len(root, "height", sc.unit, &H, &Hpx);
     hvb = root && conica_svg__is_svg(root) && is(root, "svg") ? parse_viewbox(root, vb) : 0;
     memset(&f, 0, sizeof f);
-    f.ovr_w = f.ovr_h = -1.0;
     f.selected = !c.nselect;
     if (hvb == 1) {
         if (!hw && !hh) {
@@ -1149,8 +1152,8 @@ conica_code conica_svg_render(const conica_svg_doc *doc, const conica_svg_render
             c.rc = conica__fail(st, CONICA_ERR_NOMEM, 0, 0, "out of memory");
         } else if (!conica_svg__is_svg(root) || !is(root, "svg")) {
             /* not an SVG document: nothing is painted */
-        } else if (conica_svg__style_compute(root, &initial, c.sheet, &c.ids, c.lv[0]) != 0) {
-            c.rc = conica__fail(st, CONICA_ERR_NOMEM, 0, 0, "out of memory");
+        } else if (!compute_style(&c, root, &initial, c.lv[0])) {
+            /* c.rc says why */
         } else if (!c.lv[0]->display_none) {
             char *tf = attr(root, "transform");
             conica_svg_matrix m;

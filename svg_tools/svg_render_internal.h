@@ -92,11 +92,12 @@ void conica_svg__style_initial(conica_svg__style *s);
 /* The computed style of element n whose parent (in the document, or the
  * `<use>` that instantiates it) has computed style *parent: presentation
  * attributes, sheet rules by specificity and order, the style attribute,
- * !important, inherit/initial/unset. Paint references are looked up in
- * ids. 0 ok, -1 no memory. */
+ * !important, inherit. Paint references are looked up in ids. *budget:
+ * selector-matching steps left (decremented). 0 ok, -1 no memory, -2 the
+ * budget is spent. */
 int conica_svg__style_compute(xmlNodePtr n, const conica_svg__style *parent,
                               const conica_svg__sheet *sheet, const conica_svg__ids *ids,
-                              conica_svg__style *out);
+                              size_t *budget, conica_svg__style *out);
 
 /* A length attribute value: number and unit (px, mm, cm, in, pt, pc, Q,
  * em, ex, %; none = px), leading and trailing blanks allowed; em/ex against

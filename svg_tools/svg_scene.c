@@ -113,6 +113,13 @@ conica_code conica_svg_scene_write(const conica_svg_scene *s, FILE *f, conica_st
         put(&b, "\"");
     }
     put(&b, ">\n");
+    if (!s->has_size) {
+        /* no root frame: user units are px, the scene is in its unit */
+        double k = conica_svg_convert_length(1.0, s->unit, "px");
+        put(&b, "<g transform=\"scale(");
+        num(&b, isfinite(k) ? k : 1.0);
+        put(&b, ")\">\n");
+    }
     /* one clipPath per distinct clip, named by the first item that has it */
     for (i = 0; i < s->n; i++) {
         clip_of[i] = i;
@@ -179,6 +186,8 @@ conica_code conica_svg_scene_write(const conica_svg_scene *s, FILE *f, conica_st
             put(&b, "</g>");
         conica_svg__buf_putc(&b, '\n');
     }
+    if (!s->has_size)
+        put(&b, "</g>\n");
     put(&b, "</svg>\n");
     free(clip_of);
     if (b.oom) {

@@ -1566,7 +1566,7 @@ static int cmp_cand(const void *a, const void *b)
 
 int conica_svg__style_compute(xmlNodePtr n, const conica_svg__style *parent,
                               const conica_svg__sheet *sheet, const conica_svg__ids *ids,
-                              conica_svg__style *out)
+                              size_t *budget, conica_svg__style *out)
 {
     conica_svg__style o = *parent;
     cand_list l;
@@ -1600,7 +1600,15 @@ int conica_svg__style_compute(xmlNodePtr n, const conica_svg__style *parent,
     for (i = 0; sheet && i < sheet->nsels; i++) {
         const css_selector *sel = &sheet->sels[i];
         size_t steps = 0, k;
-        if (!match_from(sheet, sel, sel->n - 1, n, &steps))
+        int hit = match_from(sheet, sel, sel->n - 1, n, &steps);
+        if (steps > *budget) {
+            xmlFree(style);
+            if (l.c != l.local)
+                free(l.c);
+            return -2;
+        }
+        *budget -= steps;
+        if (!hit)
             continue;
         for (k = 0; k < sel->ndecl; k++) {
             const css_decl *d = &sheet->decls[sel->decl_first + k];

@@ -11,6 +11,7 @@
 
 #include "conica/subdiv.h"
 #include "conica_scad.h"
+#include "scad_clip.h"
 #include "scad_internal.h"
 
 #ifndef M_PI
@@ -828,6 +829,23 @@ TEST_CASE("the writer emits points, paths and modules", "[scad][write]")
     CHECK_EQ(conica_scad_valid_name("polygon"), 0);
     CHECK_EQ(conica_scad_valid_name("linear_extrude"), 0);
     CHECK_EQ(conica_scad_valid_name("rotate_extrude"), 0);
+    /* every built-in module (issue 31: `--module translate` made OpenSCAD
+     * stop with "Recursion detected", `circle` replaced the user's circles)
+     * and function */
+    {
+        static const char *const builtin[] = {
+            "translate", "rotate", "scale", "mirror", "multmatrix", "color", "offset", "hull",
+            "minkowski", "union", "difference", "intersection", "circle", "square", "text",
+            "import", "projection", "surface", "cube", "sphere", "cylinder", "polyhedron",
+            "children", "render", "resize", "sin", "cos", "len", "concat", "str", "max"};
+        for (size_t i = 0; i < sizeof builtin / sizeof builtin[0]; i++) {
+            INFO("%s", builtin[i]);
+            CHECK_EQ(conica_scad_valid_name(builtin[i]), 0);
+            CHECK(strstr(conica_scad_name_problem(builtin[i]), "built-in") != NULL);
+        }
+        CHECK_EQ(conica_scad_valid_name("translate_"), 1);
+        CHECK_EQ(conica_scad_valid_name("Circle"), 1);
+    }
     /* ...but words that merely contain them are fine */
     CHECK_EQ(conica_scad_valid_name("format"), 1);
     CHECK_EQ(conica_scad_valid_name("For"), 1);
@@ -995,4 +1013,60 @@ TEST_CASE("refine: the dense cap holds for curves that gain inflection points",
     }
     CHECK_GT(ok, 0); /* some tolerance was reached within a cap */
     conica_curve_free(&in);
+}
+
+TEST_CASE("Clipper shim: fill rules resolve, input numbers survive, no exception escapes",
+          "[scad][clip]")
+{
+    /* two squares of the same direction, one inside the other: nonzero
+     * fills both (one outline), evenodd makes the inner a hole */
+    const double outer[8] = {0.1, 0.1, 10.3, 0.1, 10.3, 10.3, 0.1, 10.3};
+    const double inner[8] = {2.7, 2.7, 5.9, 2.7, 5.9, 5.9, 2.7, 5.9};
+    conica__polys in, out;
+    conica_status st;
+    double scale = conica__clip_scale(0.01, 3e-4, 10.3);
+    conica__polys_init(&in);
+    conica__polys_init(&out);
+    REQUIRE(scale > 0);
+    REQUIRE(conica__polys_add(&in, outer, 4) == 0);
+    REQUIRE(conica__polys_add(&in, inner, 4) == 0);
+    REQUIRE(conica__clip_fill_region(&in, CONICA__CLIP_NONZERO, scale, 1, &out, &st) == CONICA_OK);
+    CHECK_EQ(out.n, (size_t)1);
+    REQUIRE(conica__clip_fill_region(&in, CONICA__CLIP_EVENODD, scale, 1, &out, &st) == CONICA_OK);
+    REQUIRE(out.n == 2);
+    {
+        int pos = 0, neg = 0, exact = 1;
+        for (size_t i = 0; i < out.n; i++) {
+            double a = conica__polys_area2(&out, i);
+            pos += a > 0;
+            neg += a < 0;
+        }
+        CHECK_EQ(pos, 1); /* the outline counter-clockwise */
+        CHECK_EQ(neg, 1); /* the hole clockwise */
+        /* every vertex is an input vertex with its own doubles (0.1, not
+         * 0.1 rounded to the grid) */
+        for (size_t k = 0; k < out.npts; k++) {
+            int found = 0;
+            for (int j = 0; j < 4; j++)
+                found |= (out.xy[2 * k] == outer[2 * j] && out.xy[2 * k + 1] == outer[2 * j + 1]) ||
+                         (out.xy[2 * k] == inner[2 * j] && out.xy[2 * k + 1] == inner[2 * j + 1]);
+            exact &= found;
+        }
+        CHECK(exact);
+        CHECK(conica__polys_winding(&out, 4, 4) == 0);
+        CHECK(conica__polys_winding(&out, 1, 1) != 0);
+    }
+    /* coordinates beyond the grid's range: a status, not an exception */
+    {
+        const double far[6] = {0, 0, 1e19, 0, 0, 1};
+        conica__polys f;
+        conica__polys_init(&f);
+        REQUIRE(conica__polys_add(&f, far, 3) == 0);
+        CHECK_EQ(conica__clip_scale(0.01, 0.01, 1e19), 0.0);
+        CHECK_EQ(conica__clip_fill_region(&f, CONICA__CLIP_NONZERO, 1.0, 0, &out, &st),
+                 CONICA_ERR_LIMIT);
+        conica__polys_free(&f);
+    }
+    conica__polys_free(&in);
+    conica__polys_free(&out);
 }

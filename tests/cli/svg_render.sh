@@ -14,6 +14,11 @@ scene=$build/tests/svgscene
 pixdiff=tests/support/pixdiff.py
 data=tests/data/render
 
+if [ ! -x "$scene" ]; then
+    begin_case "svg render suite"
+    skip_case "$scene is not built (make $scene)"
+    finish
+fi
 have_rsvg=1
 command -v rsvg-convert >/dev/null 2>&1 || have_rsvg=0
 
@@ -123,6 +128,16 @@ check_exit 1 "use nested 41 deep" "$scene" "$tmp/deep.svg" "$tmp/x.svg"
 check_grep "nested more than 32 deep" "$err"
 check_exit 1 "10^8 instances" "$scene" "$tmp/wide.svg" "$tmp/x.svg"
 check_grep "more than 1048576 elements drawn" "$err"
+python3 - "$tmp/css.svg" <<'PY'
+import sys
+# 4000 selectors that each walk 250 ancestors for every one of 5000 rects
+s = ['<svg xmlns="http://www.w3.org/2000/svg" width="10" height="10"><style>']
+s += ['a ' + ' '.join(['g'] * 30) + ' rect {fill:none}' for i in range(4000)]
+s.append('</style>' + '<g>' * 250 + '<rect width="1" height="1"/>' * 5000 + '</g>' * 250 + '</svg>')
+open(sys.argv[1], 'w').write('\n'.join(s))
+PY
+check_exit 1 "selector matching beyond 2^30 steps" "$scene" "$tmp/css.svg" "$tmp/x.svg"
+check_grep "CSS selector matching takes more than 1073741824 steps" "$err"
 check "no output was written" sh -c "[ ! -s '$tmp/x.svg' ]"
 
 finish
