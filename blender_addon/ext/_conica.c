@@ -2187,6 +2187,7 @@ static PyObject *cx_curve(PyObject *self, PyObject *args, PyObject *kw)
         job.set.precision = oprec == Py_None ? conica_path_float32_precision(max_abs) : precision;
         job.set.levels = levels;
         job.set.max_points = (size_t)max_points;
+        job.set.vertex_joins = kind == CX_BEZIER; /* every anchor a vertex */
         rc = cx_curve_run(&job);
     }
     if (rc == CONICA_OK && !nonplanar && !tiny && !coincide) {
