@@ -7,18 +7,22 @@
 #                           Inkscape with the Python modules its inkex needs
 #                           and Xvfb (the extension test)
 #   scripts/deps.sh demo    build + OpenSCAD, Blender, rsvg
+#   scripts/deps.sh windows build + MinGW-w64 C and Fortran cross compilers
+#                           (make blender-extension-windows; test has them too)
 # Prints what it installs; does nothing when everything is present.
 set -eu
 
 build="gcc g++ make pkg-config liblapacke-dev libxml2-dev python3-dev"
 test="libcgal-dev libgmp-dev openscad blender librsvg2-bin libxml2-utils clang libclang-rt-14-dev valgrind libfreetype-dev fonts-dejavu-core groff-base mandoc inkscape python3-lxml python3-cssselect python3-numpy xvfb xauth"
 demo="openscad blender librsvg2-bin"
+windows="gcc-mingw-w64-x86-64 gfortran-mingw-w64-x86-64 binutils-mingw-w64-x86-64 dpkg-dev"
 
 case "${1:-build}" in
     build) want="$build" ;;
-    test) want="$build $test" ;;
+    test) want="$build $test $windows" ;;
     demo) want="$build $demo" ;;
-    *) echo "deps.sh: error: unknown target '$1' (build, test or demo)" >&2; exit 2 ;;
+    windows) want="$build $windows" ;;
+    *) echo "deps.sh: error: unknown target '$1' (build, test, demo or windows)" >&2; exit 2 ;;
 esac
 
 missing=""

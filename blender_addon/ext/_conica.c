@@ -29,6 +29,9 @@
 #include <string.h>
 #include <time.h>
 #include <unistd.h>
+#ifdef _WIN32
+#include <windows.h> /* GetSystemInfo: the Windows build (docs/blender.md) */
+#endif
 
 #include "conica/bspline.h"
 #include "conica/common.h"
@@ -1093,7 +1096,13 @@ static PyObject *cx_subdivide(PyObject *self, PyObject *args, PyObject *kw)
          * only when each thread gets enough of them, and its results are
          * bit-identical for any thread count). */
         {
+#ifdef _WIN32
+            SYSTEM_INFO si;
+            GetSystemInfo(&si);
+            long ncpu = (long)si.dwNumberOfProcessors;
+#else
             long ncpu = sysconf(_SC_NPROCESSORS_ONLN);
+#endif
             job.set.threads = ncpu > 1 ? (int)(ncpu < 8 ? ncpu : 8) : 1;
         }
         rc = cx_run(&job);
