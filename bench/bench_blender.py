@@ -343,23 +343,82 @@ if os.environ.get("CONICA_BENCH_BIG", "1") != "0":
     large_curve()
 
 
+def _blender_mesh(ob, ru, rv, dist):
+    """(vertices, deviation, CPU s) of Blender's own conversion of ob at
+    resolution_u = ru, resolution_v = rv: the evaluated mesh, the median of
+    REPEATS evaluations' process time (the depsgraph update and to_mesh)."""
+    import surface_eval as se
+    cpu = []
+    for _ in range(max(1, REPEATS)):
+        for sp in ob.data.splines:
+            sp.resolution_u, sp.resolution_v = ru, rv
+        ob.data.update_tag()
+        c0 = time.process_time()
+        dg = bpy.context.evaluated_depsgraph_get()
+        ev = ob.evaluated_get(dg)
+        me = ev.to_mesh()
+        cpu.append(time.process_time() - c0)
+        n = len(me.vertices)
+        ev.to_mesh_clear()
+    me = ob.evaluated_get(bpy.context.evaluated_depsgraph_get()).to_mesh()
+    d = max(se.mesh_deviation(me, dist))
+    ob.evaluated_get(bpy.context.evaluated_depsgraph_get()).to_mesh_clear()
+    return n, d, statistics.median(cpu)
+
+
+def _best_blender(ob, dev, dist, rmax=64):
+    """Blender's best independent Resolution U and V for a deviation no
+    larger than dev: the fewest vertices over every (ru, rv) up to rmax
+    whose measured deviation is <= dev. Deviation falls with either
+    resolution, so a staircase walk finds every candidate: for each ru
+    upwards, the smallest rv that still meets dev, starting from the last
+    ru's (a larger ru never needs a larger rv)."""
+    import surface_eval as se
+    best, rv = None, rmax
+
+    def meets(ru, rv_):
+        for sp in ob.data.splines:
+            sp.resolution_u, sp.resolution_v = ru, rv_
+        ob.data.update_tag()
+        ev = ob.evaluated_get(bpy.context.evaluated_depsgraph_get())
+        me = ev.to_mesh()
+        d, n = max(se.mesh_deviation(me, dist)), len(me.vertices)
+        ev.to_mesh_clear()
+        return d <= dev, n
+    for ru in range(1, rmax + 1):
+        ok, n = meets(ru, rv)
+        if not ok:
+            continue
+        while rv > 1:
+            ok2, n2 = meets(ru, rv - 1)
+            if not ok2:
+                break
+            rv, n = rv - 1, n2
+        if best is None or n < best[2]:
+            best = (ru, rv, n)
+        if rv == 1:
+            break
+    return best
+
+
 def surface_table():
     """Surface to Mesh (Adaptive) on Blender's Add > Surface primitives at
-    three tolerances: vertices and measured deviation (vertices, face
-    centres and edge midpoints projected onto the surface by
-    tests/blender/surface_eval.py), against Blender's own uniform
-    conversion (the evaluated mesh at resolution_u = resolution_v = r) at
-    the smallest r whose measured deviation is no larger."""
+    three tolerances: vertices, measured deviation (vertices, face centres
+    and edge midpoints projected onto the surface by
+    tests/blender/surface_eval.py) and CPU time, against Blender's own
+    conversion (the evaluated mesh) at its best independent Resolution U
+    and V: the fewest vertices whose measured deviation is no larger."""
     here = os.path.dirname(os.path.abspath(__file__))
     sys.path.insert(0, os.path.join(here, "..", "tests", "blender"))
     import surface_eval as se
     ops = sys.modules["conica"].operators
     print()
-    print("Surfaces: Surface to Mesh (Adaptive) vs Blender's uniform conversion at the same "
-          "measured deviation")
-    print("| primitive | tolerance | adaptive vertices | adaptive deviation | Blender r | "
-          "Blender vertices | Blender deviation |")
-    print("|---|---|---|---|---|---|---|")
+    print("Surfaces: Surface to Mesh (Adaptive) vs Blender's conversion at its best "
+          "Resolution U, V for the same measured deviation")
+    print("| primitive | tolerance | adaptive vertices | adaptive deviation | adaptive CPU ms | "
+          "Blender U x V | Blender vertices | Blender deviation | Blender CPU ms | "
+          "vertices ratio | CPU ratio |")
+    print("|---|---|---|---|---|---|---|---|---|---|---|")
     for prim in ("surface", "cylinder", "sphere", "torus"):
         for tol in (1e-2, 5e-3, 2e-3):
             for ob in list(bpy.data.objects):
@@ -367,26 +426,29 @@ def surface_table():
             getattr(bpy.ops.surface, "primitive_nurbs_surface_%s_add" % prim)()
             ob = bpy.context.active_object
             dist = se.Distance(se.Surface(ob.data.splines[0], ops.nurbs_knots))
-            bpy.ops.object.conic_surface_to_mesh(tolerance=tol)
-            new = bpy.context.active_object
+            cpu = []
+            for _ in range(max(1, REPEATS)):
+                bpy.context.view_layer.objects.active = ob
+                ob.select_set(True)
+                c0 = time.process_time()
+                bpy.ops.object.conic_surface_to_mesh(tolerance=tol)
+                cpu.append(time.process_time() - c0)
+                new = bpy.context.active_object
+                if len(cpu) < max(1, REPEATS):
+                    bpy.data.objects.remove(new, do_unlink=True)
             dev = max(se.mesh_deviation(new.data, dist))
             nv = len(new.data.vertices)
             bpy.data.objects.remove(new, do_unlink=True)
-            row = None
-            for r in range(1, 65):
-                for sp in ob.data.splines:
-                    sp.resolution_u = sp.resolution_v = r
-                dg = bpy.context.evaluated_depsgraph_get()
-                ev = ob.evaluated_get(dg)
-                me = ev.to_mesh()
-                d = max(se.mesh_deviation(me, dist))
-                n = len(me.vertices)
-                ev.to_mesh_clear()
-                if d <= dev:
-                    row = (r, n, d)
-                    break
-            b = ("%d | %d | %.3g" % row) if row else "> 64 | - | -"
-            print("| %s | %g | %d | %.3g | %s |" % (prim, tol, nv, dev, b))
+            best = _best_blender(ob, dev, dist)
+            if best is None:
+                print("| %s | %g | %d | %.3g | %.2f | > 64 x 64 | - | - | - | - | - |"
+                      % (prim, tol, nv, dev, 1e3 * statistics.median(cpu)))
+                continue
+            n, d, bcpu = _blender_mesh(ob, best[0], best[1], dist)
+            acpu = statistics.median(cpu)
+            print("| %s | %g | %d | %.3g | %.2f | %d x %d | %d | %.3g | %.2f | %.2f | %.1f |"
+                  % (prim, tol, nv, dev, 1e3 * acpu, best[0], best[1], n, d, 1e3 * bcpu,
+                     nv / n, acpu / bcpu if bcpu > 0 else float("inf")))
 
 
 def surface_times():
