@@ -196,7 +196,12 @@ def main():
     print("ratio conic (object mode) / Blender operator with mode switches: %.2fx wall, "
           "%.2fx CPU" % (c_ms / bs_ms, c_cpu / bs_cpu))
 
-main()
+# CONICA_BENCH_SUBDIVIDE=0 leaves out the Subdivide comparison and the
+# adaptive table (for the surface tables alone).
+if os.environ.get("CONICA_BENCH_SUBDIVIDE", "1") != "0":
+    main()
+else:
+    setup()
 
 
 def adaptive_table():
@@ -251,7 +256,8 @@ def adaptive_table():
           "(not adaptive: 12 per segment whatever the curvature) |")
 
 
-adaptive_table()
+if os.environ.get("CONICA_BENCH_SUBDIVIDE", "1") != "0":
+    adaptive_table()
 
 
 def large_curve():
@@ -345,60 +351,72 @@ if os.environ.get("CONICA_BENCH_BIG", "1") != "0":
 
 def _blender_mesh(ob, ru, rv, dist):
     """(vertices, deviation, CPU s) of Blender's own conversion of ob at
-    resolution_u = ru, resolution_v = rv: the evaluated mesh, the median of
-    REPEATS evaluations' process time (the depsgraph update and to_mesh)."""
+    resolution_u = ru, resolution_v = rv, as a user runs it: Object >
+    Convert > Mesh keeping the original (an operator that makes a mesh
+    object, like Surface to Mesh); the median of REPEATS runs' process time."""
     import surface_eval as se
+    for sp in ob.data.splines:
+        sp.resolution_u, sp.resolution_v = ru, rv
+    ob.data.update_tag()
     cpu = []
     for _ in range(max(1, REPEATS)):
-        for sp in ob.data.splines:
-            sp.resolution_u, sp.resolution_v = ru, rv
-        ob.data.update_tag()
+        for o in bpy.context.view_layer.objects:
+            if o is not None:
+                o.select_set(o is ob)
+        bpy.context.view_layer.objects.active = ob
+        bpy.context.view_layer.update()
         c0 = time.process_time()
-        dg = bpy.context.evaluated_depsgraph_get()
-        ev = ob.evaluated_get(dg)
-        me = ev.to_mesh()
+        bpy.ops.object.convert(target="MESH", keep_original=True)
         cpu.append(time.process_time() - c0)
-        n = len(me.vertices)
-        ev.to_mesh_clear()
-    me = ob.evaluated_get(bpy.context.evaluated_depsgraph_get()).to_mesh()
-    d = max(se.mesh_deviation(me, dist))
-    ob.evaluated_get(bpy.context.evaluated_depsgraph_get()).to_mesh_clear()
+        new = bpy.context.active_object
+        n, d = len(new.data.vertices), max(se.mesh_deviation(new.data, dist))
+        bpy.data.objects.remove(new, do_unlink=True)
     return n, d, statistics.median(cpu)
 
 
 def _best_blender(ob, dev, dist, rmax=64):
-    """Blender's best independent Resolution U and V for a deviation no
-    larger than dev: the fewest vertices over every (ru, rv) up to rmax
-    whose measured deviation is <= dev. Deviation falls with either
-    resolution, so a staircase walk finds every candidate: for each ru
-    upwards, the smallest rv that still meets dev, starting from the last
-    ru's (a larger ru never needs a larger rv)."""
+    """Blender's best Resolution U and V, chosen independently, for a
+    measured deviation no larger than dev: (ru, rv, vertices). From the
+    smallest uniform resolution r that meets dev, one direction is lowered
+    as far as it goes (bisection: the deviation falls as either resolution
+    grows), then the other, in both orders; the fewest vertices of those
+    points and the uniform one. None when r = rmax does not meet dev."""
     import surface_eval as se
-    best, rv = None, rmax
+    seen = {}
 
-    def meets(ru, rv_):
-        for sp in ob.data.splines:
-            sp.resolution_u, sp.resolution_v = ru, rv_
-        ob.data.update_tag()
-        ev = ob.evaluated_get(bpy.context.evaluated_depsgraph_get())
-        me = ev.to_mesh()
-        d, n = max(se.mesh_deviation(me, dist)), len(me.vertices)
-        ev.to_mesh_clear()
-        return d <= dev, n
-    for ru in range(1, rmax + 1):
-        ok, n = meets(ru, rv)
-        if not ok:
-            continue
-        while rv > 1:
-            ok2, n2 = meets(ru, rv - 1)
-            if not ok2:
-                break
-            rv, n = rv - 1, n2
-        if best is None or n < best[2]:
-            best = (ru, rv, n)
-        if rv == 1:
-            break
-    return best
+    def meets(ru, rv):
+        if (ru, rv) not in seen:
+            for sp in ob.data.splines:
+                sp.resolution_u, sp.resolution_v = ru, rv
+            ob.data.update_tag()
+            ev = ob.evaluated_get(bpy.context.evaluated_depsgraph_get())
+            me = ev.to_mesh()
+            seen[(ru, rv)] = (max(se.mesh_deviation(me, dist)) <= dev, len(me.vertices))
+            ev.to_mesh_clear()
+        return seen[(ru, rv)]
+
+    def lowest(fixed, first, hi):
+        """The smallest resolution up to hi (which meets dev) of one
+        direction while the other is `fixed` (first: lower U, else V)."""
+        lo = 1
+        while lo < hi:
+            mid = (lo + hi) // 2
+            if meets(*((mid, fixed) if first else (fixed, mid)))[0]:
+                hi = mid
+            else:
+                lo = mid + 1
+        return lo
+    r = next((r for r in range(1, rmax + 1) if meets(r, r)[0]), None)
+    if r is None:
+        return None
+    cands = [(r, r)]
+    ru = lowest(r, True, r)
+    cands.append((ru, lowest(ru, False, r)))
+    rv = lowest(r, False, r)
+    cands.append((lowest(rv, True, r), rv))
+    ok = [(meets(a, b)[1], a, b) for a, b in cands if meets(a, b)[0]]
+    n, a, b = min(ok)
+    return a, b, n
 
 
 def surface_table():
@@ -407,7 +425,8 @@ def surface_table():
     and edge midpoints projected onto the surface by
     tests/blender/surface_eval.py) and CPU time, against Blender's own
     conversion (the evaluated mesh) at its best independent Resolution U
-    and V: the fewest vertices whose measured deviation is no larger."""
+    and V (_best_blender): the fewest vertices found whose measured
+    deviation is no larger."""
     here = os.path.dirname(os.path.abspath(__file__))
     sys.path.insert(0, os.path.join(here, "..", "tests", "blender"))
     import surface_eval as se
@@ -430,6 +449,7 @@ def surface_table():
             for _ in range(max(1, REPEATS)):
                 bpy.context.view_layer.objects.active = ob
                 ob.select_set(True)
+                bpy.context.view_layer.update()
                 c0 = time.process_time()
                 bpy.ops.object.conic_surface_to_mesh(tolerance=tol)
                 cpu.append(time.process_time() - c0)

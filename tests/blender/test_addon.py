@@ -1375,12 +1375,15 @@ def undo_in_edit_mode():
     select_only(ob)
     bpy.ops.object.mode_set(mode="EDIT")
     bpy.ops.ed.undo_push(message="before")
-    r = bpy.ops.curve.conic_subdivide(levels=2)
+    # a hexagon turns by 60 degrees: rounded only without Keep Corners
+    r = bpy.ops.curve.conic_subdivide(levels=2, keep_corners=False)
+    done = len(ob.data.splines[0].points)
     bpy.ops.ed.undo_push(message="Conic Subdivide")
     bpy.ops.ed.undo()
     bpy.ops.object.mode_set(mode="OBJECT")
     n = len(bpy.data.objects["undo_edit"].data.splines[0].points)
-    report("undo_edit_mode", r == {"FINISHED"} and n == 6, "%r, %d points after undo" % (r, n))
+    report("undo_edit_mode", r == {"FINISHED"} and done == 24 and n == 6,
+           "%r, %d points, %d after undo" % (r, done, n))
     # Every spline exactly restored (and brought back by redo) when the
     # operator rebuilt splines in Edit Mode: a Bezier spline became POLY, so
     # the splines after it were rebuilt too.
