@@ -1,5 +1,5 @@
 #!/bin/sh
-# SPDX-License-Identifier: MIT
+# SPDX-License-Identifier: GPL-3.0-or-later
 # Fetch one Debian source package (the Windows build of the Blender add-on
 # compiles LAPACK from Debian's lapack package and takes the CPython headers
 # from Debian's python3.11 package) without touching the system's apt

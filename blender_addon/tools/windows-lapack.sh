@@ -1,5 +1,5 @@
 #!/bin/sh
-# SPDX-License-Identifier: MIT
+# SPDX-License-Identifier: GPL-3.0-or-later
 # LAPACK(E) for the Windows build of the Blender add-on, from Debian's own
 # lapack source package, cross-compiled with Debian's MinGW-w64 toolchain
 # (gcc-mingw-w64-x86-64, gfortran-mingw-w64-x86-64) into one static archive.
