@@ -10,6 +10,10 @@
 # Both operators first compute every spline's result and only then modify
 # the scene, so a failure leaves the scene unchanged; a spline that cannot
 # be processed (degenerate, NaN, non-planar) is reported and kept as it is.
+# A POLY spline's w is ignored (Blender's mesh-to-curve conversion writes
+# 0 there); linked and override data is never written (editable.py);
+# hidden points of POLY splines stay as they are (hidden.py); a run that
+# changes nothing reports so and is CANCELLED (no undo step).
 #
 # Edit Mode: for a curve object in Edit Mode, Curve.splines is Blender's
 # edit-mode list (RNA reads BKE_curve_nurbs_get(), which returns
@@ -20,6 +24,7 @@
 # edit-mode undo step pushed after the operator stores the new list.
 import array
 import math
+import re
 import time
 
 import bpy
@@ -528,7 +533,6 @@ _LIBRARY_WORDS = (
 def blender_words(exc, op):
     """The message of a ConicaError in Blender's terms (spline, point,
     levels), for the reports."""
-    import re
     msg = str(exc)
     for pattern, say in _LIBRARY_WORDS:
         m = re.search(pattern, msg)
@@ -885,7 +889,6 @@ def surface_size(ctrl):
 
 def _budget_message(exc, budget):
     """'would need about N vertices' from libcore's limit message."""
-    import re
     m = re.search(r"about ([0-9.e+]+) points would meet", str(exc))
     need = (" (about %d)" % float(m.group(1))) if m else ""
     return ("the mesh would need more than the Vertex Budget of %d vertices%s; raise "
