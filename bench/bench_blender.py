@@ -196,7 +196,12 @@ def main():
     print("ratio conic (object mode) / Blender operator with mode switches: %.2fx wall, "
           "%.2fx CPU" % (c_ms / bs_ms, c_cpu / bs_cpu))
 
-main()
+# CONICA_BENCH_SUBDIVIDE=0 leaves out the Subdivide comparison and the
+# adaptive table (for the surface tables alone).
+if os.environ.get("CONICA_BENCH_SUBDIVIDE", "1") != "0":
+    main()
+else:
+    setup()
 
 
 def adaptive_table():
@@ -251,7 +256,8 @@ def adaptive_table():
           "(not adaptive: 12 per segment whatever the curvature) |")
 
 
-adaptive_table()
+if os.environ.get("CONICA_BENCH_SUBDIVIDE", "1") != "0":
+    adaptive_table()
 
 
 def large_curve():
@@ -343,23 +349,95 @@ if os.environ.get("CONICA_BENCH_BIG", "1") != "0":
     large_curve()
 
 
+def _blender_mesh(ob, ru, rv, dist):
+    """(vertices, deviation, CPU s) of Blender's own conversion of ob at
+    resolution_u = ru, resolution_v = rv, as a user runs it: Object >
+    Convert > Mesh keeping the original (an operator that makes a mesh
+    object, like Surface to Mesh); the median of REPEATS runs' process time."""
+    import surface_eval as se
+    for sp in ob.data.splines:
+        sp.resolution_u, sp.resolution_v = ru, rv
+    ob.data.update_tag()
+    cpu = []
+    for _ in range(max(1, REPEATS)):
+        for o in bpy.context.view_layer.objects:
+            if o is not None:
+                o.select_set(o is ob)
+        bpy.context.view_layer.objects.active = ob
+        bpy.context.view_layer.update()
+        c0 = time.process_time()
+        bpy.ops.object.convert(target="MESH", keep_original=True)
+        cpu.append(time.process_time() - c0)
+        new = bpy.context.active_object
+        n, d = len(new.data.vertices), max(se.mesh_deviation(new.data, dist))
+        bpy.data.objects.remove(new, do_unlink=True)
+    return n, d, statistics.median(cpu)
+
+
+def _best_blender(ob, dev, dist, rmax=64):
+    """Blender's best Resolution U and V, chosen independently, for a
+    measured deviation no larger than dev: (ru, rv, vertices). From the
+    smallest uniform resolution r that meets dev, one direction is lowered
+    as far as it goes (bisection: the deviation falls as either resolution
+    grows), then the other, in both orders; the fewest vertices of those
+    points and the uniform one. None when r = rmax does not meet dev."""
+    import surface_eval as se
+    seen = {}
+
+    def meets(ru, rv):
+        if (ru, rv) not in seen:
+            for sp in ob.data.splines:
+                sp.resolution_u, sp.resolution_v = ru, rv
+            ob.data.update_tag()
+            ev = ob.evaluated_get(bpy.context.evaluated_depsgraph_get())
+            me = ev.to_mesh()
+            seen[(ru, rv)] = (max(se.mesh_deviation(me, dist)) <= dev, len(me.vertices))
+            ev.to_mesh_clear()
+        return seen[(ru, rv)]
+
+    def lowest(fixed, first, hi):
+        """The smallest resolution up to hi (which meets dev) of one
+        direction while the other is `fixed` (first: lower U, else V)."""
+        lo = 1
+        while lo < hi:
+            mid = (lo + hi) // 2
+            if meets(*((mid, fixed) if first else (fixed, mid)))[0]:
+                hi = mid
+            else:
+                lo = mid + 1
+        return lo
+    r = next((r for r in range(1, rmax + 1) if meets(r, r)[0]), None)
+    if r is None:
+        return None
+    cands = [(r, r)]
+    ru = lowest(r, True, r)
+    cands.append((ru, lowest(ru, False, r)))
+    rv = lowest(r, False, r)
+    cands.append((lowest(rv, True, r), rv))
+    ok = [(meets(a, b)[1], a, b) for a, b in cands if meets(a, b)[0]]
+    n, a, b = min(ok)
+    return a, b, n
+
+
 def surface_table():
     """Surface to Mesh (Adaptive) on Blender's Add > Surface primitives at
-    three tolerances: vertices and measured deviation (vertices, face
-    centres and edge midpoints projected onto the surface by
-    tests/blender/surface_eval.py), against Blender's own uniform
-    conversion (the evaluated mesh at resolution_u = resolution_v = r) at
-    the smallest r whose measured deviation is no larger."""
+    three tolerances: vertices, measured deviation (vertices, face centres
+    and edge midpoints projected onto the surface by
+    tests/blender/surface_eval.py) and CPU time, against Blender's own
+    conversion (the evaluated mesh) at its best independent Resolution U
+    and V (_best_blender): the fewest vertices found whose measured
+    deviation is no larger."""
     here = os.path.dirname(os.path.abspath(__file__))
     sys.path.insert(0, os.path.join(here, "..", "tests", "blender"))
     import surface_eval as se
     ops = sys.modules["conica"].operators
     print()
-    print("Surfaces: Surface to Mesh (Adaptive) vs Blender's uniform conversion at the same "
-          "measured deviation")
-    print("| primitive | tolerance | adaptive vertices | adaptive deviation | Blender r | "
-          "Blender vertices | Blender deviation |")
-    print("|---|---|---|---|---|---|---|")
+    print("Surfaces: Surface to Mesh (Adaptive) vs Blender's conversion at its best "
+          "Resolution U, V for the same measured deviation")
+    print("| primitive | tolerance | adaptive vertices | adaptive deviation | adaptive CPU ms | "
+          "Blender U x V | Blender vertices | Blender deviation | Blender CPU ms | "
+          "vertices ratio | CPU ratio |")
+    print("|---|---|---|---|---|---|---|---|---|---|---|")
     for prim in ("surface", "cylinder", "sphere", "torus"):
         for tol in (1e-2, 5e-3, 2e-3):
             for ob in list(bpy.data.objects):
@@ -367,26 +445,30 @@ def surface_table():
             getattr(bpy.ops.surface, "primitive_nurbs_surface_%s_add" % prim)()
             ob = bpy.context.active_object
             dist = se.Distance(se.Surface(ob.data.splines[0], ops.nurbs_knots))
-            bpy.ops.object.conic_surface_to_mesh(tolerance=tol)
-            new = bpy.context.active_object
+            cpu = []
+            for _ in range(max(1, REPEATS)):
+                bpy.context.view_layer.objects.active = ob
+                ob.select_set(True)
+                bpy.context.view_layer.update()
+                c0 = time.process_time()
+                bpy.ops.object.conic_surface_to_mesh(tolerance=tol)
+                cpu.append(time.process_time() - c0)
+                new = bpy.context.active_object
+                if len(cpu) < max(1, REPEATS):
+                    bpy.data.objects.remove(new, do_unlink=True)
             dev = max(se.mesh_deviation(new.data, dist))
             nv = len(new.data.vertices)
             bpy.data.objects.remove(new, do_unlink=True)
-            row = None
-            for r in range(1, 65):
-                for sp in ob.data.splines:
-                    sp.resolution_u = sp.resolution_v = r
-                dg = bpy.context.evaluated_depsgraph_get()
-                ev = ob.evaluated_get(dg)
-                me = ev.to_mesh()
-                d = max(se.mesh_deviation(me, dist))
-                n = len(me.vertices)
-                ev.to_mesh_clear()
-                if d <= dev:
-                    row = (r, n, d)
-                    break
-            b = ("%d | %d | %.3g" % row) if row else "> 64 | - | -"
-            print("| %s | %g | %d | %.3g | %s |" % (prim, tol, nv, dev, b))
+            best = _best_blender(ob, dev, dist)
+            if best is None:
+                print("| %s | %g | %d | %.3g | %.2f | > 64 x 64 | - | - | - | - | - |"
+                      % (prim, tol, nv, dev, 1e3 * statistics.median(cpu)))
+                continue
+            n, d, bcpu = _blender_mesh(ob, best[0], best[1], dist)
+            acpu = statistics.median(cpu)
+            print("| %s | %g | %d | %.3g | %.2f | %d x %d | %d | %.3g | %.2f | %.2f | %.1f |"
+                  % (prim, tol, nv, dev, 1e3 * acpu, best[0], best[1], n, d, 1e3 * bcpu,
+                     nv / n, acpu / bcpu if bcpu > 0 else float("inf")))
 
 
 def surface_times():

@@ -3,8 +3,10 @@
 # `make demo` part for the Blender add-on (called by scripts/demo.sh as
 # `scripts/demo-blender.sh BUILD_DIR`): in headless Blender, refine an
 # octagon, a flower and a Bezier circle with Blender's Subdivide and with
-# Conic Subdivide, draw the curve data as SVG, convert it to PNG.
-# Outputs: BUILD/demo/blender-before-after.{svg,png}, BUILD/demo/conica-demo.blend
+# Conic Subdivide, and a mesh circle converted to a curve; draw the curve
+# data as SVG, convert it to PNG.
+# Outputs: BUILD/demo/blender-{mesh-to-curve,before-after}.{svg,png},
+# BUILD/demo/conica-demo.blend
 set -eu
 build=${1:-build}
 zip=$build/conica-blender.zip
@@ -27,9 +29,12 @@ if ! BLENDER_USER_SCRIPTS=$tmp/scripts BLENDER_USER_CONFIG=$tmp/config CONICA_ZI
     exit 1
 fi
 sed -n 's/^DEMO /  /p' "$tmp/log"
-if command -v rsvg-convert >/dev/null 2>&1; then
-    rsvg-convert -o "$out/blender-before-after.png" "$out/blender-before-after.svg"
-    echo "  $out/blender-before-after.png (and .svg), $out/conica-demo.blend"
-else
-    echo "  $out/blender-before-after.svg, $out/conica-demo.blend (no rsvg-convert for PNG)"
-fi
+for pic in blender-mesh-to-curve blender-before-after; do
+    if command -v rsvg-convert >/dev/null 2>&1; then
+        rsvg-convert -o "$out/$pic.png" "$out/$pic.svg"
+        echo "  $out/$pic.png (and .svg)"
+    else
+        echo "  $out/$pic.svg (no rsvg-convert for PNG)"
+    fi
+done
+echo "  $out/conica-demo.blend"

@@ -10,6 +10,8 @@
 #   scripts/deps.sh demo    build + OpenSCAD, Blender, rsvg
 #   scripts/deps.sh bench   build + cairo's headers (the cairo columns of
 #                           bench_flatten and bench_arcs)
+#   scripts/deps.sh windows build + MinGW-w64 C and Fortran cross compilers
+#                           (make blender-extension-windows; test has them too)
 # Prints what it installs; does nothing when everything is present.
 # What is present is found by what each package provides (a command, a
 # pkg-config module, a header, a Python module, a file: probe() below),
@@ -22,13 +24,15 @@ build="gcc g++ make pkg-config liblapacke-dev libxml2-dev python3-dev libpolycli
 test="libcgal-dev libgmp-dev openscad blender librsvg2-bin libxml2-utils clang libclang-rt-14-dev valgrind libfreetype-dev fonts-dejavu-core groff-base mandoc inkscape python3-lxml python3-cssselect python3-numpy python3-ezdxf python3-pyclipper xvfb xauth zsh"
 demo="openscad blender librsvg2-bin"
 bench="libcairo2-dev"
+windows="gcc-mingw-w64-x86-64 gfortran-mingw-w64-x86-64 binutils-mingw-w64-x86-64 dpkg-dev"
 
 case "${1:-build}" in
     build) want="$build" ;;
-    test) want="$build $test" ;;
+    test) want="$build $test $windows" ;;
     demo) want="$build $demo" ;;
     bench) want="$build $bench" ;;
-    *) echo "deps.sh: error: unknown target '$1' (build, test, demo or bench)" >&2; exit 2 ;;
+    windows) want="$build $windows" ;;
+    *) echo "deps.sh: error: unknown target '$1' (build, test, demo, bench or windows)" >&2; exit 2 ;;
 esac
 
 # probe PKG: is what the Debian package PKG provides here? A package

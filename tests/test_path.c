@@ -369,6 +369,58 @@ TEST_CASE("conics stay exact: arcs, rational quadratics, a Bezier circle", "[pat
     conica_path_free(&p);
 }
 
+TEST_CASE("vertex_joins: flattening puts a vertex at every join of drawn segments",
+          "[path][joins]")
+{
+    /* a closed curve of 8 cubics with tangent joins (a wavy ring: anchors
+     * alternately at radius 1 and 1.3, handles along the circle's tangent),
+     * as Blender's AUTO handles make; by default chords pass over the
+     * joins, with vertex_joins every anchor is a vertex */
+    conica_path p;
+    conica_path_result r;
+    conica_path_settings s = conica_path_defaults();
+    double a[8][2], t[8][2];
+    int i, k, with;
+    conica_path_init(&p);
+    conica_path_result_init(&r);
+    for (i = 0; i < 8; i++) {
+        double ang = i * M_PI / 4, rad = i % 2 ? 1.3 : 1.0;
+        a[i][0] = rad * cos(ang);
+        a[i][1] = rad * sin(ang);
+        t[i][0] = -0.3 * sin(ang);
+        t[i][1] = 0.3 * cos(ang);
+    }
+    REQUIRE(conica_path_move_to(&p, a[0][0], a[0][1], 0, NULL) == CONICA_OK);
+    for (i = 0; i < 8; i++) {
+        int j = (i + 1) % 8;
+        double c[6] = {a[i][0] + t[i][0], a[i][1] + t[i][1], a[j][0] - t[j][0],
+                       a[j][1] - t[j][1], a[j][0], a[j][1]};
+        REQUIRE(conica_path_bezier_to(&p, 3, c, NULL, (size_t)i, NULL) == CONICA_OK);
+    }
+    REQUIRE(conica_path_close(&p, NULL) == CONICA_OK);
+    s.tolerance = 1e-3;
+    for (with = 0; with < 2; with++) {
+        size_t missing = 0;
+        s.vertex_joins = with;
+        REQUIRE(conica_path_flatten(&p, &s, &r, NULL) == CONICA_OK);
+        REQUIRE_EQ_U(r.n, 1);
+        for (k = 0; k < 8; k++) {
+            size_t q;
+            int found = 0;
+            for (q = 0; q < r.lines[0].n; q++)
+                found |= r.lines[0].xy[2 * q] == a[k][0] && r.lines[0].xy[2 * q + 1] == a[k][1];
+            missing += !found;
+        }
+        CHECK_LE(r.worst_ratio, 1.0);
+        if (with)
+            CHECK_EQ_U(missing, 0);
+        else
+            CHECK(missing > 0); /* the default passes over some joins */
+        conica_path_result_free(&r);
+    }
+    conica_path_free(&p);
+}
+
 TEST_CASE("straight segments stay straight, their ends and tangent joins exact", "[path][lines]")
 {
     /* a rounded rectangle: lines meeting quarter arcs tangentially */

@@ -10,6 +10,10 @@
 # Both operators first compute every spline's result and only then modify
 # the scene, so a failure leaves the scene unchanged; a spline that cannot
 # be processed (degenerate, NaN, non-planar) is reported and kept as it is.
+# A POLY spline's w is ignored (Blender's mesh-to-curve conversion writes
+# 0 there); linked and override data is never written (editable.py);
+# hidden points of POLY splines stay as they are (hidden.py); a run that
+# changes nothing reports so and is CANCELLED (no undo step).
 #
 # Edit Mode: for a curve object in Edit Mode, Curve.splines is Blender's
 # edit-mode list (RNA reads BKE_curve_nurbs_get(), which returns
@@ -20,12 +24,13 @@
 # edit-mode undo step pushed after the operator stores the new list.
 import array
 import math
+import re
 import time
 
 import bpy
 from bpy.props import BoolProperty, EnumProperty, FloatProperty, IntProperty
 
-from . import _conica
+from . import _conica, editable, hidden
 
 # A 3D spline is processed in its best-fit plane when its points lie within
 # PLANE_TOL of its size from that plane (issue 8). Blender stores
@@ -110,13 +115,16 @@ class SplineData:
             self.co[0::3] = co4[0::4]
             self.co[1::3] = co4[1::4]
             self.co[2::3] = co4[2::4]
-            self.weights = co4[3::4]
+            # A POLY spline is not rational: Blender ignores its w (mesh to
+            # curve conversion writes 0.0 there), so the operators do too;
+            # only a NURBS spline's weights are read and checked.
+            self.weights = co4[3::4] if sp.type == "NURBS" else None
             self.hl = self.hr = None
             sel = array.array("b", bytes(n))
             pts.foreach_get("select", sel)
         hide = array.array("b", bytes(n))
         pts.foreach_get("hide", hide)
-        self.hidden = any(hide)
+        self.hidden = hide if any(hide) else None
         self.n = n
         self.radius = _zeros(n)
         self.tilt = _zeros(n)
@@ -249,6 +257,14 @@ def spline_curve(sp, data, want_attrs=True, **kw):
     common = dict(dim=3, closed=data.cyclic, plane_tol=PLANE_TOL, abs_tol=data.abs_tol(),
                   nattrs=2 if want_attrs else 0, typecode="f", max_points=MAX_POINTS)
     common.update(kw)
+    if data.type == "POLY" and data.hidden is not None:
+        # radius, tilt and the markers that find the input points again
+        a = _zeros((2 + hidden.NCOLS) * data.n)
+        a[0::4], a[1::4] = data.radius, data.tilt
+        marks = hidden.index_columns(data.n)
+        a[2::4], a[3::4] = array.array("f", marks[0::2]), array.array("f", marks[1::2])
+        common["nattrs"] = 2 + hidden.NCOLS
+        return _conica.curve("POLY", data.co, attrs=a, **common)
     if data.type == "BEZIER":
         return _conica.curve("BEZIER", data.co, data.hl, data.hr,
                              attrs=data.attrs() if want_attrs else None, **common)
@@ -282,21 +298,26 @@ def curve_objects(context):
     return out, edit
 
 
-def poll_curves(context):
+def poll_curves(cls, context):
+    """A curve object to work on whose data may be written (editable.py);
+    else False, with Blender's message naming the library."""
     ao = context.active_object
     if context.mode == "EDIT_CURVE":
         return ao is not None and ao.type == "CURVE"
-    if ao is not None and ao.type == "CURVE":
-        return True
-    return any(o.type == "CURVE" for o in context.selected_objects)
+    objs = [o for o in context.selected_objects if o.type == "CURVE"]
+    if ao is not None and ao.type == "CURVE" and ao not in objs:
+        objs.append(ao)
+    return bool(objs) and editable.poll_editable(cls, objs)
 
 
 class _Result:
     __slots__ = ("index", "kind", "co", "attrs", "hl", "hr", "cyclic", "material",
-                 "smooth", "resolution", "selected", "hidden", "default_attrs", "t_core")
+                 "smooth", "resolution", "selected", "hidden", "hide", "default_attrs",
+                 "t_core")
 
     def __init__(self):
         self.t_core = 0.0  # seconds inside libcore (measured in C)
+        self.hide = None   # with hidden points: the result's hide flags
 
 
 # Per-point attributes that copy_spline() carries over exactly.
@@ -356,10 +377,14 @@ def _fill_poly(sp, r, select):
     if not r.default_attrs:
         sp.points.foreach_set("radius", r.attrs[0::2])
         sp.points.foreach_set("tilt", r.attrs[1::2])
-    if r.hidden:
-        sp.points.foreach_set("hide", array.array("b", bytes(n)))
+    if r.hidden is not None:
+        # the hidden input points, still hidden (hidden.py); the rest shown
+        sp.points.foreach_set("hide", r.hide)
     if select:
-        sp.points.foreach_set("select", array.array("b", [r.selected]) * n)
+        sel = array.array("b", [r.selected]) * n
+        if r.hidden is not None and r.selected:
+            sel = array.array("b", [1 - h for h in r.hide])
+        sp.points.foreach_set("select", sel)
 
 
 def _fill_bezier(sp, r, select):
@@ -374,8 +399,8 @@ def _fill_bezier(sp, r, select):
     if not r.default_attrs:  # new points have radius 1, tilt 0 (see _fill_poly)
         bp.foreach_set("radius", r.attrs[0::2])
         bp.foreach_set("tilt", r.attrs[1::2])
-    if r.hidden:
-        bp.foreach_set("hide", array.array("b", bytes(n)))
+    if r.hidden is not None:
+        bp.foreach_set("hide", r.hide)
     if select:
         for key in ("select_control_point", "select_left_handle", "select_right_handle"):
             bp.foreach_set(key, array.array("b", [r.selected]) * n)
@@ -482,12 +507,59 @@ OUTPUT_ITEMS = [
 ]
 
 
+def same_points(co4, data):
+    """True when a POLY result (x, y, z, 1 per point, float32) holds exactly
+    the spline's own points: the run would change nothing."""
+    if len(co4) != 4 * data.n:
+        return False
+    return co4[0::4] == data.co[0::3] and co4[1::4] == data.co[1::3] and \
+        co4[2::4] == data.co[2::3]
+
+
+# libcore's messages speak of paths, subpaths and segments; Blender users
+# see splines, points and levels. Each pattern: (regular expression, the
+# sentence in Blender's words; groups of the match and op are its fields).
+_LIBRARY_WORDS = (
+    (r"subpath \d+: the result would exceed the limit of (\d+) points",
+     lambda m, op: "the result would have more than %s points; use fewer Levels (now %d)"
+     % (m.group(1), getattr(op, "levels", 0))),
+    (r"(control point|weight) \d+ of a segment is not (finite|a positive number)",
+     lambda m, op: "its points or weights are too far apart in size to evaluate in double "
+     "precision (Blender draws it, but its pieces overflow); bring the weights closer "
+     "to 1"),
+)
+
+
+def blender_words(exc, op):
+    """The message of a ConicaError in Blender's terms (spline, point,
+    levels), for the reports."""
+    msg = str(exc)
+    for pattern, say in _LIBRARY_WORDS:
+        m = re.search(pattern, msg)
+        if m:
+            return say(m, op)
+    return msg
+
+
 class _CurveOperator:
     """Shared driver: collect, compute everything, then write."""
 
+    def nothing_message(self, edit, skipped, unchanged):
+        if unchanged:
+            return ("%s: nothing to change; the %sspline%s %s straight between corners "
+                    "(turn off Keep Corners or raise Corner Angle to round them)"
+                    % (self.bl_label, "selected " if edit else "", "" if unchanged == 1 else "s",
+                       "is" if unchanged == 1 else "are"))
+        if skipped:
+            return "%s: nothing to do; the %sspline%s %s already Poly" % (
+                self.bl_label, "selected " if edit else "", "" if skipped == 1 else "s",
+                "is" if skipped == 1 else "are")
+        return "%s: nothing to do; no %sspline to process" % (
+            self.bl_label, "selected " if edit else "")
+
     @classmethod
     def poll(cls, context):
-        return poll_curves(context)
+        return poll_curves(cls, context)
 
     def process(self, ob, sp, data):  # -> _Result or raises _conica.ConicaError
         raise NotImplementedError
@@ -518,8 +590,13 @@ class _CurveOperator:
         plans = []  # (object, [results])
         problems = []
         skipped = 0
+        unchanged = 0
         for ob in objs:
             results = []
+            locked = editable.locked_reason(ob)
+            if locked is not None:
+                problems.append("%s: %s; left unchanged" % (ob.name, locked))
+                continue
             if ob.data.shape_keys is not None:
                 # Points inserted between shape-keyed points would need every
                 # key block to grow with them (Blender's own edit operators
@@ -536,12 +613,21 @@ class _CurveOperator:
                 self._where = "%s, spline %d" % (ob.name, i)
                 try:
                     data.check()
+                    if data.hidden is not None and (data.type != "POLY" or
+                                                    self.output == "BEZIER"):
+                        raise _conica.ConicaError(
+                            "has hidden points, which %s leaves as they are only on "
+                            "Poly splines with Poly output; reveal them (Alt H) to "
+                            "process the spline" % self.bl_label)
                     r = self.process(ob, sp, data)
                 except _conica.ConicaError as exc:
-                    problems.append("%s, spline %d: %s" % (ob.name, i, exc))
+                    problems.append("%s, spline %d: %s" % (ob.name, i, blender_words(exc, self)))
                     continue
                 if r is None:
                     skipped += 1
+                    continue
+                if r[0].kind == "POLY" and data.type == "POLY" and same_points(r[0].co, data):
+                    unchanged += 1  # nothing to insert (straight between corners)
                     continue
                 t_lib += r[1]
                 r = r[0]
@@ -553,7 +639,7 @@ class _CurveOperator:
                 r.resolution = sp.resolution_u
                 r.selected = edit
                 r.hidden = data.hidden
-                r.default_attrs = data.default_attrs
+                r.default_attrs = data.default_attrs and r.attrs is None
                 results.append(r)
             if results:
                 plans.append((ob, results))
@@ -578,9 +664,9 @@ class _CurveOperator:
         for p in self._notes + problems:
             self._report("WARNING", p)
         if done == 0:
+            # CANCELLED: no undo step for a run that changed nothing
             if not problems:
-                self._report("WARNING", "Nothing to do: no %sspline to process"
-                             % ("selected " if edit else ""))
+                self._report("INFO", self.nothing_message(edit, skipped, unchanged))
             return {"CANCELLED"}
         # A summary goes with the warnings, saying what was done besides; a
         # plain success is silent, as Blender's own Subdivide (the result is
@@ -597,10 +683,20 @@ FIDELITY_HELP = ("Largest distance of the result from the drawn curve, as a frac
                  "the spline's size (the diagonal of its bounding box)")
 
 
+def exact_value(layout, label, value, unit=""):
+    """A row under a tolerance field with its value in %g form: the field
+    shows at most 6 decimals (Blender's UI limit), which reads 1e-7 as 0."""
+    row = layout.row()
+    row.alignment = "RIGHT"
+    row.label(text="%s = %.3g%s" % (label, value, unit))
+
+
 class CURVE_OT_conic_subdivide(_CurveOperator, bpy.types.Operator):
-    """Subdivide curves so that circles, ellipses and other conics stay
-    exact (conic-preserving interpolatory subdivision), staying faithful to
-    the drawn Bezier and NURBS curves"""
+    """Subdivide curves so that circles, ellipses and other conics stay exact"""
+    # one line: Blender shows a docstring's line breaks in the tooltip
+    bl_description = ("Subdivide curves so that circles, ellipses and other conics stay "
+                      "exact (conic-preserving interpolatory subdivision), staying faithful "
+                      "to the drawn Bézier and NURBS curves")
     bl_idname = "curve.conic_subdivide"
     bl_label = "Conic Subdivide"
     bl_options = {"REGISTER", "UNDO"}
@@ -617,7 +713,7 @@ class CURVE_OT_conic_subdivide(_CurveOperator, bpy.types.Operator):
         min=math.radians(1.0), max=math.radians(179.0),
         description="Turning angle above which a join is a corner")
     fidelity: FloatProperty(
-        name="Fidelity", default=_conica.REL_TOLERANCE, min=1e-6, max=0.1, precision=5,
+        name="Fidelity", default=_conica.REL_TOLERANCE, min=1e-6, max=0.1, precision=6,
         step=0.01, description=FIDELITY_HELP)
     output: EnumProperty(name="Output", items=OUTPUT_ITEMS, default="REPLACE")
 
@@ -635,6 +731,12 @@ class CURVE_OT_conic_subdivide(_CurveOperator, bpy.types.Operator):
         r.t_core = res[3]["seconds"]
         r.co, r.attrs = res[0], res[2]
         r.hl, r.hr = (res[4], res[5]) if kind == "BEZIER" else (None, None)
+        if data.hidden is not None:  # POLY output of a POLY spline (see _run)
+            kept = hidden.drop_hidden_segments(r.co, r.attrs, data.hidden, data.cyclic, 4)
+            if kept is None:
+                raise _conica.ConicaError("has hidden points whose places in the result "
+                                          "could not be told; reveal them (Alt H)")
+            r.co, r.attrs, r.hide = kept
         return r, t_lib
 
     def draw(self, context):
@@ -647,15 +749,15 @@ class CURVE_OT_conic_subdivide(_CurveOperator, bpy.types.Operator):
         sub.active = self.keep_corners
         sub.prop(self, "corner_angle", text="")
         layout.prop(self, "fidelity")
-        col = layout.column(align=True)
-        col.label(text="Fidelity: largest distance from the drawn curve,")
-        col.label(text="as a fraction of the spline's size")
+        exact_value(layout, "Fidelity", self.fidelity, " of the spline's size")
         layout.prop(self, "output")
 
 
 class CURVE_OT_adaptive_to_poly(_CurveOperator, bpy.types.Operator):
-    """Convert Bézier and NURBS splines to poly splines that stay within a
-    distance of the curve, with as few points as the adaptive plotter needs"""
+    """Convert Bézier and NURBS splines to Poly splines within a distance of the curve"""
+    bl_description = ("Convert Bézier and NURBS splines to Poly splines that stay within a "
+                      "distance of the curve, with as few points as the adaptive plotter "
+                      "needs and a point at every Bézier anchor")
     bl_idname = "curve.adaptive_to_poly"
     bl_label = "Curve to Polyline (Adaptive)"
     bl_options = {"REGISTER", "UNDO"}
@@ -669,6 +771,13 @@ class CURVE_OT_adaptive_to_poly(_CurveOperator, bpy.types.Operator):
                     "warning")
     output: EnumProperty(name="Output", items=[OUTPUT_ITEMS[0], OUTPUT_ITEMS[2]],
                          default="REPLACE")
+
+    def draw(self, context):
+        layout = self.layout
+        layout.use_property_split = True
+        layout.prop(self, "tolerance")
+        exact_value(layout, "Tolerance", self.tolerance, " m")
+        layout.prop(self, "output")
 
     def process(self, ob, sp, data):
         if data.type == "POLY":
@@ -762,33 +871,99 @@ def surface_grid_mesh(grid, gu, gv, cyclic_u, cyclic_v):
     return verts, faces
 
 
+# The object property that marks a mesh made by Surface to Mesh, so that
+# its poll() accepts the operator's own result: the redo panel and F9
+# (Adjust Last Operation) re-run an operator only while its poll() holds in
+# the context it left behind (the new mesh active, the surface deselected).
+SURFACE_MARK = "conica_surface_to_mesh"
+
+# Default vertex budget of one run of Surface to Mesh.
+SURFACE_BUDGET = 1000000
+
+
+def surface_size(ctrl):
+    """Diagonal of the bounding box of a control net (flat x, y, z): the
+    surface lies in the net's hull, so this is its size for Fidelity."""
+    return math.sqrt(sum((max(ctrl[k::3]) - min(ctrl[k::3])) ** 2 for k in range(3)))
+
+
+def _budget_message(exc, budget):
+    """'would need about N vertices' from libcore's limit message."""
+    m = re.search(r"about ([0-9.e+]+) points would meet", str(exc))
+    need = (" (about %d)" % float(m.group(1))) if m else ""
+    return ("the mesh would need more than the Vertex Budget of %d vertices%s; raise "
+            "the Tolerance or Fidelity, or the budget" % (budget, need))
+
+
 class OBJECT_OT_conic_surface_to_mesh(bpy.types.Operator):
-    """Convert NURBS surfaces to meshes adaptively: every vertex on the surface,
-    grid lines placed where the curvature needs them (tensor-product plotting)"""
+    """Convert NURBS surfaces to meshes adaptively"""
+    bl_description = ("Convert NURBS surfaces to meshes adaptively: every vertex on the "
+                      "surface, grid lines placed where the curvature needs them, every "
+                      "quad within the tolerance of the surface (a certified bound)")
     bl_idname = "object.conic_surface_to_mesh"
     bl_label = "Surface to Mesh (Adaptive)"
     bl_options = {"REGISTER", "UNDO"}
 
+    fidelity: FloatProperty(
+        name="Fidelity", default=1e-3, min=1e-6, max=0.1, precision=6, step=0.01,
+        description="Largest distance of the mesh from the surface, as a fraction of the "
+                    "surface's size (the diagonal of its control net's bounding box); used "
+                    "when Tolerance is 0")
     tolerance: FloatProperty(
-        name="Tolerance", subtype="DISTANCE", default=1e-3, min=1e-6, soft_max=1.0,
+        name="Tolerance", subtype="DISTANCE", default=0.0, min=0.0, soft_max=1.0,
         precision=6, step=0.01,
-        description="Largest distance of the mesh's faces from the surface and of "
-                    "the surface from the mesh (a certified bound per quad). Below what "
-                    "float32 coordinates can hold at the surface's size (2 float32 "
-                    "spacings at its largest coordinate) it is raised to that, with a "
-                    "warning")
+        description="Largest distance of the mesh's faces from the surface and of the "
+                    "surface from the mesh (a certified bound per quad); 0 uses Fidelity. "
+                    "Below what float32 coordinates can hold at the surface's size (2 "
+                    "float32 spacings at its largest coordinate) it is raised to that, "
+                    "with a warning")
+    max_vertices: IntProperty(
+        name="Vertex Budget", default=SURFACE_BUDGET, min=4, max=MAX_POINTS,
+        description="Largest number of vertices one run may make; a surface that would "
+                    "need more is refused with the count before any vertex is made")
 
     @classmethod
     def poll(cls, context):
         if context.mode != "OBJECT":
             return False
         ao = context.active_object
-        return (ao is not None and ao.type == "SURFACE") or \
-            any(o.type == "SURFACE" for o in context.selected_objects)
+        if ao is not None and (ao.type == "SURFACE" or SURFACE_MARK in ao.keys()):
+            return True
+        return any(o.type == "SURFACE" for o in context.selected_objects)
 
     def _report(self, level, message):
         self.report({level}, message)
         last_reports.append((level, message))
+
+    def draw(self, context):
+        layout = self.layout
+        layout.use_property_split = True
+        col = layout.column()
+        col.active = self.tolerance == 0.0
+        col.prop(self, "fidelity")
+        exact_value(col, "Fidelity", self.fidelity, " of the size")
+        layout.prop(self, "tolerance")
+        exact_value(layout, "Tolerance", self.tolerance, " m (0: use Fidelity)")
+        layout.prop(self, "max_vertices")
+
+    def _tolerance(self, ctrl, where, problems):
+        """(requested, plotter's) tolerance of one patch: Tolerance, or
+        Fidelity times the net's size; raised to what float32 can hold."""
+        # the plotter bounds every quad's distance from the surface (both
+        # ways, either triangulation); the mesh's float32 vertices move by
+        # up to FLOAT32_ROUNDING spacings at the net's largest coordinate
+        # (the surface lies in the net's hull), as Curve to Polyline's points
+        big = max(max(ctrl), -min(ctrl))
+        spacing = float32_spacing(big)
+        achievable = FLOAT32_TOL_SPACINGS * spacing
+        tol = self.tolerance if self.tolerance > 0.0 else self.fidelity * surface_size(ctrl)
+        if tol < achievable:
+            if self.tolerance > 0.0:  # Fidelity's floor at a far net says nothing new
+                problems.append("%s: tolerance %.3g is below what float32 coordinates near "
+                                "%.3g can hold; used the achievable tolerance %.3g"
+                                % (where, tol, big, achievable))
+            tol = achievable
+        return tol, tol - FLOAT32_ROUNDING * spacing
 
     def execute(self, context):
         last_reports.clear()
@@ -796,66 +971,46 @@ class OBJECT_OT_conic_surface_to_mesh(bpy.types.Operator):
         ao = context.active_object
         if not objs and ao is not None and ao.type == "SURFACE":
             objs = [ao]
-        plans, problems = [], []
-        for ob in objs:
-            parts = []
-            for i, sp in enumerate(ob.data.splines):
+        jobs = [(ob, i, sp) for ob in objs for i, sp in enumerate(ob.data.splines)]
+        plans, problems, budget = {}, [], self.max_vertices
+        wm = context.window_manager
+        wm.progress_begin(0, max(1, len(jobs)))
+        try:
+            for k, (ob, i, sp) in enumerate(jobs):
+                wm.progress_update(k)
+                where = "%s, spline %d" % (ob.name, i)
                 if sp.point_count_v < 2 or sp.point_count_u < 2:
-                    problems.append("%s, spline %d: one row of control points is a curve, "
-                                    "not a surface; left out" % (ob.name, i))
+                    problems.append("%s: one row of control points is a curve, not a "
+                                    "surface; left out" % where)
                     continue
                 try:
                     ctrl, nu, nv, du, dv, ku, kv, w, cu, cv = surface_patch(sp)
-                    # the plotter bounds every quad's distance from the
-                    # surface (both ways, either triangulation); the mesh's
-                    # float32 vertices move by up to FLOAT32_ROUNDING
-                    # spacings at the net's largest coordinate (the surface
-                    # lies in the net's hull), as Curve to Polyline's points
-                    big = max(max(ctrl), -min(ctrl))
-                    spacing = float32_spacing(big)
-                    achievable = FLOAT32_TOL_SPACINGS * spacing
-                    tol = self.tolerance
-                    if tol < achievable:
-                        problems.append("%s, spline %d: tolerance %.3g is below what float32 "
-                                        "coordinates near %.3g can hold; used the achievable "
-                                        "tolerance %.3g" % (ob.name, i, tol, big, achievable))
-                        tol = achievable
+                    tol, plot_tol = self._tolerance(ctrl, where, problems)
+                    if budget < 4:
+                        raise _conica.LimitError("over budget")
                     grid, gu, gv, _info = _conica.surface(
                         ctrl, nu=nu, nv=nv, degree_u=du, degree_v=dv, knots_u=ku,
-                        knots_v=kv, weights=w, tolerance=tol - FLOAT32_ROUNDING * spacing,
-                        max_points=MAX_POINTS)
-                except _conica.ConicaError as exc:
-                    problems.append("%s, spline %d: %s" % (ob.name, i, exc))
+                        knots_v=kv, weights=w, tolerance=plot_tol, max_points=budget)
+                except _conica.LimitError as exc:
+                    problems.append("%s: %s" % (where, _budget_message(exc, self.max_vertices)))
                     continue
-                parts.append((surface_grid_mesh(grid, gu, gv, cu, cv), sp.material_index))
-            if parts:
-                plans.append((ob, parts))
+                except _conica.ConicaError as exc:
+                    problems.append("%s: %s" % (where, exc))
+                    continue
+                budget -= gu * gv
+                plans.setdefault(ob, []).append(
+                    (surface_grid_mesh(grid, gu, gv, cu, cv), sp.material_index))
+        finally:
+            wm.progress_end()
         for p in problems:
             self._report("WARNING", p)
         if not plans:
             if not problems:
-                self._report("WARNING", "Nothing to do: no surface object selected")
+                self._report("INFO", "%s: nothing to do; no surface object selected"
+                             % self.bl_label)
             return {"CANCELLED"}
-        made = []
-        for ob, parts in plans:
-            verts, faces, mats = [], [], []
-            for (v, f), mat in parts:
-                base = len(verts)
-                verts.extend(v)
-                faces.extend(tuple(base + k for k in q) for q in f)
-                mats.extend([mat] * len(f))
-            me = bpy.data.meshes.new(ob.name + ".mesh")
-            me.from_pydata(verts, [], faces)
-            for m in ob.data.materials:
-                me.materials.append(m)
-            if mats:
-                me.polygons.foreach_set("material_index", array.array("i", mats))
-            me.update()
-            new = bpy.data.objects.new(ob.name + ".mesh", me)
-            new.matrix_world = ob.matrix_world.copy()
-            for coll in ob.users_collection:
-                coll.objects.link(new)
-            made.append(new)
+        made = [self._make_mesh(context, ob, parts) for ob, parts in plans.items()]
+        for ob in plans:
             ob.select_set(False)
         for new in made:
             new.select_set(True)
@@ -864,6 +1019,31 @@ class OBJECT_OT_conic_surface_to_mesh(bpy.types.Operator):
             self.bl_label, len(made), "" if len(made) == 1 else "s",
             sum(len(o.data.vertices) for o in made)))
         return {"FINISHED"}
+
+    def _make_mesh(self, context, ob, parts):
+        verts, faces, mats = [], [], []
+        for (v, f), mat in parts:
+            base = len(verts)
+            verts.extend(v)
+            faces.extend(tuple(base + k for k in q) for q in f)
+            mats.extend([mat] * len(f))
+        me = bpy.data.meshes.new(ob.name + ".mesh")
+        me.from_pydata(verts, [], faces)
+        for m in ob.data.materials:
+            me.materials.append(m)
+        if mats:
+            me.polygons.foreach_set("material_index", array.array("i", mats))
+        me.update()
+        new = bpy.data.objects.new(ob.name + ".mesh", me)
+        new.matrix_world = ob.matrix_world.copy()
+        new[SURFACE_MARK] = ob.name
+        # into the surface's collections that may be written (a linked
+        # collection may not), else the scene's
+        colls = [c for c in ob.users_collection if c.library is None and
+                 getattr(c, "override_library", None) is None]
+        for coll in colls or [context.scene.collection]:
+            coll.objects.link(new)
+        return new
 
 
 # ---------------------------------------------------------------- menus

@@ -29,6 +29,9 @@
 #include <string.h>
 #include <time.h>
 #include <unistd.h>
+#ifdef _WIN32
+#include <windows.h> /* GetSystemInfo: the Windows build (docs/blender.md) */
+#endif
 
 #include "conica/bspline.h"
 #include "conica/common.h"
@@ -1164,7 +1167,13 @@ static PyObject *cx_subdivide(PyObject *self, PyObject *args, PyObject *kw)
          * only when each thread gets enough of them, and its results are
          * bit-identical for any thread count). */
         {
+#ifdef _WIN32
+            SYSTEM_INFO si;
+            GetSystemInfo(&si);
+            long ncpu = (long)si.dwNumberOfProcessors;
+#else
             long ncpu = sysconf(_SC_NPROCESSORS_ONLN);
+#endif
             job.set.threads = ncpu > 1 ? (int)(ncpu < 8 ? ncpu : 8) : 1;
         }
         rc = cx_run(&job);
@@ -2258,6 +2267,7 @@ static PyObject *cx_curve(PyObject *self, PyObject *args, PyObject *kw)
         job.set.precision = oprec == Py_None ? conica_path_float32_precision(max_abs) : precision;
         job.set.levels = levels;
         job.set.max_points = (size_t)max_points;
+        job.set.vertex_joins = kind == CX_BEZIER; /* every anchor a vertex */
         rc = cx_curve_run(&job);
     }
     if (rc == CONICA_OK && !nonplanar && !tiny && !coincide) {

@@ -5,8 +5,11 @@
 # Builds three curves in a scene, refines each with Blender's own
 # curve.subdivide and with the add-on's curve.conic_subdivide, reads the
 # resulting spline points back from Blender and draws them as SVG (the
-# curve data itself, not a render: Workbench/Eevee need a GPU here).
-# Also saves the scene as conica-demo.blend next to the picture.
+# curve data itself, not a render: Workbench/Eevee need a GPU here):
+# blender-before-after.svg. A second picture, blender-mesh-to-curve.svg,
+# follows the workflow docs/blender.md opens with: Add > Mesh > Circle,
+# Object > Convert > Curve, then Blender's Subdivide or Conic Subdivide.
+# Also saves the scene as conica-demo.blend next to the pictures.
 import math
 import os
 import sys
@@ -143,8 +146,62 @@ def panel(svg, title, subtitle, input_pts, output_pts, col, row, circle_r=None):
         svg.append('<circle cx="%.2f" cy="%.2f" r="4" fill="#d22"/>' % (cx + s * x, cy - s * y))
 
 
+def svg_head(w, h, title, legend):
+    return ['<svg xmlns="http://www.w3.org/2000/svg" width="%d" height="%d" '
+            'viewBox="0 0 %d %d">' % (w, h, w, h),
+            '<rect width="100%" height="100%" fill="white"/>',
+            '<text x="20" y="28" font-size="18" font-family="sans-serif" font-weight="bold">'
+            '%s</text>' % title,
+            '<text x="20" y="46" font-size="13" font-family="sans-serif" fill="#444">'
+            '%s</text>' % legend]
+
+
+def write_svg(name, svg):
+    svg.append('</svg>')
+    os.makedirs(OUT, exist_ok=True)
+    with open(os.path.join(OUT, name), "w") as f:
+        f.write("\n".join(svg) + "\n")
+
+
+def mesh_circle_curve(name, vertices, x):
+    """A mesh circle converted to a curve, as a user makes one: its POLY
+    spline has w = 0 at every point (Blender's conversion writes that)."""
+    bpy.ops.mesh.primitive_circle_add(vertices=vertices, radius=1.0, location=(x, 0.0, 0.0))
+    ob = bpy.context.active_object
+    ob.name = name
+    bpy.ops.object.convert(target="CURVE")
+    ob = bpy.context.active_object
+    ob.location = (0.0, 0.0, 0.0)  # drawn at the origin; points are object space
+    return ob
+
+
+def mesh_to_curve_picture():
+    """Mesh circle (12 vertices) -> curve -> Subdivide / Conic Subdivide."""
+    a = mesh_circle_curve("mesh_circle_blender", 12, 10.0)
+    b = mesh_circle_curve("mesh_circle_conic", 12, 20.0)
+    pin = points_of(a)
+    blender_subdivide(a, 7)
+    conic_subdivide(b, 3)
+    pa, pb = points_of(a), points_of(b)
+    ea, eb = radial_error(pa, 1.0), radial_error(pb, 1.0)
+    svg = svg_head(W, 95 + PANEL + 40, "Blender %s: Add &gt; Mesh &gt; Circle, Object &gt; "
+                   "Convert &gt; Curve, then subdivide" % bpy.app.version_string,
+                   "red: the 12 converted points (Poly spline), blue: the resulting points, "
+                   "green dashed: the circle")
+    panel(svg, "Mesh circle converted to a curve", "12 Poly points, w = 0 on each",
+          pin, None, 0, 0, 1.0)
+    panel(svg, "Blender Subdivide (7 cuts)", "12 -> %d points, off by %.3g" % (len(pa), ea),
+          pin, pa, 1, 0, 1.0)
+    panel(svg, "Conic Subdivide (3 levels)", "12 -> %d points, off by %.1g" % (len(pb), eb),
+          pin, pb, 2, 0, 1.0)
+    write_svg("blender-mesh-to-curve.svg", svg)
+    print("DEMO mesh circle: Blender %d points, radial error %.4g; Conic %d points, %.3g" %
+          (len(pa), ea, len(pb), eb))
+
+
 def main():
     setup()
+    mesh_to_curve_picture()
     oct_in = octagon(1.0)
     a = poly_object("octagon_blender", oct_in)
     b = poly_object("octagon_conic", oct_in)
@@ -162,15 +219,9 @@ def main():
     conic_subdivide(e, 3)
     pa, pb, pc, pd, pe = (points_of(o) for o in (a, b, c, d, e))
     ea, eb, ee = radial_error(pa, 1.0), radial_error(pb, 1.0), radial_error(pe, 1.0)
-    svg = ['<svg xmlns="http://www.w3.org/2000/svg" width="%d" height="%d" '
-           'viewBox="0 0 %d %d">' % (W, H, W, H),
-           '<rect width="100%" height="100%" fill="white"/>',
-           '<text x="20" y="28" font-size="18" font-family="sans-serif" font-weight="bold">'
-           'Blender %s: its own Subdivide vs the add-on\'s Conic Subdivide</text>'
-           % bpy.app.version_string,
-           '<text x="20" y="46" font-size="13" font-family="sans-serif" fill="#444">'
-           'red: input points, blue: the resulting spline points, green dashed: the '
-           'circle the input points lie on</text>']
+    svg = svg_head(W, H, "Blender %s: its own Subdivide vs the add-on's Conic Subdivide"
+                   % bpy.app.version_string, "red: input points, blue: the resulting spline "
+                   "points, green dashed: the circle the input points lie on")
     panel(svg, "Blender Subdivide (7 cuts)", "8 points on a circle -> %d, off by %.3g"
           % (len(pa), ea), oct_in, pa, 0, 0, 1.0)
     panel(svg, "Conic Subdivide (3 levels)", "8 points on a circle -> %d, off by %.1g"
@@ -190,10 +241,7 @@ def main():
         svg.append('<text x="%d" y="%d" font-size="13" font-family="sans-serif" '
                    'fill="#444">%s</text>' % (20 + 2 * (PANEL + 20) + 10,
                                               95 + PANEL + 90 + 18 * i, line))
-    svg.append('</svg>')
-    os.makedirs(OUT, exist_ok=True)
-    with open(os.path.join(OUT, "blender-before-after.svg"), "w") as f:
-        f.write("\n".join(svg) + "\n")
+    write_svg("blender-before-after.svg", svg)
     bpy.ops.wm.save_as_mainfile(filepath=os.path.join(OUT, "conica-demo.blend"))
     print("DEMO octagon: Blender %d points, radial error %.4g; Conic %d points, %.3g" %
           (len(pa), ea, len(pb), eb))

@@ -11,7 +11,14 @@
 #define CONICA_VERSION_STRING "0.1.0"
 
 #if defined(__GNUC__)
+#if defined(__MINGW32__)
+/* MinGW-w64 (the Windows build of the Blender add-on) is built with
+ * __USE_MINGW_ANSI_STDIO=1, whose vsnprintf is C99's (%zu); plain `printf`
+ * there means Microsoft's, which has no %zu. */
+#define CONICA__PRINTF(a, b) __attribute__((format(gnu_printf, a, b)))
+#else
 #define CONICA__PRINTF(a, b) __attribute__((format(printf, a, b)))
+#endif
 /* A small function on a hot path that gcc -O2 leaves out of line (called
  * from more than one place): inlined anyway. */
 #define CONICA__HOT_INLINE inline __attribute__((always_inline))

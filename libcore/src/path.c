@@ -2939,7 +2939,7 @@ static conica_code drawn_subpath(ctx *c, const conica_path_subpath *sp, int smoo
     for (j = 0; j < n; j++) {
         size_t pv = (j + n - 1) % n;
         brk[j] = (unsigned char)(J[j].corner || line[j] || (line[pv] && (sp->closed || j > 0)) ||
-                                 (j == 0 && !sp->closed));
+                                 (j == 0 && !sp->closed) || (!smooth && c->s.vertex_joins));
         any_break |= brk[j];
     }
     if (!smooth && c->s.fit == CONICA_PATH_FIT_MIDDLE && any_break)

@@ -1108,9 +1108,14 @@ conica_code conica_plot_surface_certified(const conica_bspline_surface *s,
         size_t nlu = sum_sz(G.cu, G.nsu) + 1, nlv = sum_sz(G.cv, G.nsv) + 1;
         if (rounds >= CERT_MAX_ROUNDS || !grid_fits(nlu + 1, nlv, set->max_points) ||
             !grid_fits(nlu, nlv + 1, set->max_points)) {
+            /* the count that would meet the tolerance, predicted from the
+             * worst bound: it falls as 1/cells^2 per direction, so both
+             * directions need sqrt(wb / tol) times the lines */
+            double need = (double)nlu * (double)nlv * (wb / tol);
             rc = conica__fail(st, CONICA_ERR_LIMIT, 0, 0,
-                              "quad grid %zu x %zu within %g exceeds %zu points (max_points)",
-                              nlu, nlv, tol, set->max_points);
+                              "quad grid %zu x %zu within %g exceeds %zu points (max_points); "
+                              "about %.3g points would meet the tolerance",
+                              nlu, nlv, tol, set->max_points, need);
             break;
         }
         /* the gain of a cell more either way, judged on the worst cell

@@ -2,6 +2,7 @@
 """Check the add-on zip against Blender's extension rules, without Blender.
 
     python3 tests/blender/check_manifest.py build/conica-blender.zip
+    python3 tests/blender/check_manifest.py build/conica-blender-windows-x64.zip
 
 Blender 4.2+ installs a zip as an extension when it holds a
 blender_manifest.toml (at the top or in one folder) next to the add-on's
@@ -11,7 +12,8 @@ Extensions", the manifest schema 1.0.0, "Extensions Tags"): the required
 fields and their forms, the tagline (at most 64 characters, not ending in
 punctuation), the permission reasons (the same), the tag and platform
 names. On top, what this package promises: the manifest and bl_info agree
-on the version, and the binary matches the manifest's platform.
+on the version, and the binary matches the manifest's platform (ELF
+machine of a Linux .so, PE machine of a Windows .pyd).
 
 Prints `PASS name` or `FAIL name: why` per rule and a SUMMARY line, as
 tests/blender/test_addon.py does; tests/cli/blender.sh runs it.
@@ -160,6 +162,25 @@ def main(path):
             else:  # a Mach-O module of a macOS build
                 report("binary_matches_platform", len(plats) == 1 and
                        plats[0].startswith("macos-"), "not ELF, platforms %s" % plats)
+        elif bins == ["conica/_conica.pyd"]:
+            machine = pe_machine(z.read(bins[0]))
+            want = [PE_MACHINE.get(p) for p in plats]
+            report("binary_matches_platform", len(plats) == 1 and machine is not None and
+                   machine in want, "PE machine %s, manifest platforms %s" % (machine, plats))
+
+
+# PE/COFF Machine of the DLL for each Windows platform (AMD64, ARM64)
+PE_MACHINE = {"windows-x64": 0x8664, "windows-arm64": 0xAA64}
+
+
+def pe_machine(data):
+    """The COFF Machine field of a PE image (a .pyd is a DLL), or None."""
+    if data[:2] != b"MZ" or len(data) < 0x40:
+        return None
+    off = int.from_bytes(data[0x3C:0x40], "little")
+    if data[off:off + 4] != b"PE\0\0":
+        return None
+    return int.from_bytes(data[off + 4:off + 6], "little")
 
 
 if __name__ == "__main__":

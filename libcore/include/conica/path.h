@@ -154,6 +154,10 @@ typedef struct conica_path_settings {
      *  foot itself, which saves a Newton search per point. The points,
      *  normals, flags and deviation are the same either way (default 0). */
     int rough_t;
+    /** Flattening: nonzero puts a vertex at every join of drawn segments
+     *  (a Bézier spline's anchors, for Blender), not only at corners and
+     *  straight pieces; 0 (default) lets chords pass over tangent joins. */
+    int vertex_joins;
 } conica_path_settings;
 
 /** Output point flags. */
