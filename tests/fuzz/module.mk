@@ -10,6 +10,9 @@
 # and LDFLAGS); only the final link of a target adds the fuzzer's main.
 FUZZ_NAMES   := curve_parse spline_parse svg_path svgsmooth svg_render scadprofile subdivide plot dxf
 FUZZ_CC      ?= clang
+# scadprofile's regions are C++ (openscad_export/scad_clip.cpp): the same
+# compiler family builds them, so the sanitizer flags mean the same.
+FUZZ_CXX     ?= clang++
 FUZZ_SAN     := -fsanitize=fuzzer-no-link,address,undefined -fno-sanitize-recover=undefined \
                 -fno-omit-frame-pointer
 FUZZ_SECONDS ?= 60
@@ -19,14 +22,14 @@ $(BUILD)/obj/tests/fuzz/%.o: CPPFLAGS += -Itests/fuzz -Isvg_tools -Iopenscad_exp
 # (ALL_LIBS is defined after the fragments are read: name the libraries.)
 $(BUILD)/bin/fuzz_%: $(BUILD)/obj/tests/fuzz/fuzz_%.o $(MODULE_LIBS_FIRST) $(MODULE_LIBS) $(CLI_A) $(CORE_A)
 	@mkdir -p $(@D)
-	$(CC) $(LDFLAGS) -fsanitize=fuzzer -o $@ $< $(ALL_LIBS) $(ALL_LDLIBS)
+	$(CC) $(LDFLAGS) -fsanitize=fuzzer -o $@ $< $(ALL_LIBS) $(CLIP_LIBS) $(ALL_LDLIBS)
 
 # From the normal build: recurse once.
 ifeq ($(filter %/fuzz,$(BUILD)),)
 FUZZ_BINS := $(FUZZ_NAMES:%=$(BUILD)/fuzz/bin/fuzz_%)
 
 fuzz-build:
-	$(MAKE) --no-print-directory BUILD=$(BUILD)/fuzz CC=$(FUZZ_CC) OPT=-O1 \
+	$(MAKE) --no-print-directory BUILD=$(BUILD)/fuzz CC=$(FUZZ_CC) CXX=$(FUZZ_CXX) OPT=-O1 \
 	  SAN="$(FUZZ_SAN)" $(FUZZ_BINS)
 
 fuzz: fuzz-build
