@@ -13,6 +13,9 @@ $(BUILD)/obj/tests/test_scad.o: CPPFLAGS += -Iopenscad_export
 # shim scad_clip.cpp: what links it also links Clipper and the C++ runtime.
 CLIP_CFLAGS := $(shell $(PKG_CONFIG) --cflags polyclipping 2>/dev/null || echo -I/usr/include/polyclipping)
 CLIP_LIBS   := $(shell $(PKG_CONFIG) --libs polyclipping 2>/dev/null || echo -lpolyclipping) -lstdc++
+# Sanitizer builds link with clang (the C driver): it needs telling to take
+# the sanitizers' C++ runtime (UBSan's vptr checks in the shim) too.
+CLIP_LIBS   += $(if $(SAN),-fsanitize-link-c++-runtime)
 $(BUILD)/obj/openscad_export/scad_clip.o: CPPFLAGS += $(CLIP_CFLAGS)
 $(BUILD)/tests/test_scad: ALL_LDLIBS += $(CLIP_LIBS)
 

@@ -30,6 +30,7 @@
 #include "path_fit.h"
 #include "scad_region.h"
 #include "scad_stroke.h"
+#include "svg_internal.h"
 
 typedef struct item_paths {
     conica_path local; /* in the item's user space */
@@ -76,23 +77,6 @@ static conica_code build_local(const conica_svg_path *p, conica_path *cp, conica
         if (rc != CONICA_OK)
             break;
         switch (g->type) {
-        case CONICA_SVG_SEG_LINE:
-            rc = conica_path_line_to(cp, g->x1, g->y1, i, st);
-            break;
-        case CONICA_SVG_SEG_QUAD: {
-            double c[4] = {g->c[0], g->c[1], g->x1, g->y1};
-            rc = conica_path_bezier_to(cp, 2, c, NULL, i, st);
-            break;
-        }
-        case CONICA_SVG_SEG_CUBIC: {
-            double c[6] = {g->c[0], g->c[1], g->c[2], g->c[3], g->x1, g->y1};
-            rc = conica_path_bezier_to(cp, 3, c, NULL, i, st);
-            break;
-        }
-        case CONICA_SVG_SEG_ARC:
-            rc = conica_path_arc_to(cp, g->cx, g->cy, g->rx, g->ry, g->phi, g->theta1, g->dtheta,
-                                    g->x1, g->y1, i, st);
-            break;
         case CONICA_SVG_SEG_CLOSE:
             /* the closing line as drawn: conica_path_close() would take an
              * end within 1e-12 of the subpath's extent for its start, which
@@ -103,6 +87,7 @@ static conica_code build_local(const conica_svg_path *p, conica_path *cp, conica
                 rc = conica_path_close(cp, st);
             break;
         default:
+            rc = conica_svg__seg_to_path(cp, g, i, st);
             break;
         }
     }

@@ -233,6 +233,30 @@ static conica_code add_simplified_lines(conica_path *cp, const conica_svg_path *
     return rc;
 }
 
+conica_code conica_svg__seg_to_path(conica_path *cp, const conica_svg_seg *g, size_t tag,
+                                   conica_status *st)
+{
+    switch (g->type) {
+    case CONICA_SVG_SEG_LINE:
+        return conica_path_line_to(cp, g->x1, g->y1, tag, st);
+    case CONICA_SVG_SEG_QUAD: {
+        double c[4] = {g->c[0], g->c[1], g->x1, g->y1};
+        return conica_path_bezier_to(cp, 2, c, NULL, tag, st);
+    }
+    case CONICA_SVG_SEG_CUBIC: {
+        double c[6] = {g->c[0], g->c[1], g->c[2], g->c[3], g->x1, g->y1};
+        return conica_path_bezier_to(cp, 3, c, NULL, tag, st);
+    }
+    case CONICA_SVG_SEG_ARC:
+        return conica_path_arc_to(cp, g->cx, g->cy, g->rx, g->ry, g->phi, g->theta1, g->dtheta,
+                                  g->x1, g->y1, tag, st);
+    case CONICA_SVG_SEG_MOVE:
+    case CONICA_SVG_SEG_CLOSE:
+        break;
+    }
+    return CONICA_OK;
+}
+
 /* Segments [a, b) as drawn: one subpath. */
 static conica_code add_drawn(conica_path *cp, const conica_svg_path *p, size_t a, size_t b,
                              int close, conica_status *st)
@@ -245,30 +269,10 @@ static conica_code add_drawn(conica_path *cp, const conica_svg_path *p, size_t a
             rc = conica_path_move_to(cp, g->x0, g->y0, i, st);
         if (rc != CONICA_OK)
             break;
-        switch (g->type) {
-        case CONICA_SVG_SEG_MOVE:
+        if (g->type == CONICA_SVG_SEG_MOVE)
             rc = conica_path_move_to(cp, g->x1, g->y1, i, st);
-            break;
-        case CONICA_SVG_SEG_LINE:
-            rc = conica_path_line_to(cp, g->x1, g->y1, i, st);
-            break;
-        case CONICA_SVG_SEG_QUAD: {
-            double c[4] = {g->c[0], g->c[1], g->x1, g->y1};
-            rc = conica_path_bezier_to(cp, 2, c, NULL, i, st);
-            break;
-        }
-        case CONICA_SVG_SEG_CUBIC: {
-            double c[6] = {g->c[0], g->c[1], g->c[2], g->c[3], g->x1, g->y1};
-            rc = conica_path_bezier_to(cp, 3, c, NULL, i, st);
-            break;
-        }
-        case CONICA_SVG_SEG_ARC:
-            rc = conica_path_arc_to(cp, g->cx, g->cy, g->rx, g->ry, g->phi, g->theta1, g->dtheta,
-                                    g->x1, g->y1, i, st);
-            break;
-        case CONICA_SVG_SEG_CLOSE:
-            break;
-        }
+        else
+            rc = conica_svg__seg_to_path(cp, g, i, st);
     }
     if (rc == CONICA_OK && close)
         rc = conica_path_close(cp, st);

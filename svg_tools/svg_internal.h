@@ -9,6 +9,7 @@
 
 #include <libxml/tree.h>
 
+#include "conica/path.h"
 #include "conica_svg.h"
 
 /* conica__fail()/conica__ok() from libcore's internal.h fill the status. */
@@ -47,6 +48,14 @@ int conica_svg__arc_to_centre(conica_svg_seg *seg, double rx, double ry, double 
 
 /* Append one segment (growing the array); 0 when out of memory. */
 int conica_svg__path_push(conica_svg_path *p, const conica_svg_seg *g);
+
+/* How one SVG segment becomes the path model (svg_geom.c): a LINE, QUAD,
+ * CUBIC or ARC drawn from cp's current point, exactly (arcs as rational
+ * quadratics); MOVE and CLOSE are the caller's (they differ by use) and do
+ * nothing here. The one place svgsmooth's and scadprofile's readings of
+ * path data share. */
+conica_code conica_svg__seg_to_path(conica_path *cp, const conica_svg_seg *g, size_t tag,
+                                    conica_status *st);
 
 /* Polylines of one parsed path per s->mode, appended to *out (element index
  * `element`; `what` and `line` name it in messages; kind: 0 path, 1
