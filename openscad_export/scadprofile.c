@@ -1726,6 +1726,7 @@ int main(int argc, char **argv)
     if ((rc = parse_args(argc, argv, &o, &exit_now)) != 0 || exit_now) {
         free(o.inputs);
         free(o.argv0);
+        free(o.layers);
         return rc;
     }
     if (o.ninputs > 1 || (o.out && o.out[strlen(o.out) - 1] == '/')) {

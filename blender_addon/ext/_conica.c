@@ -2268,6 +2268,8 @@ static PyObject *cx_curve(PyObject *self, PyObject *args, PyObject *kw)
         job.set.levels = levels;
         job.set.max_points = (size_t)max_points;
         job.set.vertex_joins = kind == CX_BEZIER; /* every anchor a vertex */
+        /* Conic Subdivide promises n 2^levels points (docs/blender.md) */
+        job.set.exact_levels = 1;
         rc = cx_curve_run(&job);
     }
     if (rc == CONICA_OK && !nonplanar && !tiny && !coincide) {

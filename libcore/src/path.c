@@ -2197,6 +2197,10 @@ static int written_fits(const ctx *c, const double *q, int d, double ta, double 
                         const double *v, size_t m, double *tau, unsigned want, double *deviation)
 {
     double lim = PATH_WRITTEN_FRACTION * c->tol;
+    if (c->s.exact_levels) { /* the count is the caller's: only the feet */
+        (void)check_edge(q, d, ta, tb, v, m, tau, want, INFINITY, 1);
+        return 1;
+    }
     double e = check_edge(q, d, ta, tb, v, m, tau, want, fmin(lim, *deviation), 1);
     if (!(e <= lim))
         return 0;

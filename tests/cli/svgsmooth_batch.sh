@@ -147,9 +147,10 @@ begin_case "a missing input fails alone; SIGTERM stops the batch without tempora
 check_exit 1 "a missing input among others" "$svgsmooth" --levels 2 "$tmp/in/icon-000.svg" "$tmp/nope.svg" -o "$tmp/miss/"
 check_grep "nope.svg: cannot open" "$err" "named"
 check_grep '^svgsmooth: 1 file written, 1 failed$' "$err" "summary"
-# many slow-ish files, TERM after a moment: the tool dies of SIGTERM, no
+# many slow files (about 4 s of CPU at 14 levels, so an idle machine is
+# still at work after a second), TERM after a moment: the tool dies of SIGTERM, no
 # temporary is left anywhere, every file present is complete
-"$svgsmooth" --levels 12 -j 2 "$tmp"/in/icon-0*.svg -o "$tmp/term/" 2>"$tmp/term.err" &
+"$svgsmooth" --levels 14 -j 2 "$tmp"/in/icon-0*.svg -o "$tmp/term/" 2>"$tmp/term.err" &
 pid=$!
 sleep 1
 kill -TERM $pid

@@ -158,6 +158,13 @@ typedef struct conica_path_settings {
      *  (a Bézier spline's anchors, for Blender), not only at corners and
      *  straight pieces; 0 (default) lets chords pass over tangent joins. */
     int vertex_joins;
+    /** Smoothing with levels (level_tolerance 0): nonzero writes exactly
+     *  `levels` levels (n 2^levels points per sample edge), as a caller that
+     *  promises that count needs (Blender's Conic Subdivide); its points lie
+     *  on the subdivision within the tolerance, the chords between them are
+     *  that level's. 0 (default): a chord at the written level that strays
+     *  beyond the tolerance is split at the next level's points. */
+    int exact_levels;
 } conica_path_settings;
 
 /** Output point flags. */
