@@ -88,8 +88,8 @@ static void remove_dir(const char *dir)
     rmdir(dir);
 }
 
-/* In a child: stderr to errpath, open target, write, raise signo (with
- * `ignored`, the signal is set to SIG_IGN first), then commit. Returns the
+/* In a child: stderr to errpath, open target, write, raise signo (set to
+ * SIG_IGN first with `ignored`, to SIG_DFL without), then commit. Returns the
  * child's wait status. */
 static int run_child(const char *target, const char *errpath, int signo, int ignored)
 {
@@ -102,8 +102,11 @@ static int run_child(const char *target, const char *errpath, int signo, int ign
         cli_output out;
         if (!freopen(errpath, "w", stderr))
             _exit(90);
-        if (ignored)
-            signal(signo, SIG_IGN);
+        /* The signal's disposition as the case wants it, whatever this
+         * process inherited: a job started in the background by a
+         * non-interactive shell (CI's, for one) has SIGINT and SIGQUIT
+         * ignored, and the tools rightly leave an inherited SIG_IGN alone. */
+        signal(signo, ignored ? SIG_IGN : SIG_DFL);
         if (cli_output_open("tool", target, &out) != 0)
             _exit(91);
         fputs("new content, half written\n", out.f);
