@@ -233,6 +233,13 @@ demo:
 	$(MAKE) --no-print-directory all $(DEMO_DEPS)
 	scripts/demo.sh $(BUILD)
 
+# The pictures in docs/ remade from make demo (scripts/docs-pictures.sh lists
+# them; tests/cli/docs.sh fails when one is not current).
+docs-pictures:
+	scripts/deps.sh demo
+	$(MAKE) --no-print-directory all $(DEMO_DEPS)
+	scripts/docs-pictures.sh update $(BUILD)
+
 # ---------------------------------------------------------------- install
 # Manual pages of the tools (docs/man/*.1) go to MANDIR/man1; bash and zsh
 # completions made from the tools' option tables (scripts/completions.sh)
@@ -275,7 +282,7 @@ uninstall:
 clean:
 	rm -rf $(BUILD)
 
-.PHONY: all tests test test-san deps bench bench-run demo install uninstall completions clean
+.PHONY: all tests test test-san deps bench bench-run demo docs-pictures install uninstall completions clean
 
 -include $(shell find $(BUILD)/obj -name '*.d' 2>/dev/null)
 endif

@@ -21,6 +21,10 @@
 #    following ```text block (blank lines or up to two `...:` lines
 #    between) is its expected stdout+stderr (`...` matches any text
 #    within a line);
+#  - every .nf block of each manual page's EXAMPLES section runs the same
+#    way (OpenSCAD source there is rendered by openscad when installed);
+#  - the pictures docs/ shows are the ones make demo makes now
+#    (scripts/docs-pictures.sh; at most 1 pixel in 1000 differs);
 #  - every docs/examples/*.c compiles against BUILD_DIR/lib/libconica.a and
 #    runs; a ```c docs/examples/NAME.c block equals the file and a following
 #    ```text block (required) its output;
@@ -186,8 +190,40 @@ def cmd_compare(expected, actual):
             print('  | ' + g)
     sys.exit(0 if ok else 1)
 
+ROFF = [('\\-', '-'), ('\\e', '\\'), ('\\(ha', '^'), ('\\(ti', '~'),
+        ('\\(dq', '"'), ('\\(aq', "'"), ('\\&', '')]
+SCAD = re.compile(r'^\s*(use|include)\s*<|;\s*$')
+
+def cmd_manblocks(page, outdir):
+    """Every .nf/.fi block of a page's EXAMPLES section as NNN.sh (command
+    lines) or NNN.scad (OpenSCAD source: `use <...>` or lines ending in
+    ';'), roff escapes undone; print `NNN LINE KIND` per block."""
+    lines = open(page, encoding='utf-8').read().split('\n')
+    inside, block, start, n = False, None, 0, 0
+    for i, l in enumerate(lines):
+        if l.startswith('.SH'):
+            inside = l.split(None, 1)[1:] == ['EXAMPLES']
+            continue
+        if not inside:
+            continue
+        if l.startswith('.nf'):
+            block, start = [], i + 1
+        elif l.startswith('.fi') and block is not None:
+            text = '\n'.join(block)
+            for a, b in ROFF:
+                text = text.replace(a, b)
+            kind = 'scad' if any(SCAD.search(b) for b in text.split('\n')) else 'sh'
+            n += 1
+            open(os.path.join(outdir, '%03d.%s' % (n, kind)), 'w').write(text + '\n')
+            print('%03d %d %s' % (n, start, kind))
+            block = None
+        elif block is not None and not l.startswith('.'):
+            block.append(l)
+
 cmd = sys.argv[1]
-if cmd == 'links':
+if cmd == 'manblocks':
+    cmd_manblocks(sys.argv[2], sys.argv[3])
+elif cmd == 'links':
     cmd_links(sys.argv[2:])
 elif cmd == 'blocks':
     cmd_blocks(sys.argv[2], sys.argv[3])
@@ -394,6 +430,75 @@ for doc in $docs; do
         fi
     done <"$bdir/list"
 done
+
+# ---------------------------------------------------------------- man-page examples
+# Each page's EXAMPLES blocks run in order in one scratch root, as the docs'
+# blocks do; an OpenSCAD source block (the page shows a model using what the
+# commands before it wrote) is rendered by openscad there, when installed.
+for page in docs/man/*.1; do
+    bdir=$tmp/man/$(basename "$page")
+    mkdir -p "$bdir"
+    "$PY" "$tmp/docs.py" manblocks "$page" "$bdir" >"$bdir/list" || {
+        begin_case "the EXAMPLES of $page run"
+        check_true "$page: its examples can be read" false
+        continue
+    }
+    begin_case "the EXAMPLES of $page run"
+    check_true "$page has examples" test -s "$bdir/list"
+    mkroot "$bdir/root"
+    while read -r n line kind; do
+        if [ "$kind" = scad ]; then
+            if ! command -v openscad >/dev/null 2>&1; then
+                echo "note: $page:$line: openscad not installed, its OpenSCAD example not rendered"
+                continue
+            fi
+            cp "$bdir/$n.scad" "$bdir/root/example-$n.scad"
+            # shellcheck disable=SC2086 # run_timeout is words
+            check "$page:$line: the OpenSCAD example renders" sh -c \
+                'cd "$1" && exec $2 openscad -o "example-$3.stl" "example-$3.scad" 2>&1' sh \
+                "$bdir/root" "$run_timeout" "$n"
+        else
+            case "$(cat "$bdir/$n.sh")" in
+            *openscad*)
+                if ! command -v openscad >/dev/null 2>&1; then
+                    echo "note: $page:$line: openscad not installed, example not run"
+                    continue
+                fi ;;
+            esac
+            # shellcheck disable=SC2086 # run_timeout is words
+            check "$page:$line: the example runs" sh -c \
+                'cd "$1" && PATH="$2:$3/bin:$PATH" exec $4 sh -e "$5" 2>&1' sh \
+                "$bdir/root" "$wrap" "$buildabs" "$run_timeout" "$bdir/$n.sh"
+        fi
+    done <"$bdir/list"
+done
+
+# ---------------------------------------------------------------- pictures
+# Every picture docs/ shows that make demo (or the shown command) makes is
+# what the build under test makes now: at most 1 pixel in 1000 differs by
+# more than 1/8 of full scale (scripts/pngdiff.py).
+if [ "$san" -eq 0 ]; then
+    begin_case "the pictures in docs/ are the ones make demo makes (make docs-pictures)"
+    if ! command -v rsvg-convert >/dev/null 2>&1; then
+        skip_case "rsvg-convert not installed"
+    elif check "scripts/docs-pictures.sh makes the pictures" \
+        sh scripts/docs-pictures.sh make "$build" "$tmp/pics"; then
+        grep '^note:' "$out"
+        scripts/docs-pictures.sh list | while read -r pic kind src; do
+            [ -f "$tmp/pics/$pic" ] || continue
+            diffs=$("$PY" scripts/pngdiff.py "$pic" "$tmp/pics/$pic" 2>&1 | tail -n 1)
+            size=$("$PY" -c 'import struct,sys; d=open(sys.argv[1],"rb").read(24); w,h=struct.unpack(">II",d[16:24]); print(w*h)' "$pic")
+            echo "$pic $diffs $size"
+        done >"$tmp/pics.txt"
+        while read -r pic diffs size; do
+            case "$diffs$size" in
+            '' | *[!0-9]*) check_true "$pic can be compared (pngdiff: $diffs)" false ;;
+            *) check_true "$pic is current ($diffs of $size pixels differ)" \
+                test $((diffs * 1000)) -le "$size" ;;
+            esac
+        done <"$tmp/pics.txt"
+    fi
+fi
 
 # ---------------------------------------------------------------- C examples
 begin_case "docs/examples/*.c compile against libconica.a and run"
