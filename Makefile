@@ -56,7 +56,7 @@ PKG_CONFIG ?= pkg-config
 
 VERSION := 0.1.0
 
-# Hardware FMA where the CPU has it (seed 000, Section 2.3 relies on fma);
+# Hardware FMA where the CPU has it (CONIS §2.3 relies on fma);
 # glibc's fma() is exact either way, only slower without it.
 ARCH ?= $(shell grep -qw fma /proc/cpuinfo 2>/dev/null && echo -mfma)
 OPT  ?= -O2

@@ -1,12 +1,12 @@
 /* SPDX-License-Identifier: MIT */
-/* The numerics ablation of seed 000, Section 3.2 (Table 1, Figures 3-6), as
+/* The numerics ablation of CONIS §3.2 (Table 1, Figures 3-6), as
  * run-time settings of the one implementation (plotsvg_variant):
  *   BASE      double, normals normalised every level, plain quadratic formula
  *   NORM_SKIP no normalisation, plain quadratic formula
  *   FINAL     our defaults (no normalisation, Kahan/FMA root, local frames)
  *   PRECISE   FINAL in long double
  * each in our local frames and in the reference's (absolute coordinates and
- * weighted SVD, reference_compatible), where the seed measured it.
+ * weighted SVD, reference_compatible), where the CONIS paper measured it.
  * Prints E, E_max (eqs. (13)-(14)) at k = 4, 8, 12 on the four conics of
  * Table 1 (samples as REFERENCE.md section 1), then the normal angle error
  * and the comb roughness at k = 10 on a non-convex example of the reference
@@ -34,7 +34,7 @@
 
 #define NVAR 4
 /* Every variant runs twice: in our local frames (the default) and with
- * reference_compatible (absolute coordinates + weighted SVD, as the seed's
+ * reference_compatible (absolute coordinates + weighted SVD, as the CONIS paper's
  * implementation, where its ablation was measured). */
 #define NFRAME 2
 #define NRUN (NVAR * NFRAME)
@@ -112,7 +112,7 @@ static void conic_table(void)
 {
     struct conic_case c[4];
     make_cases(c);
-    printf("Conic reproduction (seed 000, Table 1 setting: 6 exact point-normal samples),\n"
+    printf("Conic reproduction (CONIS, Table 1 setting: 6 exact point-normal samples),\n"
            "E / E_max of eqs. (13)-(14) per variant:\n\n");
     printf("| conic | variant | frame | E k=4 | E_max k=4 | E k=8 | E_max k=8 | E k=12 "
            "| E_max k=12 | s (k=12) |\n|---|---|---|---|---|---|---|---|---|---|\n");

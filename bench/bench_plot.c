@@ -1,5 +1,5 @@
 /* SPDX-License-Identifier: MIT */
-/* Benchmarks of the spline plotters (issue 5, seed 004). Prints tables,
+/* Benchmarks of the spline plotters (issue 5, Dahl 2019). Prints tables,
  * asserts nothing. Run `build/bench/bench_plot [--rounds R] [--table T]
  * [DATA_DIR]` from the repository root (DATA_DIR defaults to
  * ../shared/data/splines; T is 1, 2, 2b, 2c or 3 to print one table, all by

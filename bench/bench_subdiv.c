@@ -1,7 +1,7 @@
 /* SPDX-License-Identifier: MIT */
 /* Benchmark of conica_subdivide() (issue 3): speed in microseconds per edge
  * point for the three cases of REFERENCE.md section 1, and the conic
- * reproduction error E, E_max (seed 000, eqs. (13)-(14)) beside the seed's
+ * reproduction error E, E_max (CONIS, eqs. (13)-(14)) beside the paper's
  * Table 1. Prints tables; never asserts.
  *
  *   bench_subdiv                 all tables
@@ -41,7 +41,7 @@ static double now(void)
 enum { C_CIRCLE, C_ELLIPSE, C_HYPERBOLA, C_PARABOLA, C_COUNT };
 static const char *const conic_name[C_COUNT] = {"x^2+y^2=25", "4x^2+9y^2=36", "y^2-4x^2=4",
                                                 "y=x^2"};
-/* Seed 000 Table 1 (= the reference's measurements): E, E_max at k=4,8,12. */
+/* CONIS Table 1 (= the reference's measurements): E, E_max at k=4,8,12. */
 static const double table1[C_COUNT][2][3] = {
     {{1.97e-18, 4.70e-17, 1.57e-14}, {8.67e-18, 1.35e-15, 1.04e-13}},
     {{1.37e-18, 6.54e-17, 3.46e-15}, {6.17e-18, 1.10e-15, 1.53e-13}},

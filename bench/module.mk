@@ -2,7 +2,7 @@
 # bench/: benchmark programs (print figures, never assert). Shared fragment:
 # each owner appends its own rules below.
 
-# ---- bench_ablation (issue 9): the numerics ablation of seed 000, Section 3.2
+# ---- bench_ablation (issue 9): the numerics ablation of CONIS §3.2
 BENCH_ABLATION := $(BUILD)/bench/bench_ablation
 $(BUILD)/obj/bench/bench_ablation.o: CPPFLAGS += -Ilibcore/tools
 $(BENCH_ABLATION): $(BUILD)/obj/bench/bench_ablation.o $(CLI_A) $(CORE_A)

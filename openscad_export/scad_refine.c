@@ -1,6 +1,6 @@
 /* SPDX-License-Identifier: MIT */
 /* Tolerance-driven refinement of point-normal curves: conic subdivision
- * (seed 000, Section 1.1) to a dense polyline on the limit curve, then the
+ * (CONIS §1.1) to a dense polyline on the limit curve, then the
  * fewest points (conica_scad_thin). */
 #include "scad_internal.h"
 
@@ -12,7 +12,7 @@
 #include "conica/subdiv.h"
 
 /* The dense polyline may use this fraction of the tolerance; the chords get
- * the rest (seed 000 subdivision converges quadratically, so each level
+ * the rest (CONIS subdivision converges quadratically, so each level
  * quarters the dense error and the fraction costs few levels). */
 #define REFINE_DENSE_FRACTION (1.0 / 256.0)
 /* A level-L vertex sits about 4x the level-L chord error away from the chord

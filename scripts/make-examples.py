@@ -8,7 +8,7 @@ regenerates them bit for bit (Python's repr() of a float round-trips).
 
 - ellipse.txt: x = 3 cos t, y = 2 sin t, 12 points, exact unit normals
   (the ellipse's gradient), counter-clockwise, normals outward. Subdivision
-  reproduces it exactly (seed 000: conics are preserved).
+  reproduces it exactly (CONIS: conics are preserved).
 - flower.txt: r = 1 + 0.3 cos 5t, 40 points, no normals (conica estimates
   them); non-convex, so inflection points are inserted.
 - parabola_open.txt: y = x^2 for x = -1.5 .. 1.5, 7 points, exact unit

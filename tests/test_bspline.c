@@ -1,5 +1,5 @@
 /* SPDX-License-Identifier: MIT */
-/* B-spline toolkit (seed 004, Chapter 1): validation and preprocessing,
+/* B-spline toolkit (Dahl 2019, Ch. 1): validation and preprocessing,
  * the triangular algorithm against the direct Cox-de Boor recursion,
  * derivatives against finite differences, Böhm insertion leaving the
  * spline unchanged, Bézier conversion round trips, the .spl parser. */
@@ -133,7 +133,7 @@ TEST_CASE("set rejects inconsistent splines", "[bspline][validate]")
     conica_bspline_free(&s);
 }
 
-TEST_CASE("preprocessing: the seed's worked example (Section 1.1.2)", "[bspline][regular]")
+TEST_CASE("preprocessing: Dahl 2019's worked example (§1.1.2)", "[bspline][regular]")
 {
     const double t[] = {0, 0, 1, 1, 1, 1, 2, 2, 2};
     const double c[] = {1, 3, 2, 5, 4, 2};

@@ -1,6 +1,6 @@
 /* SPDX-License-Identifier: MIT */
 /* Tests of the visual diagnostics (libcore/tools/plotsvg.c, issue 9):
- * curvature combs (seed 000, Code 3), conic/normal errors (eqs. (13)-(14))
+ * curvature combs (CONIS, Code 3), conic/normal errors (eqs. (13)-(14))
  * and the SVG writer. tests/cli/combs.sh checks the tools' SVG with
  * xmllint (libxml2) and renders it with rsvg-convert. */
 #include <math.h>

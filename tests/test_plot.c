@@ -1,5 +1,5 @@
 /* SPDX-License-Identifier: MIT */
-/* Plotting (seed 004, Chapters 2-4): the guaranteed mode checked by dense
+/* Plotting (Dahl 2019, Ch. 2-4): the guaranteed mode checked by dense
  * evaluation on the thesis curves and on random splines of the thesis's
  * random regime, every criterion / rule / stopping test terminating on
  * degenerate input, the baselines' point counts, limits, surfaces. */

@@ -1,7 +1,7 @@
 /* SPDX-License-Identifier: MIT */
 /* The reference implementation's own example curves (../shared/data/conis/
  * input) against what it produced at 5 levels (reference-k5): proof that
- * conica_subdivide() is the same scheme (seed 000, Section 1.1).
+ * conica_subdivide() is the same scheme (CONIS §1.1).
  *
  * - reference-compatible + precise: same point counts, inflection points
  *   inserted at the same places, every point within 1e-6 of the input's

@@ -342,7 +342,7 @@ TEST_CASE("plot: an evaluation that fails never leaves a point unwritten",
      * conica_bspline_eval fail inside the Mathematica-style sampler, which
      * printed the caller's uninitialised buffer with exit 0. Every method
      * must give an error, or points inside the control points' bounding box
-     * (the convex hull property, Lemma 1.13 of seed 004). */
+     * (the convex hull property, Lemma 1.13 of Dahl 2019). */
     const double knots[] = {0, 0, 0, 1e308, 1.7e308, 1.7e308, 1.7e308};
     const double ctrl[] = {0, 0, 1, 1, 2, 0, 3, 1};
     const conica_plot_method methods[] = {

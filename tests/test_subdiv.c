@@ -1,5 +1,5 @@
 /* SPDX-License-Identifier: MIT */
-/* Tests of the subdivision engine (libcore/src/subdiv.c, seed 000): conic
+/* Tests of the subdivision engine (libcore/src/subdiv.c, CONIS): conic
  * reproduction against the exact conics (eqs. (13)-(14)), interpolation,
  * invariance under similarity transforms, agreement of the closed-form fast
  * path with the weighted SVD fit, inflection points, open curves, bad input
@@ -60,7 +60,7 @@ static const conic conics[C_COUNT] = {
 };
 static const char *const conic_names[C_COUNT] = {"circle", "ellipse", "hyperbola", "parabola"};
 
-/* Seed 000 Table 1: E and E_max at k = 4, 8, 12. */
+/* CONIS Table 1: E and E_max at k = 4, 8, 12. */
 static const double table1[C_COUNT][2][3] = {
     {{1.97e-18, 4.70e-17, 1.57e-14}, {8.67e-18, 1.35e-15, 1.04e-13}},
     {{1.37e-18, 6.54e-17, 3.46e-15}, {6.17e-18, 1.10e-15, 1.53e-13}},
@@ -297,7 +297,7 @@ static void mode_gap(const conica_curve *a, const conica_curve *b, double *rel, 
 
 /* Largest angle (degrees) between the scheme's normals and normals
  * estimated from the points (area-weighted, one global orientation): the
- * normal error of seed 000, Section 3.2; 180 means a flipped normal. */
+ * normal error of CONIS §3.2; 180 means a flipped normal. */
 static double normal_error_deg(const conica_curve *c)
 {
     conica_curve est;

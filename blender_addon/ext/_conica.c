@@ -701,7 +701,7 @@ static conica_code cx_run(cx_job *j)
 }
 /*
  * Find each input vertex in the output: the scheme keeps old vertices
- * bit-for-bit (seed 000, Section 1.1), in order, so one forward scan finds
+ * bit-for-bit (CONIS §1.1), in order, so one forward scan finds
  * them. anchor[] gets n + 1 entries (the last closes the curve). Returns 0
  * when a vertex is missing (cannot happen with libcore's guarantee).
  */

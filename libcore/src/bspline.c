@@ -1,5 +1,5 @@
 /* SPDX-License-Identifier: MIT */
-/* B-spline machinery of seed 004, Chapter 1: validation and the
+/* B-spline machinery of Dahl 2019, Ch. 1: validation and the
  * preprocessing of Section 1.1.2, evaluation by the triangular algorithm
  * (eq. (1.10)-(1.11)) and derivatives (eq. (1.13)), Böhm's knot insertion
  * (Lemma 1.18), Bézier conversion, knot averages and the control polygon.

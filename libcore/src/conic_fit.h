@@ -1,5 +1,5 @@
 /* SPDX-License-Identifier: MIT */
-/* Weighted conic fit of seed 000, Section 1.1 step 2 (matrix (2)), general
+/* Weighted conic fit of CONIS §1.1 step 2 (matrix (2)), general
  * path: smallest right singular vector of W*A' by Householder QR and
  * inverse iteration, with LAPACK's dgesvd as the fallback (its workspace
  * allocated at the first call that needs it, once per conica_subdivide()

@@ -1,12 +1,12 @@
 /* SPDX-License-Identifier: MIT */
 /* The curve front end (conica/path.h): drawn segments to point-normal
- * samples, smoothed by conic-preserving subdivision (seed 000, Section 1.1)
- * or flattened by the guaranteed plotter (seed 004), always checked
+ * samples, smoothed by conic-preserving subdivision (CONIS §1.1)
+ * or flattened by the guaranteed plotter (Dahl 2019), always checked
  * against the drawn curve itself.
  *
  * Smoothing works segment by segment. A curved segment becomes an open
  * point-normal polygon of exact samples of the segment (its ends, its
- * inflection points, its middle: seed 000 reproduces a conic from exact
+ * inflection points, its middle: CONIS reproduces a conic from exact
  * point-normal samples, so a conic segment needs no more). At the ends the
  * normals come from the join rules: a corner keeps each side's own
  * tangent, a smooth join (up to the corner angle) gives both sides the mean

@@ -1,5 +1,5 @@
 /* SPDX-License-Identifier: MIT */
-/* The thesis's adaptive knot-insertion loop (seed 004, Sections 3.2-3.5):
+/* The thesis's adaptive knot-insertion loop (Dahl 2019, §3.2-3.5):
  * each iteration a geometric criterion C picks the part of the control
  * polygon with the largest value, a rule R places one knot there, Böhm's
  * method (Lemma 1.18) inserts it, and a stopping test S ends the loop.

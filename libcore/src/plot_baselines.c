@@ -1,5 +1,5 @@
 /* SPDX-License-Identifier: MIT */
-/* Baselines the thesis compares against (seed 004, Sections 2.3 and 3.1):
+/* Baselines the thesis compares against (Dahl 2019, §2.3 and 3.1):
  * global uniform sampling (eq. (2.3)-(2.4), MATLAB fnplt's N = 101), local
  * uniform sampling per knot interval weighted by control polygon length,
  * angle or both (eqs. (3.10), (3.17), (3.18)), Chaikin's corner cutting

@@ -1,5 +1,5 @@
 /* SPDX-License-Identifier: MIT */
-/* Guaranteed plotter (beyond the seed; the default for the tools).
+/* Guaranteed plotter (beyond Dahl 2019; the default for the tools).
  *
  * Emits points ON the curve and certifies every chord: for consecutive
  * emitted parameters u_a < u_b, every point of the spline on [u_a, u_b] is
@@ -67,7 +67,7 @@
  * curves sptest3/4, SVG and OpenSCAD Bézier paths) take c3_march, the same
  * march and the same certificate specialised, because at p = 3 uniform de
  * Boor sampling costs only about 54 flops per point (eq. (1.14) of
- * seed 004: R(3) = 18 per coordinate, plus the parameter and the span
+ * Dahl 2019: R(3) = 18 per coordinate, plus the parameter and the span
  * search) and needs only 3.2x-3.5x more points than this plotter, so a
  * certificate must cost a few dozen flops to win. Three things make it so.
  * (a) Everything lives on the stack (no allocation per call) and an

@@ -1,5 +1,5 @@
 /* SPDX-License-Identifier: MIT */
-/* Conic-preserving interpolatory subdivision (seed 000): public entry
+/* Conic-preserving interpolatory subdivision (CONIS): public entry
  * points, argument checks, and the two instantiations (double, long double)
  * of the one type-generic implementation in subdiv_impl.h. */
 #include "conica/subdiv.h"
@@ -71,7 +71,7 @@ static void conica__two_prodl(long double a, long double b, long double *p, long
     *e = ((ah * bh - *p) + ah * bl + al * bh) + al * bl;
 }
 
-/* a*b - c*d as Kahan's algorithm (seed 000, Code 4) computes it, with the
+/* a*b - c*d as Kahan's algorithm (CONIS, Code 4) computes it, with the
  * exact product errors from conica__two_prodl in place of the FMAs. The
  * long double instance's diffprod, and in both instances the inflection
  * test of the input (SFX(needs_infl)), so that both modes decide it alike. */

@@ -1,5 +1,5 @@
 /* SPDX-License-Identifier: MIT */
-/* Type-generic core of conica_subdivide() (seed 000, Section 1.1 with the
+/* Type-generic core of conica_subdivide() (CONIS §1.1 with the
  * numerics of Section 2.3). subdiv.c includes this file twice: once with
  * REAL = double and once with REAL = long double, so that default and
  * precise mode run ONE implementation of the scheme.
@@ -13,7 +13,7 @@
  *   R_EPSILON     machine epsilon of REAL
  *   REAL_IS_DOUBLE  1 for double (general fit through LAPACK), 0 otherwise
  *
- * Notation (seed 000): an edge p_i p_{i+1}, its midpoint m (4), its normal
+ * Notation (CONIS): an edge p_i p_{i+1}, its midpoint m (4), its normal
  * n_edge = perp(p_{i+1} - p_i) (5); the new point lies on l(t) = m + t*n_edge
  * (7) and on the fitted conic (3).
  *
@@ -83,7 +83,7 @@ static REAL SFX(maxabs)(REAL a, REAL b)
 }
 
 #if REAL_IS_DOUBLE
-/* a*b - c*d with Kahan's FMA trick (seed 000, Code 4): error <= 1.5 ulp. */
+/* a*b - c*d with Kahan's FMA trick (CONIS, Code 4): error <= 1.5 ulp. */
 static REAL SFX(diffprod)(REAL a, REAL b, REAL c, REAL d)
 {
     REAL w = d * c;
@@ -267,7 +267,7 @@ static int SFX(same_side)(const SFX(job) *j, const SFX(frame) *f, size_t i, size
  * Indices of the patch of edge (i, i+1): the two end points first, then up
  * to maxl outer neighbours to the left and maxr to the right. A side whose
  * edge end point is an inserted inflection point takes no neighbour beyond
- * it (seed 000, modified neighbourhoods after (10)). Open curves take the
+ * it (CONIS, modified neighbourhoods after (10)). Open curves take the
  * neighbours that exist. In default mode a closed curve never wraps round
  * onto the patch's own points. f is the edge's frame (default mode; NULL in
  * reference mode). Returns the number of pairs.
@@ -357,7 +357,7 @@ static int SFX(make_frame)(const SFX(job) *j, size_t i, size_t i1, SFX(frame) *f
 }
 
 /* Map the patch into the local frame: end points exactly (-1,0), (1,0),
- * unit normals, weights from W (seed 000, step 2). */
+ * unit normals, weights from W (CONIS, step 2). */
 static void SFX(local_pairs)(const SFX(job) *j, const SFX(frame) *f, const size_t *idx, int cnt,
                              SFX(pair) *P)
 {
@@ -548,7 +548,7 @@ static int SFX(jacobi_min_right)(REAL *a, int rows, int n, REAL *v)
 }
 
 /*
- * General weighted fit (seed 000, step 2): rows of matrix (2) generalised
+ * General weighted fit (CONIS, step 2): rows of matrix (2) generalised
  * to cnt pairs (one point row, two normal rows and one alpha column per
  * pair), scaled by W; q = right singular vector of the smallest singular
  * value. Writes the six conic coefficients q20, q02, q11, q10, q01, q00.
@@ -788,7 +788,7 @@ static void SFX(edge_ref)(SFX(worker) *w, size_t i, REAL *oxy, REAL *on)
  * rotated frame the edge runs from (-1,0) to (1,0) and its end tangents are
  * the lines L0 = a0 (x+1) + b0 y = 0 and L1 = a1 (x-1) + b1 y = 0. A
  * convex arc that joins the end points, touching L0 and L1 there, lies in
- * the triangle bounded by the chord and the two tangent lines; seed 000's
+ * the triangle bounded by the chord and the two tangent lines; CONIS's
  * promise that every piece between inflection points turns one way needs
  * exactly this of every edge point (the refined polygon then stays convex,
  * and the conic's normal there lies between the end normals).
@@ -896,7 +896,7 @@ static void SFX(travel)(const SFX(job) *j, const SFX(frame) *f, size_t q, REAL q
  * do not meet (SFX(no_region) == 2): the arc passes beyond them and comes
  * back. A folded polygon such as the reference's lG2 (points on a circle
  * taken out of order, vertices turning by up to 174 degrees) has such
- * edges: its sub-polygons between the inflection points of seed 000,
+ * edges: its sub-polygons between the inflection points of CONIS,
  * eqs. (9)-(10), are convex, and the convex arc through such an edge's end
  * pairs is the long arc of an ellipse. The intersection eq. (6) picks, the
  * one nearest the midpoint, lies on the short arc on the other side of the
@@ -1002,7 +1002,7 @@ static void SFX(edge_prep)(SFX(worker) *w, size_t i, SFX(estate) *st, REAL *oxy,
         st->stage = SFX(EDGE_DONE);
         return;
     }
-    /* Seed 000 after (10): next to an inflection point the patch is the
+    /* CONIS after (10): next to an inflection point the patch is the
      * inflection point, the edge's other end and two neighbours beyond it.
      * The same holds next to an S-shaped edge's midpoint (below): beyond
      * it the curve turns the other way, so a neighbour there says nothing
@@ -1075,7 +1075,7 @@ static void SFX(edge_prep)(SFX(worker) *w, size_t i, SFX(estate) *st, REAL *oxy,
 
 /* The rest, from the fit's result on (stage EDGE_FAST: st->ok, y, gx, gy
  * from SFX(fast_fit)). Returns 1 when the point is an inflection point (an
- * S-shaped edge's midpoint), which the next levels treat as seed 000
+ * S-shaped edge's midpoint), which the next levels treat as CONIS
  * treats those of eq. (9). */
 static int SFX(edge_finish)(SFX(worker) *w, size_t i, SFX(estate) *st, REAL *oxy, REAL *on)
 {
@@ -1332,7 +1332,7 @@ static void SFX(in_nrm)(const SFX(input) *in, size_t k, REAL *x, REAL *y)
 }
 
 /*
- * Does edge (i, i+1) need an inflection point (seed 000, before (9)):
+ * Does edge (i, i+1) need an inflection point (CONIS, before (9)):
  * p_{i-1} and p_{i+2} strictly on different sides of the edge line. Edges
  * without both neighbours (open ends) and edges whose neighbourhood has
  * coincident points never do, as in the reference. In default mode the

@@ -1,5 +1,5 @@
 /* SPDX-License-Identifier: MIT */
-/* Inflection edges of subdivision's input (seed 000, before eq. (9)) read
+/* Inflection edges of subdivision's input (CONIS, before eq. (9)) read
  * at the coordinates' own rounding, so that where a curve sits does not
  * change how many inflection points it gets. Called by subdiv_impl.h's
  * SFX(count_infl) after the exact side tests; reads the input points

@@ -1,5 +1,5 @@
 /* SPDX-License-Identifier: MIT */
-/* Tensor-product B-spline surfaces (seed 004, Section 4.1): validation,
+/* Tensor-product B-spline surfaces (Dahl 2019, §4.1): validation,
  * evaluation, and the two-phase quad-grid plot of Section 4.1.2. */
 #include <float.h>
 #include <math.h>

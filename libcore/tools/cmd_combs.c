@@ -1,5 +1,5 @@
 /* SPDX-License-Identifier: MIT */
-/* `conica combs`: an SVG of a curve's curvature comb (seed 000, Section 2.2):
+/* `conica combs`: an SVG of a curve's curvature comb (CONIS §2.2):
  * the control polygon dashed, the subdivided curve, and at every vertex a
  * tooth along the unit normal of length S * kappa, kappa from the circle
  * through the vertex and its two neighbours (Code 3, in double), the tooth

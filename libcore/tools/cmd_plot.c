@@ -1,6 +1,6 @@
 /* SPDX-License-Identifier: MIT */
 /* `conica plot`: plot a B-spline (.spl, docs/file-formats.md) as a
- * polyline with any method of seed 004 or the guaranteed plotter
+ * polyline with any method of Dahl 2019 or the guaranteed plotter
  * (README.md). Output: one `x y` (or `x y z`) line per vertex, a blank
  * line between pieces split at discontinuities. */
 #include <errno.h>

@@ -1,7 +1,7 @@
 /* SPDX-License-Identifier: MIT */
 /* `conica subdivide`: conic-preserving interpolatory subdivision of a
  * point-normal curve in the reference implementation's text format
- * (seed 000, Section 1.1; README.md). */
+ * (CONIS §1.1; README.md). */
 #include <errno.h>
 #include <limits.h>
 #include <math.h>
@@ -252,7 +252,7 @@ int conica_cmd_subdivide(int argc, char **argv)
     memset(&st, 0, sizeof st);
 
     /* --precise reads long double, so that 21- to 25-digit samples reach
-     * the long double engine unrounded (seed 000, Table 1 through the CLI). */
+     * the long double engine unrounded (CONIS, Table 1 through the CLI). */
     code = o.precise ? conica_curvel_parse_ex(buf, len, o.max_input_points, &inl, &st)
                      : conica_curve_parse_ex(buf, len, o.max_input_points, &in, &st);
     if (code != CONICA_OK) {

@@ -34,7 +34,7 @@ int plotsvg_load_curve(const char *prog, const char *path, int closed, conica_cu
 
 double plotsvg_curvature(const double a[2], const double b[2], const double c[2])
 {
-    /* seed 000, Code 3: |ab x cb| / (|ab| |cb| |ac|) = sin(angle at b) / |ac|,
+    /* CONIS, Code 3: |ab x cb| / (|ab| |cb| |ac|) = sin(angle at b) / |ac|,
      * and the circumradius is R = |ac| / (2 sin(angle at b)), so 1/R is twice
      * what Code 3 returns (a constant factor its comb scale absorbs; we want
      * the true curvature so that --scale and the tests mean what they say). */

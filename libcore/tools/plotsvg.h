@@ -1,6 +1,6 @@
 /* SPDX-License-Identifier: MIT */
 /* Visual diagnostics shared by `conica combs`, `conica errors` and
- * bench/bench_ablation (issue 9): curvature combs (seed 000, Section 2.2,
+ * bench/bench_ablation (issue 9): curvature combs (CONIS §2.2,
  * Code 3), conic and normal errors (Section 3.2, eqs. (13)-(14)) and a
  * small SVG writer (viewBox, y flipped, compact fixed-point numbers that do
  * not depend on the C locale). Internal to the command-line tools. */
@@ -37,7 +37,7 @@ int plotsvg_load_curve(const char *prog, const char *path, int closed, conica_cu
 
 /* ------------------------------------------------------------ curvature */
 
-/* Curvature 1/R of the circle through a, b, c (seed 000, Code 3, in
+/* Curvature 1/R of the circle through a, b, c (CONIS, Code 3, in
  * double, times the factor 2 Code 3 leaves out); 0 when two of the points
  * coincide. */
 double plotsvg_curvature(const double a[2], const double b[2], const double c[2]);
@@ -46,7 +46,7 @@ double plotsvg_curvature(const double a[2], const double b[2], const double c[2]
  * open: the two end vertices get NAN, they have no osculating circle).
  * With signed_comb, kappa is negative where the curve bends towards its
  * normal nxy[i] (so a comb drawn along the normal flips side at an
- * inflection); otherwise it is the seed's unsigned 1/R. Returns the
+ * inflection); otherwise it is the CONIS paper's unsigned 1/R. Returns the
  * largest |kappa| (0 if none). */
 double plotsvg_curvatures(const double *xy, const double *nxy, size_t n, int closed,
                           int signed_comb, double *kappa);
@@ -63,7 +63,7 @@ double plotsvg_size(const double *xy, size_t n);
 double plotsvg_comb_scale(const double *kappa, size_t n, double size, double *tmp,
                           double *max_len);
 
-/* Comb tooth tips tips[i] = p_i + scale * kappa_i * n_i (seed 000, Section
+/* Comb tooth tips tips[i] = p_i + scale * kappa_i * n_i (CONIS, Section
  * 2.2); a tooth longer than max_len (if > 0) is cut to max_len so that one
  * wild spike does not flatten the picture. NAN kappa gives a NAN tip. */
 void plotsvg_comb_tips(const double *xy, const double *nxy, const double *kappa, size_t n,
@@ -73,12 +73,12 @@ void plotsvg_comb_tips(const double *xy, const double *nxy, const double *kappa,
  * |kappa_{i-1} - 2 kappa_i + kappa_{i+1}|, divided by the median |kappa|.
  * Medians, so a few genuine spikes (next to inflection points) do not
  * decide it; a fair curve at a fine level scores near 0, numerical noise of
- * the kind seed 000 Figure 6 shows scores high. tmp: n scratch doubles. */
+ * the kind CONIS Figure 6 shows scores high. tmp: n scratch doubles. */
 double plotsvg_comb_roughness(const double *kappa, size_t n, int closed, double *tmp);
 
 /* --------------------------------------------------------------- errors */
 
-/* A conic in the order of seed 000, eq. (3):
+/* A conic in the order of CONIS, eq. (3):
  * f(x,y) = q20 x^2 + q02 y^2 + 2 q11 xy + 2 q10 x + 2 q01 y + q00. */
 typedef struct plotsvg_conic {
     double q20, q02, q11, q10, q01, q00;
@@ -93,12 +93,12 @@ void plotsvg_conic_errorl(const plotsvg_conic *q, const long double *xy, size_t 
                           double *max);
 
 /* Mean and max angle in degrees between each normal of c and the normal
- * estimated from c's points alone (area-weighted, seed 000 Section 3.2).
+ * estimated from c's points alone (area-weighted, CONIS Section 3.2).
  * The estimate's orientation is matched to c's by the sign of the summed
  * dot products. Returns 0, or -1 if estimation fails (degenerate curve). */
 int plotsvg_normal_error(const conica_curve *c, double *mean_deg, double *max_deg);
 
-/* The numerics ablation of seed 000, Section 3.2, as run-time settings of
+/* The numerics ablation of CONIS §3.2, as run-time settings of
  * the one implementation: "base" (double, normals normalised every level,
  * plain quadratic formula), "norm-skip" (no normalisation, plain formula),
  * "final" (our defaults: no normalisation, Kahan/FMA root), "precise" (final

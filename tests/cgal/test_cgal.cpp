@@ -1,9 +1,9 @@
 // SPDX-License-Identifier: MIT
-// CGAL checks of the two geometric promises of seed 000 (issue 4):
+// CGAL checks of the two geometric promises of CONIS (issue 4):
 //  1. a convex control polygon gives a convex curve (every level k = 1..6 is
 //     simple and convex with the input's orientation; open convex arcs keep
 //     one turning direction);
-//  2. a non-convex polygon is split at inflection points (seed 000, eqs. (9)-
+//  2. a non-convex polygon is split at inflection points (CONIS, eqs. (9)-
 //     (10)): one point exactly at each edge whose outer neighbours p_{i-1},
 //     p_{i+2} lie strictly on different sides of the edge line, placed at the
 //     edge midpoint, and the refined pieces between consecutive inflection
@@ -48,7 +48,7 @@ namespace {
 
 const double kPi = 3.14159265358979323846;
 const int kMaxLevel = 6; // issue 4: check every level k = 1..6
-// Where the seed puts an inflection point (eq. (9): the edge midpoint), up to
+// Where the scheme puts an inflection point (eq. (9): the edge midpoint), up to
 // the rounding of (a+b)/2 however the engine spells it: relative to the edge.
 const double kMidpointRelTol = 1e-13;
 // Shape::ref_k5_changes of a reference example whose reference output is
@@ -170,7 +170,7 @@ Shape ellipse_samples(const std::string &name, double cx, double cy, double a, d
 
 // Angles around the whole ellipse with random gaps; a gap is at most 0.8 pi
 // so no edge spans half the conic (there the nearest root of eq. (8) may be
-// on the far arc, which is the seed's choice, not a convexity failure).
+// on the far arc, which is the scheme's choice, not a convexity failure).
 std::vector<double> random_angles(Rng &g, int n) {
     std::vector<double> gaps(size_t(n), 0.0);
     double sum = 0.0;
@@ -370,7 +370,7 @@ int sign_changes(const std::vector<int> &s, bool closed) {
 }
 
 // Edges (i, i+1) of a closed polygon where p_{i-1} and p_{i+2} lie strictly
-// on different sides of the edge line (seed 000, before eq. (9)).
+// on different sides of the edge line (CONIS, before eq. (9)).
 // An inflection edge (e, e+1) whose end normals tilt apart as a convex arc's
 // do while one of them lies outside its vertex's edge cone: the engine puts
 // the inflection at that vertex and inserts the convex arc's point on the
@@ -403,7 +403,7 @@ std::vector<size_t> inflection_edges(const std::vector<Point> &p) {
 }
 
 // A sign change with only collinear vertices between two opposite turns
-// has no edge with strictly separated outer neighbours: the seed inserts no
+// has no edge with strictly separated outer neighbours: the scheme inserts no
 // point there, so "pieces turn one way" is not promised for such input.
 bool changes_only_at_edges(const std::vector<int> &s) {
     size_t n = s.size();
@@ -506,7 +506,7 @@ void check_convex_open(const Shape &s, const conica_subdiv_settings &set, Tally 
     }
 }
 
-// Inflection splitting on a closed input (seed 000, eqs. (9)-(10)).
+// Inflection splitting on a closed input (CONIS, eqs. (9)-(10)).
 void check_inflections(const Shape &s, const conica_subdiv_settings &set, Tally &t) {
     std::vector<Point> p = points_of(s);
     size_t n = p.size();
@@ -1072,7 +1072,7 @@ TEST_CASE("convexity: convex examples of the reference data", "[cgal][convex][da
         Polygon poly(p.begin(), p.end());
         if (!s.closed || !poly.is_simple() || !poly.is_convex())
             continue;
-        // Seed 000's promise is for strictly convex polygons; a collinear
+        // CONIS's promise is for strictly convex polygons; a collinear
         // vertex (example7) is not one (the reference's output of example7
         // is not convex either).
         std::vector<int> turns = turn_signs(p, true);

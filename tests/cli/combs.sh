@@ -14,7 +14,7 @@ awk 'BEGIN { pi = atan2(0, -1)
     for (i = 0; i < 6; i++) { t = 2 * pi * i / 6; printf "vn %.17g %.17g\n", cos(t), sin(t) } }' >"$tmp/circle.txt"
 # (x-100)^2 + (y+50)^2 = 25 in eq. (3)'s order q20,q02,q11,q10,q01,q00
 conic=1,1,0,-100,50,12475
-# the same circle about the origin: the setting of seed 000's Table 1
+# the same circle about the origin: the setting of CONIS's Table 1
 awk 'BEGIN { pi = atan2(0, -1)
     for (i = 0; i < 6; i++) { t = 2 * pi * i / 6; printf "v %.17g %.17g\n", 5 * cos(t), 5 * sin(t) }
     for (i = 0; i < 6; i++) { t = 2 * pi * i / 6; printf "vn %.17g %.17g\n", cos(t), sin(t) } }' >"$tmp/circle0.txt"

@@ -1,5 +1,5 @@
 /* SPDX-License-Identifier: MIT */
-/* libFuzzer target: conica_bspline_set + conica_plot (seed 004) on
+/* libFuzzer target: conica_bspline_set + conica_plot (Dahl 2019) on
  * arbitrary splines and settings, every method, small budgets.
  *
  * Input layout (missing bytes read as 0):

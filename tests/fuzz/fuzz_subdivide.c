@@ -1,5 +1,5 @@
 /* SPDX-License-Identifier: MIT */
-/* libFuzzer target: conic subdivision (seed 000) on arbitrary numbers.
+/* libFuzzer target: conic subdivision (CONIS) on arbitrary numbers.
  *
  * Input layout (every byte optional; missing bytes read as 0):
  *   byte 0  point count 1..24          byte 1  levels 0..4

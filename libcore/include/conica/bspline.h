@@ -4,7 +4,7 @@
  * @brief B-spline functions and curves (optionally rational / NURBS) and
  *        tensor-product B-spline surfaces: validation, the .spl text
  *        format, evaluation (triangular algorithm), knot insertion (Böhm)
- *        and Bézier conversion. Implements seed 004, Chapter 1.
+ *        and Bézier conversion. Implements Dahl 2019, Ch. 1.
  *
  * Example:
  * @code
@@ -18,7 +18,7 @@
  *   conica_bspline_free(&s);
  * @endcode
  *
- * Conventions: knots are 0-based here (the seed numbers them from 1); a
+ * Conventions: knots are 0-based here (Dahl 2019 numbers them from 1); a
  * spline of degree p with n control points has n + p + 1 knots and is
  * plotted on its domain [t_p, t_n]. Control points are interleaved, `dim`
  * doubles each. For a spline function (dim 1) the control points of the
@@ -81,7 +81,7 @@ CONICA_API conica_code conica_bspline_set(int degree, int dim, const double *kno
  * Knots of multiplicity > p+1 are trimmed to p+1 together with the
  * coefficients of the B-splines with empty support; end knots of
  * multiplicity < p+1 are extended by repeating the end knot, with zero
- * coefficients (weight 1) for the new B-splines, exactly as the seed's
+ * coefficients (weight 1) for the new B-splines, exactly as Dahl 2019's
  * worked example (t=(0,0,1,1,1,1,2,2,2), c=(1,3,2,5,4,2) becomes
  * t=(0,0,0,1,1,1,2,2,2), c=(0,1,3,5,4,2)). Other checks as
  * conica_bspline_set (except the multiplicity bound).

@@ -1,7 +1,7 @@
 /* SPDX-License-Identifier: MIT */
 /**
  * @file plot.h
- * @brief Plotting B-splines as polylines (seed 004, Chapters 2-4): the
+ * @brief Plotting B-splines as polylines (Dahl 2019, Ch. 2-4): the
  *        guaranteed plotter (default for the tools), the thesis's adaptive
  *        knot-insertion loop with all its criteria, rules and stopping
  *        tests, and the baselines it compares against; tensor-product

@@ -1,7 +1,7 @@
 /* SPDX-License-Identifier: MIT */
 /**
  * @file subdiv.h
- * @brief Conic-preserving interpolatory subdivision (seed 000, Section 1.1).
+ * @brief Conic-preserving interpolatory subdivision (CONIS §1.1).
  *
  * Example:
  * @code
@@ -71,7 +71,7 @@ typedef struct conica_subdiv_info {
     size_t *inflection_index;  /**< indices (into the output curve) of inserted inflection points; free with conica_subdiv_info_free */
 } conica_subdiv_info;
 
-/** @brief Default settings (seed 000 values, double precision, local frames). */
+/** @brief Default settings (CONIS values, double precision, local frames). */
 CONICA_API conica_subdiv_settings conica_subdiv_defaults(void);
 
 /** @brief Make *info empty (safe to free). */
