@@ -10,7 +10,7 @@
 # Kinds: `demo NAME` is BUILD/demo/NAME as `make demo` makes it (the demo
 # runs in a scratch view of BUILD, so BUILD/demo is left alone); `shared
 # FILE` is `conica combs -k 5 --signed` of FILE under the reference's test
-# data (CONICA_SHARED_DATA, else ../shared/data), rendered 600 px wide as
+# data (the directory CONICA_SHARED_DATA names), rendered 600 px wide as
 # docs/subdivide.md shows, skipped with a notice without that data; `fixed`
 # pictures show an earlier state (output before a fix, the reference
 # implementation's own output) and are never remade. tests/cli/docs.sh
@@ -53,7 +53,7 @@ make_into() { # build dir
         echo "docs-pictures.sh: make demo's scripts failed" >&2
         exit 1
     }
-    shared=${CONICA_SHARED_DATA:-../shared/data}
+    shared=${CONICA_SHARED_DATA:-}
     list | while read -r pic kind src; do
         mkdir -p "$dest/$(dirname "$pic")"
         case $kind in
@@ -64,11 +64,11 @@ make_into() { # build dir
                 echo "note: $pic: make demo made no $src here (its tool is not installed)"
             fi ;;
         shared)
-            if [ -f "$shared/$src" ]; then
+            if [ -n "$shared" ] && [ -f "$shared/$src" ]; then
                 "$build/bin/conica" combs -k 5 --signed -o "$view/comb.svg" "$shared/$src"
                 rsvg-convert -w 600 -b white -o "$dest/$pic" "$view/comb.svg"
             else
-                echo "note: $pic: $shared/$src is not here (set CONICA_SHARED_DATA)"
+                echo "note: $pic: not made (CONICA_SHARED_DATA names no directory with $src)"
             fi ;;
         esac
     done

@@ -339,6 +339,12 @@ typedef struct conica_svg_settings {
     conica_svg_limits limits;
     conica_svg_warn_fn warn;/**< optional warning sink */
     void *warn_ctx;
+    /** Optional progress report of conica_svg_process()/_write() (NULL:
+     *  none), in bytes of geometry data (the d and points attributes of
+     *  the document's path, polygon and polyline elements) done of all of
+     *  it, also within one long path; progress_ctx is passed to it. */
+    conica_progress_fn progress;
+    void *progress_ctx;
 } conica_svg_settings;
 
 /** @brief Defaults: SMOOTH, 4 levels, 40 degrees, precision 7, default limits. */

@@ -8,6 +8,8 @@ MODULE_LIBS := $(SVG_A) $(MODULE_LIBS)
 # The layer reuses libcore's internal locale-free number reader (numparse.h).
 $(BUILD)/obj/svg_tools/%.o: CPPFLAGS += -Isvg_tools -Ilibcore/src -Ilibcore/tools $(XML_CFLAGS)
 $(BUILD)/obj/tests/test_svg%.o: CPPFLAGS += -Isvg_tools $(XML_CFLAGS)
+# test_progress checks the progress reports of every layer, this one's too.
+$(BUILD)/obj/tests/test_progress.o: CPPFLAGS += -Isvg_tools $(XML_CFLAGS)
 
 $(SVG_A): $(SVG_OBJS)
 	@mkdir -p $(@D)

@@ -1829,6 +1829,51 @@ static int element_path(const conica_svg_settings *s, xmlNodePtr n, int kind, co
     }
 }
 
+/* settings.progress: bytes of geometry data (d, points) in the whole
+ * document, done before the element at work, and that element's. */
+typedef struct geom_progress {
+    const conica_svg_settings *s;
+    size_t total, base, len;
+} geom_progress;
+
+/* The bytes of n's geometry data: d of a path, points of a polygon or a
+ * polyline (kind as in collect(); shapes count nothing). */
+static size_t geom_bytes(xmlNodePtr n, int kind)
+{
+    xmlAttrPtr a;
+    xmlNodePtr c;
+    size_t len = 0;
+    if (kind < 0 || kind > 2)
+        return 0;
+    a = xmlHasNsProp(n, BAD_CAST(kind == 0 ? "d" : "points"), NULL);
+    if (!a || a->type != XML_ATTRIBUTE_NODE)
+        return 0;
+    for (c = a->children; c; c = c->next)
+        if (c->type == XML_TEXT_NODE && c->content)
+            len += (size_t)xmlStrlen(c->content);
+    return len;
+}
+
+static int geom_kind(xmlNodePtr n)
+{
+    const char *tag = (const char *)n->name;
+    return !strcmp(tag, "path")       ? 0
+           : !strcmp(tag, "polygon")  ? 1
+           : !strcmp(tag, "polyline") ? 2
+                                      : -1;
+}
+
+/* conica_path_settings.progress of one element: its segments done, as a
+ * share of its bytes. */
+static void element_progress(void *ctx, size_t done, size_t total)
+{
+    const geom_progress *g = ctx;
+    size_t at = g->base;
+    if (total > 0)
+        at += (size_t)((double)g->len * ((double)done / (double)total));
+    g->s->progress(g->s->progress_ctx, at < g->total ? at : g->total, g->total);
+}
+
 /* Called by collect() after each element's polylines (shapes->elements[idx]
  * and its subpaths), e.g. to write them out and free them at once. */
 typedef conica_code (*element_done)(void *ctx, conica_svg_shapes *shapes, size_t idx,
@@ -1852,12 +1897,27 @@ static conica_code collect(const conica_svg_doc *doc, const conica_svg_settings 
     conica_code rc = CONICA_OK;
     conica_svg_path p;
     selection sel;
+    geom_progress gp;
     conica_svg_path_init(&p);
     *items = NULL;
+    memset(&gp, 0, sizeof gp);
+    gp.s = s;
+    if (s->progress) { /* the total first: one walk, no parsing */
+        xmlNodePtr m = root;
+        size_t d = 1;
+        while (m) {
+            if (is_svg_element(m))
+                gp.total += geom_bytes(m, geom_kind(m));
+            m = next_element(m, root, &d);
+        }
+        s->progress(s->progress_ctx, 0, gp.total);
+    }
     if (selection_init(&sel, s) != 0)
         return conica__fail(st, CONICA_ERR_NOMEM, 0, 0, "out of memory");
     while (n && rc == CONICA_OK) {
         selection_mark(&sel, n);
+        if (s->progress && is_svg_element(n))
+            gp.len = geom_bytes(n, geom_kind(n));
         if (is_svg_element(n)) {
             const char *tag = (const char *)n->name;
             int kind = -1;
@@ -1909,8 +1969,9 @@ static conica_code collect(const conica_svg_doc *doc, const conica_svg_settings 
                         stats->io_seconds += t - mark;
                         mark = t;
                     }
-                    rc = conica_svg__path_polylines(&p, s, what, el->line, idx, kind, prec, &budget,
-                                                    &stats->in_vertices, shapes, st);
+                    rc = conica_svg__path_polylines_progress(
+                        &p, s, what, el->line, idx, kind, prec, &budget, &stats->in_vertices,
+                        shapes, s->progress ? element_progress : NULL, &gp, st);
                     if (timing) {
                         double t = conica_svg__now();
                         stats->geometry_seconds += t - mark;
@@ -1925,6 +1986,11 @@ static conica_code collect(const conica_svg_doc *doc, const conica_svg_settings 
                         rc = done(done_ctx, shapes, idx, &(*items)[idx], st);
                 }
             }
+        }
+        if (s->progress && gp.len) {
+            gp.base += gp.len;
+            gp.len = 0;
+            s->progress(s->progress_ctx, gp.base < gp.total ? gp.base : gp.total, gp.total);
         }
         n = next_element(n, root, &depth);
     }

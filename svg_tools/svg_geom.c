@@ -284,6 +284,15 @@ conica_code conica_svg__path_polylines(const conica_svg_path *p, const conica_sv
                                        double precision, size_t *budget, size_t *in_vertices,
                                        conica_svg_shapes *out, conica_status *st)
 {
+    return conica_svg__path_polylines_progress(p, s, what, line, element, kind, precision, budget,
+                                               in_vertices, out, NULL, NULL, st);
+}
+
+conica_code conica_svg__path_polylines_progress(
+    const conica_svg_path *p, const conica_svg_settings *s, const char *what, size_t line,
+    size_t element, int kind, double precision, size_t *budget, size_t *in_vertices,
+    conica_svg_shapes *out, conica_progress_fn pf, void *pctx, conica_status *st)
+{
     conica_path cp;
     conica_path_result r;
     conica_path_settings ps = conica_path_defaults();
@@ -297,6 +306,8 @@ conica_code conica_svg__path_polylines(const conica_svg_path *p, const conica_sv
     ps.precision = precision;
     ps.max_points = *budget;
     ps.rough_t = 1; /* SVG has no use for the points' parameters */
+    ps.progress = pf;
+    ps.progress_ctx = pctx;
     /* digits from the tolerance (precision 0): the geometry keeps
      * CONICA_SVG_ROUNDING_SHARE of it for the rounding of what is written */
     geom_share = s->precision == 0 ? 1.0 - CONICA_SVG_ROUNDING_SHARE : 1.0;

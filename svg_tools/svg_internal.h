@@ -68,6 +68,13 @@ conica_code conica_svg__path_polylines(const conica_svg_path *p, const conica_sv
                                        double precision, size_t *budget, size_t *in_vertices,
                                        conica_svg_shapes *out, conica_status *st);
 
+/* The same, reporting the path's progress (conica_path_settings.progress
+ * units) to pf(pctx, ...) when pf is not NULL. */
+conica_code conica_svg__path_polylines_progress(
+    const conica_svg_path *p, const conica_svg_settings *s, const char *what, size_t line,
+    size_t element, int kind, double precision, size_t *budget, size_t *in_vertices,
+    conica_svg_shapes *out, conica_progress_fn pf, void *pctx, conica_status *st);
+
 /* Half a unit in the last digit of the numbers in text[0..len) (the most
  * decimals any of them has), or 0 when there is none. */
 double conica_svg__text_precision(const char *text, size_t len);

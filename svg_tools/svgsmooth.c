@@ -99,9 +99,10 @@ static const cli_opt opts[] = {
     {'q', "quiet", CLI_ARG_NONE, NULL, NULL,
      "no progress line (errors and the summary still print)", {0, 0, 0}},
     {OPT_PROGRESS, "progress", CLI_ARG_NONE, NULL, NULL,
-     "several files: a progress line on stderr (count,\n"
-     "rate, ETA) even when it is not a terminal (default:\n"
-     "only on a terminal)",
+     "a progress line on stderr (files, or kB of path data\n"
+     "of one document; rate, ETA) even when it is not a\n"
+     "terminal (default: only on a terminal, and for one\n"
+     "document only from 1 MB of path data)",
      {0, 0, 0}},
     {OPT_MAX_INPUT, "max-input-bytes", CLI_ARG_REQUIRED, "N", NULL,
      "document size cap (default 64 MiB)", {0, 0, 0}},
@@ -203,7 +204,15 @@ static int split_ids(char *s, const char **ids, size_t *n)
 typedef struct run_opts {
     conica_svg_settings set; /* select, warn and warn_ctx set per file */
     int want_stats;
+    /* a single document's progress line (a batch has its own, per file):
+     * AUTO shows it for documents of at least DOC_PROGRESS_BYTES of path
+     * data, on a terminal; ON for any; OFF never */
+    cli_progress_mode doc_progress;
 } run_opts;
+
+/* About 10^5 vertices of path data: below it a document takes well under
+ * a second and needs no progress line. */
+#define DOC_PROGRESS_BYTES 1000000u
 
 /* One document: read in, write out ("-" or NULL = stdout). The whole work
  * of a single-file run, and of each file of a batch (in its own process). */
@@ -211,6 +220,7 @@ static int smooth_file(void *ctx, const char *in, const char *out_path)
 {
     const run_opts *ro = ctx;
     conica_svg_settings set = ro->set;
+    cli_progress_job dp;
     conica_svg_stats stats, *want;
     conica_svg_doc *doc = NULL;
     conica_code prc;
@@ -227,6 +237,11 @@ static int smooth_file(void *ctx, const char *in, const char *out_path)
     wc.name = strcmp(in, "-") ? in : "<stdin>";
     set.warn = on_warning;
     set.warn_ctx = &wc;
+    cli_progress_job_init(&dp, PROG, "kB", ro->doc_progress, DOC_PROGRESS_BYTES, 1000);
+    if (ro->doc_progress != CLI_PROGRESS_OFF) {
+        set.progress = cli_progress_report;
+        set.progress_ctx = &dp;
+    }
 
     t_start = now();
     if (cli_read_file(PROG, in, set.limits.max_bytes, &buf, &len))
@@ -253,6 +268,7 @@ static int smooth_file(void *ctx, const char *in, const char *out_path)
         prc = conica_svg_process_write(doc, &set, want, out.f, &st);
     else
         prc = conica_svg_process(doc, &set, want, &st);
+    cli_progress_job_end(&dp);
     if (prc != CONICA_OK) {
         int write_error = out.tmp && ferror(out.f);
         cli_output_abort(&out);
@@ -375,6 +391,7 @@ int main(int argc, char **argv)
     memset(&ro, 0, sizeof ro);
     ro.set = conica_svg_defaults();
     ro.set.precision = 0; /* digits from the tolerance unless --precision */
+    ro.doc_progress = CLI_PROGRESS_OFF; /* a batch shows its own */
     memset(&cl, 0, sizeof cl);
     cl.ro = &ro;
     if ((rc = cli_opt_parse(&tool, argc, argv, take_option, &cl, &first)) >= 0)
@@ -439,6 +456,7 @@ int main(int argc, char **argv)
     }
 
     if (!batch) {
+        ro.doc_progress = cl.progress;
         rc = smooth_file(&ro, inputs[0], in_place ? inputs[0] : out_path);
     } else {
         cli_batch b;

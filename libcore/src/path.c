@@ -817,7 +817,21 @@ typedef struct ctx {
     /* one segment's samples */
     double *par, *sxy, *snxy;
     size_t scap;
+    /* settings.progress: segments and samples of the subpaths before this
+     * one, of all, and the count at which the next report is due */
+    size_t prog_base, prog_total, prog_next;
 } ctx;
+
+/* Report `done` segments of the current subpath to settings.progress when
+ * the next ~1/256 of the path is reached (or at the end). */
+static void progress_at(ctx *c, size_t done)
+{
+    size_t at = c->prog_base + done;
+    if (!c->s.progress || (at < c->prog_next && at < c->prog_total))
+        return;
+    c->s.progress(c->s.progress_ctx, at, c->prog_total);
+    c->prog_next = at + (c->prog_total / 256 > 1 ? c->prog_total / 256 : 1);
+}
 
 static conica_code fail_nomem(ctx *c)
 {
@@ -2963,6 +2977,7 @@ static conica_code drawn_subpath(ctx *c, const conica_path_subpath *sp, int smoo
         rc = fail_nomem(c);
     for (done = 0; done < n && rc == CONICA_OK;) {
         size_t jj = (start + done) % n, s = order[done], m, k;
+        progress_at(c, done);
         double nend[2], len;
         unsigned fl = CONICA_PATH_PT_VERTEX;
         if (!line[jj] && !smooth) {
@@ -3318,9 +3333,15 @@ static conica_code run(const conica_path *p, const conica_path_settings *s, int 
     c.r = &r;
     c.st = st;
     c.budget = c.s.max_points;
+    for (i = 0; i < p->nsub; i++)
+        c.prog_total += p->sub[i].n;
+    progress_at(&c, 0);
     for (i = 0; i < p->nsub && rc == CONICA_OK; i++) {
         const conica_path_subpath *sp = &p->sub[i];
         double ext;
+        if (i > 0)
+            c.prog_base += p->sub[i - 1].n;
+        progress_at(&c, 0);
         c.subpath = i;
         c.L = &r.lines[i];
         c.lcap = 0;
@@ -3369,6 +3390,8 @@ static conica_code run(const conica_path *p, const conica_path_settings *s, int 
         }
         r.points += c.L->n;
     }
+    if (rc == CONICA_OK && p->nsub)
+        progress_at(&c, p->sub[p->nsub - 1].n);
     free(c.par);
     free(c.sxy);
     free(c.snxy);

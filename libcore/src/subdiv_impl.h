@@ -1266,17 +1266,18 @@ static void *SFX(task_main)(void *arg)
     return NULL;
 }
 
-static void SFX(level_threads)(SFX(worker) *wk, int nth, REAL *dxy, REAL *dn, size_t n)
+static void SFX(level_threads)(SFX(worker) *wk, int nth, REAL *dxy, REAL *dn, size_t lo,
+                               size_t hi)
 {
     SFX(task) task[CONICA__MAX_THREADS];
     pthread_t tid[CONICA__MAX_THREADS];
     int started[CONICA__MAX_THREADS], t;
-    size_t chunk;
+    size_t chunk, n = hi - lo;
 
     if (nth > 1 && n / (size_t)nth < CONICA__THREAD_MIN_EDGES)
         nth = (int)(n / CONICA__THREAD_MIN_EDGES) > 1 ? (int)(n / CONICA__THREAD_MIN_EDGES) : 1;
     if (nth <= 1) {
-        SFX(level)(wk, dxy, dn, 0, n);
+        SFX(level)(wk, dxy, dn, lo, hi);
         return;
     }
     chunk = (n + (size_t)nth - 1) / (size_t)nth;
@@ -1284,8 +1285,8 @@ static void SFX(level_threads)(SFX(worker) *wk, int nth, REAL *dxy, REAL *dn, si
         task[t].w = &wk[t];
         task[t].dxy = dxy;
         task[t].dn = dn;
-        task[t].begin = (size_t)t * chunk < n ? (size_t)t * chunk : n;
-        task[t].end = (size_t)(t + 1) * chunk < n ? (size_t)(t + 1) * chunk : n;
+        task[t].begin = lo + ((size_t)t * chunk < n ? (size_t)t * chunk : n);
+        task[t].end = lo + ((size_t)(t + 1) * chunk < n ? (size_t)(t + 1) * chunk : n);
     }
     for (t = 1; t < nth; t++)
         started[t] = pthread_create(&tid[t], NULL, SFX(task_main), &task[t]) == 0;
@@ -1787,6 +1788,18 @@ static conica_code SFX(run)(const SFX(input) *in, const conica_subdiv_settings *
             wk[t].grown = 0;
             wk[t].fallbacks = 0;
         }
+        size_t all_edges = 0, step = 0;
+        if (s->progress) { /* the edge points of all levels, reported in ~256 steps */
+            size_t c = cur;
+            for (lev = 1; lev <= L; lev++) {
+                size_t ne = in->closed ? c : c - 1;
+                all_edges += ne;
+                c += ne;
+            }
+            step = all_edges / 256 > CONICA__THREAD_MIN_EDGES ? all_edges / 256
+                                                               : CONICA__THREAD_MIN_EDGES;
+            s->progress(s->progress_ctx, 0, all_edges);
+        }
         stats->edge_points = 0;
         for (lev = 1; lev <= L; lev++) {
             REAL *dx = ((L - lev) % 2) ? B : A, *dn = ((L - lev) % 2) ? Bn : An;
@@ -1796,7 +1809,17 @@ static conica_code SFX(run)(const SFX(input) *in, const conica_subdiv_settings *
             job.nxy = sn;
             job.infl = F[(L - lev + 1) % 2];
             job.dinfl = lev < L ? F[(L - lev) % 2] : NULL;
-            SFX(level_threads)(wk, nth, dx, dn, cur);
+            if (!s->progress) {
+                SFX(level_threads)(wk, nth, dx, dn, 0, cur);
+            } else { /* the same points, in slices with a report after each */
+                size_t lo, hi;
+                for (lo = 0; lo < cur; lo = hi) {
+                    hi = cur - lo > step ? lo + step : cur;
+                    SFX(level_threads)(wk, nth, dx, dn, lo, hi);
+                    s->progress(s->progress_ctx,
+                                stats->edge_points + (hi < ne ? hi : ne), all_edges);
+                }
+            }
             stats->edge_points += ne;
             cur += ne;
             sx = dx;

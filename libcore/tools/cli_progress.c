@@ -40,8 +40,9 @@ static void draw(cli_progress *p, double now)
     int n = snprintf(line, sizeof line, "%s: %zu/%zu %s", p->prog, p->done, p->total, p->unit);
     if (rate > 0 && n > 0 && (size_t)n < sizeof line) {
         double eta = (double)(p->total - p->done) / rate;
-        n += snprintf(line + n, sizeof line - (size_t)n, ", %.3g %s/s, ETA %.0f s", rate, p->unit,
-                      eta);
+        n += snprintf(line + n, sizeof line - (size_t)n,
+                      rate >= 100 ? ", %.0f %s/s, ETA %.0f s" : ", %.3g %s/s, ETA %.0f s", rate,
+                      p->unit, eta);
     }
     fprintf(stderr, p->ansi ? "\r%s\033[K" : "\r%-70s", line);
     fflush(stderr);
@@ -67,4 +68,35 @@ void cli_progress_end(cli_progress *p)
     fprintf(stderr, p->ansi ? "\r\033[K" : "\r%70s\r", "");
     fflush(stderr);
     p->drawn = 0;
+}
+
+void cli_progress_job_init(cli_progress_job *j, const char *prog, const char *unit,
+                           cli_progress_mode mode, size_t min_total, size_t per_unit)
+{
+    memset(j, 0, sizeof *j);
+    j->prog = prog;
+    j->unit = unit;
+    j->mode = mode;
+    j->min_total = min_total;
+    j->per_unit = per_unit ? per_unit : 1;
+}
+
+void cli_progress_report(void *job, size_t done, size_t total)
+{
+    cli_progress_job *j = job;
+    size_t k = j->per_unit, all = total / k + (total % k != 0);
+    if (!j->started) {
+        cli_progress_mode m = j->mode;
+        if (m == CLI_PROGRESS_AUTO && total < j->min_total)
+            m = CLI_PROGRESS_OFF;
+        cli_progress_start(&j->line, j->prog, j->unit, all, m);
+        j->started = 1;
+    }
+    cli_progress_update(&j->line, done >= total ? all : done / k);
+}
+
+void cli_progress_job_end(cli_progress_job *j)
+{
+    if (j->started)
+        cli_progress_end(&j->line);
 }

@@ -31,4 +31,23 @@ void cli_progress_update(cli_progress *p, size_t done);
 /* Erase the line (the tool's summary follows on a clean line). */
 void cli_progress_end(cli_progress *p);
 
+/* The line of one long library call, fed by its settings' progress report
+ * (a conica_progress_fn: cli_progress_report with this as its context).
+ * The line starts at the first report, when the total is known: in AUTO
+ * mode only for a total of at least `min_total`; counts are shown divided
+ * by `per_unit` (1000 for kB of bytes; 0 counts as 1). */
+typedef struct cli_progress_job {
+    cli_progress line;
+    const char *prog, *unit;
+    cli_progress_mode mode;
+    size_t min_total, per_unit;
+    int started;
+} cli_progress_job;
+
+void cli_progress_job_init(cli_progress_job *j, const char *prog, const char *unit,
+                           cli_progress_mode mode, size_t min_total, size_t per_unit);
+void cli_progress_report(void *job, size_t done, size_t total);
+/* Erase the line, if one was started. */
+void cli_progress_job_end(cli_progress_job *j);
+
 #endif

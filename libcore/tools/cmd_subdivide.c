@@ -13,6 +13,7 @@
 
 #include "cli.h"
 #include "cli_opt.h"
+#include "cli_progress.h"
 #include "conica/curve.h"
 #include "conica/subdiv.h"
 
@@ -24,6 +25,8 @@
 #define MAX_THREADS 256
 /* Default number of levels when -k is not given (the reference's examples use 5). */
 #define DEFAULT_LEVELS 5
+/* Outputs of fewer points take well under a second: no progress line. */
+#define PROGRESS_POINTS 1000000
 
 enum {
     OPT_OPEN = CLI_OPT_LONG,
@@ -37,6 +40,7 @@ enum {
     OPT_THREADS,
     OPT_NOISE,
     OPT_TIME,
+    OPT_PROGRESS,
 };
 
 static const cli_opt opts[] = {
@@ -82,6 +86,12 @@ static const cli_opt opts[] = {
      "(U us/point)` on stderr: the subdivision alone,\n"
      "best of %.0f runs",
      {TIME_RUNS, 0, 0}},
+    {'q', "quiet", CLI_ARG_NONE, NULL, NULL, "no progress line", {0, 0, 0}},
+    {OPT_PROGRESS, "progress", CLI_ARG_NONE, NULL, NULL,
+     "a progress line on stderr (edge points, rate, ETA)\n"
+     "even when it is not a terminal (default: only on a\n"
+     "terminal, and only from %.0f output points)",
+     {(double)PROGRESS_POINTS, 0, 0}},
     {'o', "output", CLI_ARG_REQUIRED, "OUT", "file",
      "write to OUT (`-` = stdout) via a temporary file", {0, 0, 0}},
     {0, NULL, 0, NULL, NULL, NULL, {0, 0, 0}},
@@ -108,6 +118,7 @@ static const cli_tool tool = {
 typedef struct options {
     long levels;
     int open, precise, estimate, refcompat, time;
+    cli_progress_mode progress;
     conica_normal_method method;
     size_t max_points, max_input_points;
     int threads;
@@ -128,6 +139,8 @@ static int take_option(cli_parser *p, int c, void *ctx)
     case OPT_ESTIMATE: o->estimate = 1; break;
     case OPT_REFCOMPAT: o->refcompat = 1; break;
     case OPT_TIME: o->time = 1; break;
+    case 'q': o->progress = CLI_PROGRESS_OFF; break;
+    case OPT_PROGRESS: o->progress = CLI_PROGRESS_ON; break;
     case 'k':
         if (cli_parse_int(v, 0, CONICA_SUBDIV_MAX_LEVELS, &num))
             return cli_opt_bad(p, "needs an integer in 0..%d, not '%s'", CONICA_SUBDIV_MAX_LEVELS,
@@ -172,6 +185,7 @@ static int parse_args(int argc, char **argv, options *o)
     int first, rc;
     o->levels = DEFAULT_LEVELS;
     o->open = o->precise = o->estimate = o->refcompat = o->time = 0;
+    o->progress = CLI_PROGRESS_AUTO;
     o->method = CONICA_NORMALS_AREA;
     o->max_points = CONICA_SUBDIV_DEFAULT_MAX_POINTS;
     o->max_input_points = CONICA_CURVE_MAX_INPUT_POINTS;
@@ -237,6 +251,7 @@ int conica_cmd_subdivide(int argc, char **argv)
     cli_output co;
     conica_code code;
     double best = 0.0;
+    cli_progress_job prog;
 
     if (rc >= 0)
         return rc;
@@ -281,6 +296,11 @@ int conica_cmd_subdivide(int argc, char **argv)
     if (o.threads > 0)
         s.threads = o.threads;
     s.noise = o.noise;
+    cli_progress_job_init(&prog, "conica subdivide", "edge points", o.progress, PROGRESS_POINTS, 1);
+    if (o.progress != CLI_PROGRESS_OFF && !o.time) { /* --time measures the subdivision alone */
+        s.progress = cli_progress_report;
+        s.progress_ctx = &prog;
+    }
 
     /* Open the output first so that an unwritable target fails before a long
      * computation; the temporary file is dropped on any later failure. */
@@ -306,6 +326,7 @@ int conica_cmd_subdivide(int argc, char **argv)
             t = now_seconds() - t0;
             conica_curve_free(&scratch);
             conica_curvel_free(&scratchl);
+            cli_progress_job_end(&prog);
             if (code != CONICA_OK)
                 break;
             if (r == 0 || t < best)

@@ -21,7 +21,7 @@ ver=$(sed -n 's/^#define CONICA_VERSION_STRING "\(.*\)"$/\1/p' libcore/include/c
 # One line per command: NAME|INPUT|LONG VALUE|SHORT VALUE|FLAG (- for
 # none)|an option every run gets (- for none). VALUE @OUT@ is a file the
 # command writes (compared as well as stdout).
-commands="conica subdivide|$ex/ellipse.txt|levels 2|k 2|-|-
+commands="conica subdivide|$ex/ellipse.txt|levels 2|k 2|q|-
 conica plot|$ex/nurbs-circle.spl|tolerance 2|o @OUT@|-|-
 conica combs|$ex/ellipse.txt|width 400|k 2|-|-
 conica errors|$ex/ellipse.txt|levels 2|k 2|-|-

@@ -482,6 +482,7 @@ if [ "$san" -eq 0 ]; then
     if ! command -v rsvg-convert >/dev/null 2>&1; then
         skip_case "rsvg-convert not installed"
     elif check "scripts/docs-pictures.sh makes the pictures" \
+        env CONICA_SHARED_DATA="${CONICA_SHARED_DATA:-../shared/data}" \
         sh scripts/docs-pictures.sh make "$build" "$tmp/pics"; then
         grep '^note:' "$out"
         scripts/docs-pictures.sh list | while read -r pic kind src; do

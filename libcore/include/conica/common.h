@@ -44,6 +44,13 @@ typedef enum conica_code {
     CONICA_CODE_COUNT_      /**< number of codes (not a status) */
 } conica_code;
 
+/** Optional progress report of a long call (the `progress` member of its
+ *  settings): `done` of `total` units of work so far, `done` rising to
+ *  `total`. Called from the calling thread only, between pieces of work, a
+ *  few hundred times per call at most; `ctx` is the settings'
+ *  `progress_ctx`. The call's result does not depend on it. */
+typedef void (*conica_progress_fn)(void *ctx, size_t done, size_t total);
+
 /** Optional, caller-owned detail for a failed call. */
 typedef struct conica_status {
     conica_code code;  /**< same as the returned code */

@@ -165,6 +165,12 @@ typedef struct conica_path_settings {
      *  that level's. 0 (default): a chord at the written level that strays
      *  beyond the tolerance is split at the next level's points. */
     int exact_levels;
+    /** Optional progress report (NULL: none), in drawn segments and
+     *  samples done of the path's total, at subpath and piece boundaries
+     *  (a long run of curved segments without a corner or a straight edge
+     *  is one piece); progress_ctx is passed to it. */
+    conica_progress_fn progress;
+    void *progress_ctx;
 } conica_path_settings;
 
 /** Output point flags. */

@@ -60,6 +60,10 @@ typedef struct conica_subdiv_settings {
      *  point or none), so a curve gets the same inflection points wherever
      *  it sits. */
     double noise;
+    /** Optional progress report (NULL: none), in edge points computed of
+     *  all the levels' edge points; progress_ctx is passed to it. */
+    conica_progress_fn progress;
+    void *progress_ctx;
 } conica_subdiv_settings;
 
 /** What happened during a subdivision (optional output). */
