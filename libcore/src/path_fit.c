@@ -41,6 +41,9 @@
 /* Tangents closer to parallel than this (radians): the piece is straight to
  * rounding; its chord is exact. */
 #define FIT_PARALLEL 1e-10
+/* The painted side is sampled at this many points of each stretch, for
+ * where another subpath crosses it. */
+#define FIT_SIDE_SAMPLES 8
 
 /* A segment's curve in homogeneous form: position and first two
  * derivatives at t. */
@@ -341,6 +344,45 @@ static int stretch_side(const seg_eval *e, double a, double b, conica__painted_f
     return painted(ctx, P, t);
 }
 
+/* Where the painted side changes within [a, b] (another subpath of the
+ * region crosses the curve there, as two overlapping contours filled
+ * even-odd do): the side sampled at FIT_SIDE_SAMPLES points, each change
+ * between two samples found by bisection. At most cap parameters,
+ * ascending, into out; their number. A change missed between two samples
+ * (two crossings close together) leaves a stretch on the wrong side, which
+ * the caller's check against the drawn region finds. */
+static size_t side_changes(const seg_eval *e, double a, double b, conica__painted_fn painted,
+                           void *ctx, double *out, size_t cap)
+{
+    size_t n = 0;
+    double tp = a;
+    int sp = 0;
+    if (!painted)
+        return 0;
+    for (int i = 0; i <= FIT_SIDE_SAMPLES; i++) {
+        double t = a + (b - a) * (i + 0.5) / (FIT_SIDE_SAMPLES + 1), P[2], d[2];
+        seg_at(e, t, P, NULL, NULL);
+        tangent(e, t, 1, d);
+        int si = painted(ctx, P, d);
+        if (i > 0 && si != sp && n < cap) {
+            double lo = tp, hi = t;
+            for (int k = 0; k < FIT_BISECT; k++) {
+                double mid = 0.5 * (lo + hi);
+                seg_at(e, mid, P, NULL, NULL);
+                tangent(e, mid, 1, d);
+                if (painted(ctx, P, d) == sp)
+                    lo = mid;
+                else
+                    hi = mid;
+            }
+            out[n++] = 0.5 * (lo + hi);
+        }
+        tp = t;
+        sp = si;
+    }
+    return n;
+}
+
 /* Strokes: a point this far along each curved segment's end tangents, so
  * that the caps and the joins at corners of the polyline's stroke are
  * square to the exact tangents as the curve's own are: where the tangent
@@ -420,18 +462,28 @@ static conica_code walk(const conica_path *p, size_t sub, double tol, conica__fi
         size_t i0 = *o->n - 1; /* where the segment's start went */
         for (size_t k = 0; k <= nc && rc == CONICA_OK; k++) {
             double a = k ? cut[k - 1] : 0.0, b = k < nc ? cut[k] : 1.0;
-            int tangents = 0;
-            if (side != CONICA__FIT_CHORDS) {
-                int ps = stretch_side(&e, a, b, painted, ctx);
-                int ts = turn_sign(&e, 0.5 * (a + b));
-                /* the painted region is convex here when the curve turns
-                 * towards the painted side; chords then lie inside it */
-                int convex = ps != 0 && ts == ps;
-                tangents = ps != 0 && ts != 0 &&
-                           ((side == CONICA__FIT_IN && !convex) ||
-                            (side == CONICA__FIT_OUT && convex));
+            double sc[FIT_SIDE_SAMPLES + 2];
+            size_t ns = 0;
+            if (side != CONICA__FIT_CHORDS)
+                ns = side_changes(&e, a, b, painted, ctx, sc, FIT_SIDE_SAMPLES);
+            sc[ns] = b;
+            /* each piece between changes of the painted side on its own */
+            for (size_t h = 0; h <= ns && rc == CONICA_OK; h++) {
+                double pa = h ? sc[h - 1] : a, pb = sc[h];
+                int tangents = 0;
+                if (side != CONICA__FIT_CHORDS) {
+                    int ps = stretch_side(&e, pa, pb, painted, ctx);
+                    int ts = turn_sign(&e, 0.5 * (pa + pb));
+                    /* the painted region is convex here when the curve
+                     * turns towards the painted side; chords then lie
+                     * inside it */
+                    int convex = ps != 0 && ts == ps;
+                    tangents = ps != 0 && ts != 0 &&
+                               ((side == CONICA__FIT_IN && !convex) ||
+                                (side == CONICA__FIT_OUT && convex));
+                }
+                rc = stretch(&e, pa, pb, tangents, tol, fmin(max_turn, FIT_MAX_TURN), o);
             }
-            rc = stretch(&e, a, b, tangents, tol, fmin(max_turn, FIT_MAX_TURN), o);
         }
         if (rc == CONICA_OK && tangent_ends)
             rc = add_end_tangents(&e, tol, chord, q, qe, i0, o);

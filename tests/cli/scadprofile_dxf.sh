@@ -115,6 +115,13 @@ for c in slot_chain:3 mixed_chain:1 ellipses:2 nurbs_knots:1 periodic:1 r12_poly
         fit "$n --fit $f: $k contours within T both ways$side" $n $f --contours $k
     done
 done
+# two CIRCLEs that cross: even-odd, as import() reads them, two crescents
+# meeting where the circles cross (each copy of such a point moved T/100
+# into its own crescent: --touch)
+for f in inside outside middle; do
+    check "overlap --fit $f reads" run overlap $f
+    fit "overlap --fit $f: the lens is not material, 2 crescents within T" overlap $f --contours 2 --touch
+done
 check "HATCH boundaries read when nothing else is drawn" run hatch_only inside
 fit "hatch: 2 contours within T, inside" hatch_only inside --hatch --contours 2
 check "LINE/ARC chain: a slot with 2 holes (outer and holes by containment)" \

@@ -9,6 +9,8 @@ FIT is inside (default), outside or middle. Options:
     --layers A,B     only entities on these layers
     --contours N     the module must have exactly N contours
     --hatch          the exact geometry is the HATCH boundaries
+    --touch          contours meet at points: the fit's side may be off by
+                     tol/100 there (scadprofile separates them so)
 
 The exact geometry is evaluated here, independently of Conica: lines and
 the arcs of bulges by their formulas, ARC / CIRCLE / ELLIPSE by ezdxf's
@@ -252,7 +254,7 @@ def check(args, cache):
     exact geometry of a drawing is kept in cache for its next check."""
     dxf, scad, module, tol = args[0], args[1], args[2], float(args[3])
     fit = args[4] if len(args) > 4 and not args[4].startswith("--") else "inside"
-    unit_mm, layers, want, hatch = 1.0, None, None, False
+    unit_mm, layers, want, hatch, touch = 1.0, None, None, False, False
     for i, a in enumerate(args):
         if a == "--unit-mm":
             unit_mm = float(args[i + 1])
@@ -262,6 +264,8 @@ def check(args, cache):
             want = int(args[i + 1])
         elif a == "--hatch":
             hatch = True
+        elif a == "--touch":
+            touch = True
     key = (dxf, tol, unit_mm, tuple(sorted(layers)) if layers is not None else None, hatch)
     if key not in cache:
         cache[key] = exact_geometry(dxf, tol, unit_mm, layers, hatch)
@@ -308,7 +312,9 @@ def check(args, cache):
         worst = seg_dist(wrong, E0, E1, 2 * tol).max() if len(wrong) else 0.0
         print("%s: exact points on the wrong side of the polygon by at most %.3g (%d points)"
               % (fit, worst, len(bnd)))
-        if worst > 2.5e-3 * tol:
+        # --touch: where two contours meet at a point, scadprofile moves
+        # each copy of it tol/100 into its own material (docs/scadprofile.md)
+        if worst > (1.01e-2 if touch else 2.5e-3) * tol:
             print("FAIL: the polygon %s the drawn region"
                   % ("adds material beyond" if fit == "inside" else "cuts into"))
             ok = False

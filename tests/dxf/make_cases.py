@@ -93,6 +93,14 @@ msp.add_arc((30, 10), 4, 270, 90)                         # the hole: (30, 6) to
 msp.add_line((30, 14), (30, 6))
 save(doc, "corner_plate.dxf")
 
+# overlapping contours: two CIRCLEs that cross, filled even-odd as
+# OpenSCAD's import() reads them (the lens is not material: two crescents
+# that meet where the circles cross)
+doc, msp = new()
+msp.add_circle((0, 0), 10)
+msp.add_circle((12, 0), 10)
+save(doc, "overlap.dxf")
+
 # an outline that does not close (a gap of 0.5)
 doc, msp = new()
 msp.add_line((0, 0), (10, 0))
