@@ -174,40 +174,59 @@ def split(A, B, step):
 
 
 def seg_dist(P, A, B, w=None):
-    """Distance of each point of P (k x 2) to the nearest segment A[i]B[i]
-    (inf beyond w when w is given: only segments whose middle lies within
-    w + their length in x are looked at)."""
-    if w is None:
-        w = np.inf
-    else:
-        # long segments (straight edges) cut into pieces of at most 2 w: the
-        # same set of points, and a short reach for the window below
-        A, B = split(A, B, 2 * w)
-    AB = B - A
-    L = np.maximum((AB ** 2).sum(1), 1e-300)
-    mid = 0.5 * (A[:, 0] + B[:, 0])
-    order = np.argsort(mid)
-    A, AB, L, mid = A[order], AB[order], L[order], mid[order]
-    reach = w + np.sqrt(L).max()
+    """Distance of each point of P (k x 2) to the nearest segment A[i]B[i];
+    with w, inf beyond w (only the segments near a point are looked at)."""
+    P = np.asarray(P, float).reshape(-1, 2)
     best = np.full(len(P), np.inf)
-    qo = np.argsort(P[:, 0])
-    k = 0
-    while k < len(P):
-        # a run of queries sorted by x against the segments near them
-        n = 512
-        while True:
-            idx = qo[k:k + n]
-            a = np.searchsorted(mid, P[idx, 0].min() - reach)
-            b = np.searchsorted(mid, P[idx, 0].max() + reach, side="right")
-            if n == 1 or len(idx) * (b - a) <= 4000000:
-                break
-            n //= 2
-        if b > a:
-            Q = P[idx][:, None, :]
-            t = np.clip(((Q - A[a:b]) * AB[a:b]).sum(2) / L[a:b], 0, 1)
-            best[idx] = np.sqrt(((A[a:b] + t[..., None] * AB[a:b] - Q) ** 2).sum(2)).min(1)
-        k += len(idx)
+    if len(P) == 0 or len(A) == 0:
+        return best
+    if w is None or not np.isfinite(w):
+        for k in range(0, len(P), 64):
+            best[k:k + 64] = pair_dist(P[k:k + 64, None, :], A, B).min(1)
+        return best
+    # segments cut into pieces of at most 2 w; a point within w of a piece
+    # is within 2 w of its middle: the grid cell of 2 w of the point or
+    # one of its 8 neighbours
+    A, B = split(A, B, 2 * w)
+    c = 2 * w
+    lo = np.minimum(A.min(0), P.min(0)) - 2 * c
+    Mc = np.floor((0.5 * (A + B) - lo) / c).astype(np.int64)
+    Qc = np.floor((P - lo) / c).astype(np.int64)
+    ny = max(Mc[:, 1].max(), Qc[:, 1].max()) + 3
+    key = Mc[:, 0] * ny + Mc[:, 1]
+    order = np.argsort(key, kind="stable")
+    A, B, key = A[order], B[order], key[order]
+    for dx in (-1, 0, 1):
+        for dy in (-1, 0, 1):
+            q = (Qc[:, 0] + dx) * ny + Qc[:, 1] + dy
+            a = np.searchsorted(key, q, "left")
+            n = np.searchsorted(key, q, "right") - a
+            k = 0
+            while k < len(P):
+                # a run of points with at most 4e6 pairs
+                e = k + max(1, int(np.searchsorted(np.cumsum(n[k:]), 4000000)))
+                cnt = n[k:e]
+                tot = int(cnt.sum())
+                if tot:
+                    qi = np.repeat(np.arange(k, e), cnt)
+                    si = np.repeat(a[k:e], cnt) + np.arange(tot) - np.repeat(np.cumsum(cnt) - cnt, cnt)
+                    d = pair_dist(P[qi], A[si], B[si])
+                    starts = np.cumsum(cnt) - cnt
+                    has = cnt > 0
+                    m = np.minimum.reduceat(d, starts[has])
+                    rows = np.arange(k, e)[has]
+                    best[rows] = np.minimum(best[rows], m)
+                k = e
+    best[best > w] = np.inf
     return best
+
+
+def pair_dist(Q, A, B):
+    """Distance of Q to the segment AB, elementwise (broadcast)."""
+    AB = B - A
+    L = np.maximum((AB ** 2).sum(-1), 1e-300)
+    t = np.clip(((Q - A) * AB).sum(-1) / L, 0, 1)
+    return np.sqrt(((A + t[..., None] * AB - Q) ** 2).sum(-1))
 
 
 def inside(poly, P):
