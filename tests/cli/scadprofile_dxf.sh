@@ -160,8 +160,9 @@ check "inch drawing" run inch inside
 check "inch: 2 x 1 in = 50.8 x 25.4 mm" grep -q '^function m_bbox() = \[\[0,0\],\[50.8,25.4\]\];' "$cases/inch.inside.scad"
 fit "inch: within T of the drawing in mm" inch inside --contours 2
 check "the header names the drawing's units" grep -q '^// DXF: .*drawing units in;' "$cases/inch.inside.scad"
-check "metre drawing" run metre inside
-check "metre: 2 x 1 m = 2000 x 1000 mm" grep -q '^function m_bbox() = \[\[0,0\],\[2000,1000\]\];' "$cases/metre.inside.scad"
+# (the units alone: at 1 mm, not the 0.01 of a circle of r = 250 mm)
+check "metre drawing" "$bin" --module m --tolerance 1 -o "$cases/metre.scad" "$cases/metre.dxf"
+check "metre: 2 x 1 m = 2000 x 1000 mm" grep -q '^function m_bbox() = \[\[0,0\],\[2000,1000\]\];' "$cases/metre.scad"
 check "--units in on the inch drawing keeps its numbers" \
     "$bin" --module m --tolerance $T --units in -o "$cases/inch_in.scad" "$cases/inch.dxf"
 check "bbox in inches" grep -q '^function m_bbox() = \[\[0,0\],\[2,1\]\];' "$cases/inch_in.scad"
@@ -230,7 +231,7 @@ hostile overflow "f.write('0\nSECTION\n2\nENTITIES\n0\nLINE\n10\n1e400\n0\nENDSE
     "overflow.dxf:8: group 10: '1e400' is not a finite number"
 hostile recursive "f.write('0\nSECTION\n2\nBLOCKS\n0\nBLOCK\n2\nA\n10\n0\n20\n0\n0\nINSERT\n2\nA\n10\n1\n20\n0\n0\nENDBLK\n0\nENDSEC\n0\nSECTION\n2\nENTITIES\n0\nINSERT\n2\nA\n10\n0\n20\n0\n0\nENDSEC\n0\nEOF\n')" \
     "recursive.dxf:13: block 'A' inserts itself (recursive blocks)"
-hostile million "f.write('0\nSECTION\n2\nENTITIES\n0\nLWPOLYLINE\n90\n1000000\n70\n1\n'); f.write(''.join('10\n%d\n20\n%d\n' % (i, i % 2) for i in range(1000000))); f.write('0\nENDSEC\n0\nEOF\n')" \
+hostile million "f.write('0\nSECTION\n2\nENTITIES\n0\nLWPOLYLINE\n90\n1000000\n70\n1\n'); f.write(''.join('10\n%d\n20\n%d\n' % (i, i % 2) for i in range(1000)) * 1000); f.write('0\nENDSEC\n0\nEOF\n')" \
     "million.dxf:5: LWPOLYLINE has more than 524288 vertices (max_vertices)"
 hostile deep "f.write('0\nSECTION\n2\nBLOCKS\n' + ''.join('0\nBLOCK\n2\nB%d\n0\nINSERT\n2\nB%d\n0\nENDBLK\n' % (i, i + 1) for i in range(20)) + '0\nBLOCK\n2\nB20\n0\nCIRCLE\n40\n1\n0\nENDBLK\n0\nENDSEC\n0\nSECTION\n2\nENTITIES\n0\nINSERT\n2\nB0\n0\nENDSEC\n0\nEOF\n')" \
     "deep.dxf:[0-9]*: INSERTs nested deeper than 16 (max_depth)"
