@@ -147,8 +147,8 @@ static const cli_opt opts[] = {
      "keep the input geometry: only flatten curves (SVG,\n.spl)", {0, 0, 0}},
     {OPT_FIT, "fit", CLI_ARG_REQUIRED, "F", "inside|outside|middle|clearance",
      "which side of the painted region the polygon keeps\n"
-     "to (SVG input; point-normal and spline input:\n"
-     "inside only):\n"
+     "to (SVG and DXF input; point-normal and spline\n"
+     "input: inside only):\n"
      "  inside     within the painted region: the part\n"
      "             never larger than drawn, its holes\n"
      "             never smaller (default)\n"
@@ -1486,7 +1486,7 @@ static int profile_file(void *ctx, const char *in, const char *outp)
         free(buf);
         return cli_usage_error(PROG,
                                "--fit %s: %s input supports only --fit inside (for now; "
-                               "--fit outside, middle and clearance need SVG input)",
+                               "--fit outside, middle and clearance need SVG or DXF input)",
                                fit_names[o.fit], k == IN_SPLINE ? "spline" : "point-normal");
     }
     if (!o.module_given) {
