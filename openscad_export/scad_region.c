@@ -135,6 +135,7 @@ static conica_code map_path(const conica_path *src, const conica_svg_matrix *m, 
 
 typedef struct side_ctx {
     const conica__polys *dense;
+    const double *box; /* dense's polygon boxes (conica__polys_boxes), or NULL */
     double eps;
 } side_ctx;
 
@@ -145,8 +146,10 @@ static int painted_side(void *ctx, const double pt[2], const double dir[2])
     double n[2] = {-dir[1], dir[0]};
     for (int k = 0; k < 2; k++) {
         double e = k ? c->eps / 16 : c->eps;
-        int l = conica__polys_winding(c->dense, pt[0] + e * n[0], pt[1] + e * n[1]) != 0;
-        int r = conica__polys_winding(c->dense, pt[0] - e * n[0], pt[1] - e * n[1]) != 0;
+        double lx = pt[0] + e * n[0], ly = pt[1] + e * n[1];
+        double rx = pt[0] - e * n[0], ry = pt[1] - e * n[1];
+        int l = conica__polys_winding_boxed(c->dense, c->box, lx, ly) != 0;
+        int r = conica__polys_winding_boxed(c->dense, c->box, rx, ry) != 0;
         if (l != r)
             return l ? 1 : -1;
     }
@@ -199,7 +202,17 @@ static conica_code fill_polys(const conica_path *path, double tol, conica__fit_s
     buf b = {NULL, 0, 0};
     side_ctx sc;
     conica_code rc = CONICA_OK;
+    double *box = NULL;
+    /* many contours (a perforated plate): each probe reads the few whose
+     * box holds it */
+    if (dense && dense->n) {
+        box = malloc(4 * dense->n * sizeof *box);
+        if (!box)
+            return conica__fail(st, CONICA_ERR_NOMEM, 0, 0, "out of memory");
+        conica__polys_boxes(dense, box);
+    }
     sc.dense = dense;
+    sc.box = box;
     sc.eps = eps;
     for (size_t i = 0; i < path->nsub && rc == CONICA_OK; i++) {
         if (path->sub[i].kind != CONICA_PATH_DRAWN)
@@ -234,6 +247,7 @@ static conica_code fill_polys(const conica_path *path, double tol, conica__fit_s
             rc = conica__fail(st, CONICA_ERR_NOMEM, 0, 0, "out of memory");
     }
     free(b.xy);
+    free(box);
     return rc;
 }
 

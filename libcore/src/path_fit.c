@@ -41,6 +41,10 @@
 /* Tangents closer to parallel than this (radians): the piece is straight to
  * rounding; its chord is exact. */
 #define FIT_PARALLEL 1e-10
+/* CONICA__FIT_CHORDS through conica__path_fit() (a dense reference):
+ * each piece is the longest within the tolerance to this fraction of its
+ * length, not to the bisection's last step. */
+#define FIT_COARSE_REL (1.0 / 64)
 /* The painted side is sampled at this many points of each stretch, for
  * where another subpath crosses it. */
 #define FIT_SIDE_SAMPLES 8
@@ -296,7 +300,7 @@ static conica_code put(out_buf *o, double x, double y)
 /* The vertices of stretch [a, b] after P(a) (which is out already), up to
  * and with P(b) unless b is the segment's end. */
 static conica_code stretch(const seg_eval *e, double a, double b, int tangents, double tol,
-                           double max_turn, out_buf *o)
+                           double max_turn, int coarse, out_buf *o)
 {
     double u = a;
     conica_code rc = CONICA_OK;
@@ -310,6 +314,8 @@ static conica_code stretch(const seg_eval *e, double a, double b, int tangents, 
                     lo = mid;
                 else
                     hi = mid;
+                if (coarse && hi - lo <= FIT_COARSE_REL * (lo - u))
+                    break; /* within tol is all a reference needs */
             }
             v = lo > u ? lo : hi; /* no progress: a piece too small to matter */
         }
@@ -482,7 +488,8 @@ static conica_code walk(const conica_path *p, size_t sub, double tol, conica__fi
                                ((side == CONICA__FIT_IN && !convex) ||
                                 (side == CONICA__FIT_OUT && convex));
                 }
-                rc = stretch(&e, pa, pb, tangents, tol, fmin(max_turn, FIT_MAX_TURN), o);
+                rc = stretch(&e, pa, pb, tangents, tol, fmin(max_turn, FIT_MAX_TURN),
+                             side == CONICA__FIT_CHORDS && !tangent_ends, o);
             }
         }
         if (rc == CONICA_OK && tangent_ends)
