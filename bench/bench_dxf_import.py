@@ -29,20 +29,10 @@ tmp = tempfile.mkdtemp()
 
 
 def exact_of(path, tol):
-    doc = ezdxf.readfile(path)
-    scale = UNITS_MM.get(doc.header.get("$INSUNITS", 0), 1)
-    pieces = []
-    for e in doc.modelspace():
-        entity_samples(e, 200, pieces)
-    rough = np.concatenate([np.array(p, float) for p in pieces]) * scale
-    size = max(np.ptp(rough[:, 0]), np.ptp(rough[:, 1]), 1e-9)
-    m = int(min(50000, max(1000, math.pi * math.sqrt(size / (4e-3 * tol)))))
-    pieces = []
-    for e in doc.modelspace():
-        entity_samples(e, m, pieces)
-    pieces = [np.array(p, float) * scale for p in pieces if len(p) >= 2]
+    """check.py's exact geometry (samples within 1e-3 tol of the curves)."""
+    pieces, _size = exact_geometry(path, tol, 1.0, None, False)
     return (np.concatenate([p[:-1] for p in pieces]), np.concatenate([p[1:] for p in pieces]),
-            np.concatenate(pieces), len(list(doc.modelspace())))
+            np.concatenate(pieces), len(list(ezdxf.readfile(path).modelspace())))
 
 
 def deviation(polys, ex):

@@ -18,6 +18,10 @@
  * the fit is then checked against it with Clipper differences of offset
  * regions before anything is written.
  *
+ * A drawing already in the path model (a DXF's contours) takes the same
+ * fill construction and the same check (conica__scad_region_path): one
+ * fit-and-verify rule for every input.
+ *
  * Calls: libcore (path storage, path_fit.h, status helpers), the SVG
  * layer's scene types, scad_clip.h. */
 #include <math.h>
@@ -131,6 +135,7 @@ static conica_code map_path(const conica_path *src, const conica_svg_matrix *m, 
 
 typedef struct side_ctx {
     const conica__polys *dense;
+    const double *box; /* dense's polygon boxes (conica__polys_boxes), or NULL */
     double eps;
 } side_ctx;
 
@@ -141,8 +146,10 @@ static int painted_side(void *ctx, const double pt[2], const double dir[2])
     double n[2] = {-dir[1], dir[0]};
     for (int k = 0; k < 2; k++) {
         double e = k ? c->eps / 16 : c->eps;
-        int l = conica__polys_winding(c->dense, pt[0] + e * n[0], pt[1] + e * n[1]) != 0;
-        int r = conica__polys_winding(c->dense, pt[0] - e * n[0], pt[1] - e * n[1]) != 0;
+        double lx = pt[0] + e * n[0], ly = pt[1] + e * n[1];
+        double rx = pt[0] - e * n[0], ry = pt[1] - e * n[1];
+        int l = conica__polys_winding_boxed(c->dense, c->box, lx, ly) != 0;
+        int r = conica__polys_winding_boxed(c->dense, c->box, rx, ry) != 0;
         if (l != r)
             return l ? 1 : -1;
     }
@@ -177,49 +184,70 @@ static int encloses_nothing(const double *xy, size_t n, size_t *distinct)
     return 1;
 }
 
+/* The input line of subpath i of a source (its own line when it has none
+ * per subpath). */
+static size_t source_line(const conica__region_source *w, size_t i)
+{
+    return w->sub_line && i < w->nsub_line ? w->sub_line[i] : w->line;
+}
+
 /* Every subpath of path as a polygon (fit per side; CHORDS: dense) into raw.
- * it: warn (s->warn) about the subpaths that enclose no area, naming them
- * (NULL: quiet). */
+ * w: warn (s->warn) about the subpaths that enclose no area, naming them
+ * (NULL: quiet); an error names the subpath's line when w has them. */
 static conica_code fill_polys(const conica_path *path, double tol, conica__fit_side side,
                               const conica__polys *dense, double eps, size_t max_points,
-                              const conica_svg_item *it, const conica__region_settings *s,
+                              const conica__region_source *w, const conica__region_settings *s,
                               conica__polys *raw, conica_status *st)
 {
     buf b = {NULL, 0, 0};
     side_ctx sc;
     conica_code rc = CONICA_OK;
+    double *box = NULL;
+    /* many contours (a perforated plate): each probe reads the few whose
+     * box holds it */
+    if (dense && dense->n) {
+        box = malloc(4 * dense->n * sizeof *box);
+        if (!box)
+            return conica__fail(st, CONICA_ERR_NOMEM, 0, 0, "out of memory");
+        conica__polys_boxes(dense, box);
+    }
     sc.dense = dense;
+    sc.box = box;
     sc.eps = eps;
     for (size_t i = 0; i < path->nsub && rc == CONICA_OK; i++) {
         if (path->sub[i].kind != CONICA_PATH_DRAWN)
             continue;
+        size_t line = w ? source_line(w, i) : 0;
         if (path->sub[i].n == 0) { /* a lone point */
-            if (it && s->warn) {
+            if (w && s->warn) {
                 char msg[256];
-                snprintf(msg, sizeof msg, "%.100s: subpath %zu has 1 point (a polygon needs 3); "
-                         "skipped", it->name, i + 1);
-                s->warn(s->warn_ctx, it->line, msg);
+                snprintf(msg, sizeof msg, "%.100s: %s %zu has 1 point (a polygon needs 3); "
+                         "skipped", w->name, w->part, i + 1);
+                s->warn(s->warn_ctx, line, msg);
             }
             continue;
         }
         b.n = 0;
         rc = conica__path_fit(path, i, tol, side, dense ? painted_side : NULL, &sc, max_points,
                               &b.xy, &b.n, &b.cap, st);
+        if (rc != CONICA_OK && st && line)
+            st->line = line;
         size_t m;
-        if (rc == CONICA_OK && it && s->warn && b.n && encloses_nothing(b.xy, b.n, &m)) {
+        if (rc == CONICA_OK && w && s->warn && b.n && encloses_nothing(b.xy, b.n, &m)) {
             char msg[256];
             if (m < 3)
-                snprintf(msg, sizeof msg, "%.100s: subpath %zu has %zu point%s (a polygon needs 3); "
-                         "skipped", it->name, i + 1, m, m == 1 ? "" : "s");
+                snprintf(msg, sizeof msg, "%.100s: %s %zu has %zu point%s (a polygon needs 3); "
+                         "skipped", w->name, w->part, i + 1, m, m == 1 ? "" : "s");
             else
-                snprintf(msg, sizeof msg, "%.100s: subpath %zu has zero area (its points are "
-                         "collinear or it encloses no area); skipped", it->name, i + 1);
-            s->warn(s->warn_ctx, it->line, msg);
+                snprintf(msg, sizeof msg, "%.100s: %s %zu has zero area (its points are "
+                         "collinear or it encloses no area); skipped", w->name, w->part, i + 1);
+            s->warn(s->warn_ctx, line, msg);
         }
         if (rc == CONICA_OK && b.n >= 3 && conica__polys_add(raw, b.xy, b.n) != 0)
             rc = conica__fail(st, CONICA_ERR_NOMEM, 0, 0, "out of memory");
     }
     free(b.xy);
+    free(box);
     return rc;
 }
 
@@ -416,6 +444,45 @@ static conica_code stroke_region(const conica_svg_item *it, const item_paths *ip
 
 /* One item's material in the output frame: fit (fitted) and reference
  * (dense), each resolved and clipped. */
+/* The fill of path (output frame) under rule: its one-sided fit into
+ * fitted and its dense reference into dense, each resolved by Clipper.
+ * w: who warns about subpaths without area (NULL: quiet). */
+static conica_code fill_region(const conica_path *path, conica__clip_fill rule,
+                               const conica__region_source *w, const conica__region_settings *s,
+                               double scale, conica__polys *fitted, conica__polys *dense,
+                               conica_status *st)
+{
+    double T = s->tolerance, dT = T * CONICA__REGION_DENSE_FRACTION;
+    /* the fit's share: what the booleans' grid and the written digits leave */
+    double fT = T * (1 - CONICA__REGION_GRID_FRACTION - 2e-3);
+    conica__polys raw, res;
+    conica_code rc;
+    conica__polys_init(&raw);
+    conica__polys_init(&res);
+    /* the reference fill first: the fit reads its painted sides from it */
+    rc = fill_polys(path, dT, CONICA__FIT_CHORDS, NULL, 0, s->max_points, w, s, &raw, st);
+    if (rc == CONICA_OK)
+        rc = conica__clip_fill_region(&raw, rule, scale, 0, &res, st);
+    raw.n = raw.npts = 0;
+    if (rc == CONICA_OK) {
+        if (s->fit == CONICA__REGION_MIDDLE)
+            rc = fill_middle(path, fT, s->max_points, &raw, st);
+        else
+            rc = fill_polys(path, fT,
+                            s->fit == CONICA__REGION_INSIDE ? CONICA__FIT_IN : CONICA__FIT_OUT,
+                            &res, 0.25 * T, s->max_points, NULL, s, &raw, st);
+    }
+    if (rc == CONICA_OK && conica__polys_append(dense, &res) != 0)
+        rc = conica__fail(st, CONICA_ERR_NOMEM, 0, 0, "out of memory");
+    if (rc == CONICA_OK)
+        rc = conica__clip_fill_region(&raw, rule, scale, 0, &res, st);
+    if (rc == CONICA_OK && conica__polys_append(fitted, &res) != 0)
+        rc = conica__fail(st, CONICA_ERR_NOMEM, 0, 0, "out of memory");
+    conica__polys_free(&raw);
+    conica__polys_free(&res);
+    return rc;
+}
+
 static conica_code item_region(const conica_svg_item *it, int fill, int stroke,
                                const conica__region_settings *s, double height, double scale,
                                conica__polys *fitted, conica__polys *dense, conica_status *st)
@@ -423,45 +490,23 @@ static conica_code item_region(const conica_svg_item *it, int fill, int stroke,
     item_paths ip;
     conica_svg_matrix m = out_map(it, height);
     double T = s->tolerance, dT = T * CONICA__REGION_DENSE_FRACTION;
-    /* the fit's share: what the booleans' grid and the written digits leave */
-    double fT = T * (1 - CONICA__REGION_GRID_FRACTION - 2e-3);
-    conica__polys raw, res, sraw;
     conica_code rc;
     conica_path_init(&ip.local);
     conica_path_init(&ip.out);
-    conica__polys_init(&raw);
-    conica__polys_init(&res);
-    conica__polys_init(&sraw);
     rc = build_local(&it->path, &ip.local, st);
     if (rc == CONICA_OK)
         rc = map_path(&ip.local, &m, &ip.out, st);
     if (rc == CONICA_OK && fill) {
-        /* the reference fill first: the fit reads its painted sides from it */
-        rc = fill_polys(&ip.out, dT, CONICA__FIT_CHORDS, NULL, 0, s->max_points,
-                        stroke ? NULL : it, s, &raw, st);
-        if (rc == CONICA_OK)
-            rc = conica__clip_fill_region(&raw, it->fill_rule == CONICA_SVG_EVENODD
-                                                    ? CONICA__CLIP_EVENODD
-                                                    : CONICA__CLIP_NONZERO,
-                                          scale, 0, &res, st);
-        raw.n = raw.npts = 0;
-        if (rc == CONICA_OK) {
-            if (s->fit == CONICA__REGION_MIDDLE)
-                rc = fill_middle(&ip.out, fT, s->max_points, &raw, st);
-            else
-                rc = fill_polys(&ip.out, fT,
-                                s->fit == CONICA__REGION_INSIDE ? CONICA__FIT_IN : CONICA__FIT_OUT,
-                                &res, 0.25 * T, s->max_points, NULL, s, &raw, st);
-        }
-        if (rc == CONICA_OK && conica__polys_append(dense, &res) != 0)
-            rc = conica__fail(st, CONICA_ERR_NOMEM, 0, 0, "out of memory");
-        if (rc == CONICA_OK)
-            rc = conica__clip_fill_region(&raw, it->fill_rule == CONICA_SVG_EVENODD
-                                                    ? CONICA__CLIP_EVENODD
-                                                    : CONICA__CLIP_NONZERO,
-                                          scale, 0, &res, st);
-        if (rc == CONICA_OK && conica__polys_append(fitted, &res) != 0)
-            rc = conica__fail(st, CONICA_ERR_NOMEM, 0, 0, "out of memory");
+        conica__region_source w;
+        memset(&w, 0, sizeof w);
+        w.name = it->name;
+        w.part = "subpath";
+        w.line = it->line;
+        /* a stroked item's subpaths without area still draw: quiet */
+        rc = fill_region(&ip.out,
+                         it->fill_rule == CONICA_SVG_EVENODD ? CONICA__CLIP_EVENODD
+                                                             : CONICA__CLIP_NONZERO,
+                         stroke ? NULL : &w, s, scale, fitted, dense, st);
     }
     if (rc == CONICA_OK && stroke && it->st.width > 0) {
         /* the stroke is moved by (lt + at) towards the fit's side; at a miter
@@ -477,9 +522,6 @@ static conica_code item_region(const conica_svg_item *it, int fill, int stroke,
     }
     conica_path_free(&ip.local);
     conica_path_free(&ip.out);
-    conica__polys_free(&raw);
-    conica__polys_free(&res);
-    conica__polys_free(&sraw);
     return rc;
 }
 
@@ -673,31 +715,72 @@ static double scene_max_abs(const conica_svg_scene *sc, double height)
     return m;
 }
 
+/* The booleans' grid for coordinates up to mx: fine where they leave room
+ * (0 when even the coarsest grid cannot hold them). */
+static double region_scale(double tol, double mx)
+{
+    double scale = conica__clip_scale(tol, CONICA__REGION_GRID_FINE, mx);
+    return scale > 0 ? scale : conica__clip_scale(tol, CONICA__REGION_GRID_FRACTION, mx);
+}
+
+static conica_code too_large(conica_status *st)
+{
+    return conica__fail(st, CONICA_ERR_LIMIT, 0, 0,
+                        "the drawing is too large for the tolerance: the polygon booleans "
+                        "work on a grid of 1/100 of it and take at most 2.3e18 steps");
+}
+
+/* Every part's fit and reference resolved and oriented: nonzero unions
+ * them; the fit's touching vertices separated, then checked against the
+ * reference; on success the fit moves to out and sx to *stats. */
+static conica_code finish_region(const conica__polys *fitted, const conica__polys *dense,
+                                 const conica__region_settings *s, double scale,
+                                 conica__region_stats *sx, conica__polys *out,
+                                 conica__region_stats *stats, conica_status *st)
+{
+    conica__polys ufit, uref;
+    conica_code rc;
+    conica__polys_init(&ufit);
+    conica__polys_init(&uref);
+    rc = conica__clip_fill_region(fitted, CONICA__CLIP_NONZERO, scale, 1, &ufit, st);
+    if (rc == CONICA_OK)
+        rc = conica__clip_fill_region(dense, CONICA__CLIP_NONZERO, scale, 0, &uref, st);
+    if (rc == CONICA_OK && separate_touching(&ufit, s->tolerance) == SIZE_MAX)
+        rc = conica__fail(st, CONICA_ERR_NOMEM, 0, 0, "out of memory");
+    if (rc == CONICA_OK)
+        rc = check(&ufit, &uref, s, scale, st);
+    if (rc == CONICA_OK) {
+        sx->fit_points = ufit.npts;
+        sx->dense_points = uref.npts;
+        conica__polys_free(out);
+        *out = ufit;
+        conica__polys_init(&ufit);
+        if (stats)
+            *stats = *sx;
+        conica__ok(st);
+    }
+    conica__polys_free(&ufit);
+    conica__polys_free(&uref);
+    return rc;
+}
+
 conica_code conica__scad_region(const conica_svg_scene *sc, const conica__region_settings *s,
                                 conica__polys *out, conica__region_stats *stats,
                                 conica_status *st)
 {
-    double height = sc->has_size ? sc->height : 0.0, scale;
-    conica__polys fitted, dense, ufit, uref;
+    double height, scale;
+    conica__polys fitted, dense;
     conica_code rc = CONICA_OK;
     conica__region_stats sx;
     memset(&sx, 0, sizeof sx);
     if (!sc || !s || !out || !(s->tolerance > 0))
         return conica__fail(st, CONICA_ERR_ARG, 0, 0, "conica__scad_region: bad argument");
-    {
-        double mx = scene_max_abs(sc, height);
-        scale = conica__clip_scale(s->tolerance, CONICA__REGION_GRID_FINE, mx);
-        if (!(scale > 0))
-            scale = conica__clip_scale(s->tolerance, CONICA__REGION_GRID_FRACTION, mx);
-    }
+    height = sc->has_size ? sc->height : 0.0;
+    scale = region_scale(s->tolerance, scene_max_abs(sc, height));
     if (!(scale > 0))
-        return conica__fail(st, CONICA_ERR_LIMIT, 0, 0,
-                            "the drawing is too large for the tolerance: the polygon booleans "
-                            "work on a grid of 1/100 of it and take at most 2.3e18 steps");
+        return too_large(st);
     conica__polys_init(&fitted);
     conica__polys_init(&dense);
-    conica__polys_init(&ufit);
-    conica__polys_init(&uref);
     for (size_t i = 0; i < sc->n && rc == CONICA_OK; i++) {
         const conica_svg_item *it = &sc->items[i];
         int fill = s->paint == CONICA__PAINT_AS_DRAWN ? it->fill
@@ -726,28 +809,41 @@ conica_code conica__scad_region(const conica_svg_scene *sc, const conica__region
             memcpy(st->message, msg, sizeof msg);
         }
     }
-    /* every item's region is resolved and oriented: nonzero unions them */
     if (rc == CONICA_OK)
-        rc = conica__clip_fill_region(&fitted, CONICA__CLIP_NONZERO, scale, 1, &ufit, st);
-    if (rc == CONICA_OK)
-        rc = conica__clip_fill_region(&dense, CONICA__CLIP_NONZERO, scale, 0, &uref, st);
-    if (rc == CONICA_OK && separate_touching(&ufit, s->tolerance) == SIZE_MAX)
-        rc = conica__fail(st, CONICA_ERR_NOMEM, 0, 0, "out of memory");
-    if (rc == CONICA_OK)
-        rc = check(&ufit, &uref, s, scale, st);
-    if (rc == CONICA_OK) {
-        sx.fit_points = ufit.npts;
-        sx.dense_points = uref.npts;
-        conica__polys_free(out);
-        *out = ufit;
-        conica__polys_init(&ufit);
-        if (stats)
-            *stats = sx;
-        conica__ok(st);
-    }
+        rc = finish_region(&fitted, &dense, s, scale, &sx, out, stats, st);
     conica__polys_free(&fitted);
     conica__polys_free(&dense);
-    conica__polys_free(&ufit);
-    conica__polys_free(&uref);
+    return rc;
+}
+
+conica_code conica__scad_region_path(const conica__region_source *src,
+                                     const conica__region_settings *s, conica__polys *out,
+                                     conica__region_stats *stats, conica_status *st)
+{
+    double mx = 0, scale;
+    conica__polys fitted, dense;
+    conica_code rc;
+    conica__region_stats sx;
+    memset(&sx, 0, sizeof sx);
+    if (!src || !src->path || !s || !out || !(s->tolerance > 0))
+        return conica__fail(st, CONICA_ERR_ARG, 0, 0, "conica__scad_region_path: bad argument");
+    /* the curves lie in the hull of their control points */
+    for (size_t k = 0; k < src->path->npt; k++)
+        mx = fmax(mx, fmax(fabs(src->path->pt[3 * k]), fabs(src->path->pt[3 * k + 1])));
+    for (size_t i = 0; i < src->path->nsub; i++)
+        mx = fmax(mx, fmax(fabs(src->path->sub[i].x0), fabs(src->path->sub[i].y0)));
+    scale = region_scale(s->tolerance, mx);
+    if (!(scale > 0))
+        return too_large(st);
+    for (size_t i = 0; i < src->path->nsub; i++)
+        sx.subpaths += src->path->sub[i].kind == CONICA_PATH_DRAWN;
+    sx.fills = 1;
+    conica__polys_init(&fitted);
+    conica__polys_init(&dense);
+    rc = fill_region(src->path, src->rule, src, s, scale, &fitted, &dense, st);
+    if (rc == CONICA_OK)
+        rc = finish_region(&fitted, &dense, s, scale, &sx, out, stats, st);
+    conica__polys_free(&fitted);
+    conica__polys_free(&dense);
     return rc;
 }

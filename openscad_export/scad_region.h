@@ -3,7 +3,8 @@
  * fills under their fill rule and strokes as areas, clipped by their
  * viewports and unioned in the output frame (y up), fitted to one side of
  * the drawn region and checked against a dense polygon of it before
- * anything is written. */
+ * anything is written. A drawing already in the path model (DXF) takes
+ * the same fit and check. */
 #ifndef CONICA_SCAD_REGION_H
 #define CONICA_SCAD_REGION_H
 
@@ -76,5 +77,26 @@ typedef struct conica__region_stats {
 conica_code conica__scad_region(const conica_svg_scene *sc, const conica__region_settings *s,
                                 conica__polys *out, conica__region_stats *stats,
                                 conica_status *st);
+
+/* A drawing already in the path model (scadprofile's DXF contours): every
+ * drawn subpath of path, in the output frame (y up), filled under rule.
+ * The names are for messages: a subpath without area is warned about as
+ * "NAME: PART K" at line sub_line[K - 1] (or line when there is none), and
+ * an error in a subpath's fit gets that line. */
+typedef struct conica__region_source {
+    const conica_path *path;
+    conica__clip_fill rule;
+    const char *name;       /* "the drawing" */
+    const char *part;       /* "contour" */
+    size_t line;
+    const size_t *sub_line; /* optional: nsub_line entries */
+    size_t nsub_line;
+} conica__region_source;
+
+/* The region of src, fitted per s->fit and checked exactly as
+ * conica__scad_region() does (s->paint is not read); same results. */
+conica_code conica__scad_region_path(const conica__region_source *src,
+                                     const conica__region_settings *s, conica__polys *out,
+                                     conica__region_stats *stats, conica_status *st);
 
 #endif

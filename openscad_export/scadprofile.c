@@ -147,8 +147,8 @@ static const cli_opt opts[] = {
      "keep the input geometry: only flatten curves (SVG,\n.spl)", {0, 0, 0}},
     {OPT_FIT, "fit", CLI_ARG_REQUIRED, "F", "inside|outside|middle|clearance",
      "which side of the painted region the polygon keeps\n"
-     "to (SVG input; point-normal and spline input:\n"
-     "inside only):\n"
+     "to (SVG and DXF input; point-normal and spline\n"
+     "input: inside only):\n"
      "  inside     within the painted region: the part\n"
      "             never larger than drawn, its holes\n"
      "             never smaller (default)\n"
@@ -1007,6 +1007,30 @@ static int scene_in_range(const options *o, const char *name, const conica_svg_s
     return 0;
 }
 
+/* --fit as the region's side: clearance is inside (holes drawn at least
+ * as large are the inside polygon's). */
+static conica__region_fit region_fit(fit f)
+{
+    return f == FIT_OUTSIDE ? CONICA__REGION_OUTSIDE
+           : f == FIT_MIDDLE ? CONICA__REGION_MIDDLE
+                             : CONICA__REGION_INSIDE;
+}
+
+/* The fitted region into prof as one group of simple contours, named gname. */
+static int add_region(const char *name, const char *gname, const conica__polys *region,
+                      conica_scad_profile *prof)
+{
+    conica_status st;
+    size_t g;
+    if (conica_scad_add_group(prof, gname, CONICA_SCAD_FILL_NONZERO, 0, &g, &st) != CONICA_OK)
+        return status_error(name, &st);
+    for (size_t i = 0; i < region->n; i++)
+        if (conica_scad_add_contour(prof, g, region->xy + 2 * region->start[i],
+                                    region->start[i + 1] - region->start[i], &st) != CONICA_OK)
+            return status_error(name, &st);
+    return 0;
+}
+
 /* What the document paints (the SVG layer's render: <use>, viewports,
  * styles, transforms) as one region: fills under their fill rule and
  * strokes as areas, clipped and unioned with Clipper, fitted to one side
@@ -1023,7 +1047,7 @@ static int load_svg_region(const options *o, const char *name, const char *buf, 
     conica__polys region;
     conica_status st;
     char **ids = NULL;
-    size_t nids = 0, g;
+    size_t nids = 0;
     int result = 0;
 
     if (conica_svg_doc_load(buf, len, &o->limits, &doc, &st) != CONICA_OK)
@@ -1073,9 +1097,7 @@ static int load_svg_region(const options *o, const char *name, const char *buf, 
     memset(&gs, 0, sizeof gs);
     /* the written digits get tolerance * ROUND_FRACTION of the tolerance */
     gs.tolerance = o->tolerance * (1 - CONICA_SCAD_ROUND_FRACTION);
-    gs.fit = o->fit == FIT_OUTSIDE  ? CONICA__REGION_OUTSIDE
-             : o->fit == FIT_MIDDLE ? CONICA__REGION_MIDDLE
-                                    : CONICA__REGION_INSIDE;
+    gs.fit = region_fit(o->fit);
     gs.paint = o->paint;
     gs.warn = svg_warn;
     gs.warn_ctx = (void *)name;
@@ -1110,15 +1132,7 @@ static int load_svg_region(const options *o, const char *name, const char *buf, 
                                : "");
         goto done;
     }
-    if (conica_scad_add_group(prof, "painted region", CONICA_SCAD_FILL_NONZERO, 0, &g, &st) !=
-        CONICA_OK) {
-        result = status_error(name, &st);
-        goto done;
-    }
-    for (size_t i = 0; i < region.n && result == 0; i++)
-        if (conica_scad_add_contour(prof, g, region.xy + 2 * region.start[i],
-                                    region.start[i + 1] - region.start[i], &st) != CONICA_OK)
-            result = status_error(name, &st);
+    result = add_region(name, "painted region", &region, prof);
 done:
     conica__polys_free(&region);
     conica_svg_scene_free(&scene);
@@ -1164,15 +1178,19 @@ static char *dxf_note(const conica_dxf_drawing *d, const char *unit)
     return t;
 }
 
-/* A DXF drawing (conica/dxf.h) into prof[r] for each fit mode: one group
- * of every contour, even-odd, so holes are holes whatever their layer;
- * the curves flattened within the tolerance of the entities themselves. */
-static int load_dxf(options *o, const char *name, const char *buf, size_t len, const fit *fits,
-                    size_t nruns, conica_scad_profile *prof, stats *sx)
+/* A DXF drawing (conica/dxf.h) into prof: every contour filled even-odd,
+ * so holes are holes whatever their layer, as one region fitted to one
+ * side of the entities and checked against them (scad_region.h, the SVG
+ * region's own fit and check). */
+static int load_dxf(options *o, const char *name, const char *buf, size_t len,
+                    conica_scad_profile *prof, stats *sx)
 {
     conica_dxf_settings ds = conica_dxf_defaults();
     conica_dxf_drawing d;
-    conica_path_result res;
+    conica__region_settings gs;
+    conica__region_source src;
+    conica__region_stats gx;
+    conica__polys region;
     conica_status st;
     int result = 0;
     if (o->levels >= 0)
@@ -1207,37 +1225,32 @@ static int load_dxf(options *o, const char *name, const char *buf, size_t len, c
         conica_dxf_drawing_free(&d);
         return cli_error(PROG, name, "out of memory");
     }
-    conica_path_settings ps = conica_path_defaults();
-    ps.tolerance = o->tolerance * (1 - CONICA_SCAD_ROUND_FRACTION);
-    ps.max_points = o->max_points * 16;
-    for (size_t r = 0; r < nruns && result == 0; r++) {
-        size_t g;
-        ps.fit = (conica_path_fit)fits[r];
-        conica_path_result_init(&res);
-        if (conica_path_flatten(&d.path, &ps, &res, &st) != CONICA_OK) {
-            if (st.offset < d.path.nsub)
-                st.line = d.sub_line[st.offset];
-            result = status_error(name, &st);
-        } else if (conica_scad_add_group(&prof[r], "", CONICA_SCAD_FILL_EVENODD, 0, &g, &st) !=
-                   CONICA_OK) {
-            result = status_error(name, &st);
-        }
-        for (size_t i = 0; i < res.n && result == 0; i++) {
-            const conica_path_polyline *pl = &res.lines[i];
-            if (r == 0)
-                sx->dense_points += pl->n;
-            if (pl->n == 0)
-                continue;
-            if (conica_scad_add_contour(&prof[r], g, pl->xy, pl->n, &st) != CONICA_OK) {
-                char where[1024];
-                snprintf(where, sizeof where, "%s:%zu", name, d.sub_line[pl->subpath]);
-                result = cli_error(PROG, where, "%s", st.message);
-            } else {
-                prof[r].contours[prof[r].ncontours - 1].subpath = pl->subpath + 1;
-            }
-        }
-        conica_path_result_free(&res);
-    }
+    memset(&gs, 0, sizeof gs);
+    /* the written digits get tolerance * ROUND_FRACTION of the tolerance */
+    gs.tolerance = o->tolerance * (1 - CONICA_SCAD_ROUND_FRACTION);
+    gs.fit = region_fit(o->fit);
+    gs.warn = dxf_warn;
+    gs.warn_ctx = (void *)name;
+    gs.max_points = o->max_points * 16;
+    memset(&src, 0, sizeof src);
+    src.path = &d.path;
+    src.rule = CONICA__CLIP_EVENODD;
+    src.name = "the drawing";
+    src.part = "contour";
+    src.sub_line = d.sub_line;
+    src.nsub_line = d.path.nsub;
+    conica__polys_init(&region);
+    memset(&gx, 0, sizeof gx);
+    if (conica__scad_region_path(&src, &gs, &region, &gx, &st) != CONICA_OK)
+        result = status_error(name, &st);
+    else if (region.n == 0)
+        result = cli_error(PROG, name, "nothing to write: none of the %zu contour%s encloses an "
+                                       "area",
+                           gx.subpaths, cli_plural(gx.subpaths));
+    else
+        result = add_region(name, "drawing", &region, prof);
+    sx->dense_points = gx.dense_points;
+    conica__polys_free(&region);
     conica_dxf_drawing_free(&d);
     return result;
 }
@@ -1473,7 +1486,7 @@ static int profile_file(void *ctx, const char *in, const char *outp)
         free(buf);
         return cli_usage_error(PROG,
                                "--fit %s: %s input supports only --fit inside (for now; "
-                               "--fit outside, middle and clearance need SVG input)",
+                               "--fit outside, middle and clearance need SVG or DXF input)",
                                fit_names[o.fit], k == IN_SPLINE ? "spline" : "point-normal");
     }
     if (!o.module_given) {
@@ -1495,17 +1508,17 @@ static int profile_file(void *ctx, const char *in, const char *outp)
     /* --fit clearance: an inside run, and an outside one for the holes */
     /* --levels on SVG smooths each path as it is (the region's booleans
      * need polygons): --fit clearance runs inside and outside there */
-    int region = k == IN_SVG && o.levels < 0;
+    int region = (k == IN_SVG && o.levels < 0) || k == IN_DXF;
     fit fits[2] = {o.fit == FIT_CLEARANCE ? FIT_INSIDE : o.fit, FIT_OUTSIDE};
     size_t nruns = o.fit == FIT_CLEARANCE && !region ? 2 : 1;
-    if (region)
+    if (region && k == IN_SVG)
         rc = load_svg_region(&o, name, buf, len, &prof[0], &sx);
     else if (k == IN_SVG)
         rc = load_svg(&o, name, buf, len, fits, nruns, prof, &sx);
     else if (k == IN_SPLINE)
         rc = load_spline(&o, name, buf, len, &prof[0], &sx);
     else if (k == IN_DXF)
-        rc = load_dxf(&o, name, buf, len, fits, nruns, prof, &sx);
+        rc = load_dxf(&o, name, buf, len, &prof[0], &sx);
     else
         rc = load_points(&o, name, buf, len, &prof[0], &sx);
     if (rc != 0)

@@ -41,6 +41,13 @@
 /* Tangents closer to parallel than this (radians): the piece is straight to
  * rounding; its chord is exact. */
 #define FIT_PARALLEL 1e-10
+/* CONICA__FIT_CHORDS through conica__path_fit() (a dense reference):
+ * each piece is the longest within the tolerance to this fraction of its
+ * length, not to the bisection's last step. */
+#define FIT_COARSE_REL (1.0 / 64)
+/* The painted side is sampled at this many points of each stretch, for
+ * where another subpath crosses it. */
+#define FIT_SIDE_SAMPLES 8
 
 /* A segment's curve in homogeneous form: position and first two
  * derivatives at t. */
@@ -293,7 +300,7 @@ static conica_code put(out_buf *o, double x, double y)
 /* The vertices of stretch [a, b] after P(a) (which is out already), up to
  * and with P(b) unless b is the segment's end. */
 static conica_code stretch(const seg_eval *e, double a, double b, int tangents, double tol,
-                           double max_turn, out_buf *o)
+                           double max_turn, int coarse, out_buf *o)
 {
     double u = a;
     conica_code rc = CONICA_OK;
@@ -307,6 +314,8 @@ static conica_code stretch(const seg_eval *e, double a, double b, int tangents, 
                     lo = mid;
                 else
                     hi = mid;
+                if (coarse && hi - lo <= FIT_COARSE_REL * (lo - u))
+                    break; /* within tol is all a reference needs */
             }
             v = lo > u ? lo : hi; /* no progress: a piece too small to matter */
         }
@@ -339,6 +348,45 @@ static int stretch_side(const seg_eval *e, double a, double b, conica__painted_f
     seg_at(e, m, P, NULL, NULL);
     tangent(e, m, 1, t);
     return painted(ctx, P, t);
+}
+
+/* Where the painted side changes within [a, b] (another subpath of the
+ * region crosses the curve there, as two overlapping contours filled
+ * even-odd do): the side sampled at FIT_SIDE_SAMPLES points, each change
+ * between two samples found by bisection. At most cap parameters,
+ * ascending, into out; their number. A change missed between two samples
+ * (two crossings close together) leaves a stretch on the wrong side, which
+ * the caller's check against the drawn region finds. */
+static size_t side_changes(const seg_eval *e, double a, double b, conica__painted_fn painted,
+                           void *ctx, double *out, size_t cap)
+{
+    size_t n = 0;
+    double tp = a;
+    int sp = 0;
+    if (!painted)
+        return 0;
+    for (int i = 0; i <= FIT_SIDE_SAMPLES; i++) {
+        double t = a + (b - a) * (i + 0.5) / (FIT_SIDE_SAMPLES + 1), P[2], d[2];
+        seg_at(e, t, P, NULL, NULL);
+        tangent(e, t, 1, d);
+        int si = painted(ctx, P, d);
+        if (i > 0 && si != sp && n < cap) {
+            double lo = tp, hi = t;
+            for (int k = 0; k < FIT_BISECT; k++) {
+                double mid = 0.5 * (lo + hi);
+                seg_at(e, mid, P, NULL, NULL);
+                tangent(e, mid, 1, d);
+                if (painted(ctx, P, d) == sp)
+                    lo = mid;
+                else
+                    hi = mid;
+            }
+            out[n++] = 0.5 * (lo + hi);
+        }
+        tp = t;
+        sp = si;
+    }
+    return n;
 }
 
 /* Strokes: a point this far along each curved segment's end tangents, so
@@ -420,18 +468,29 @@ static conica_code walk(const conica_path *p, size_t sub, double tol, conica__fi
         size_t i0 = *o->n - 1; /* where the segment's start went */
         for (size_t k = 0; k <= nc && rc == CONICA_OK; k++) {
             double a = k ? cut[k - 1] : 0.0, b = k < nc ? cut[k] : 1.0;
-            int tangents = 0;
-            if (side != CONICA__FIT_CHORDS) {
-                int ps = stretch_side(&e, a, b, painted, ctx);
-                int ts = turn_sign(&e, 0.5 * (a + b));
-                /* the painted region is convex here when the curve turns
-                 * towards the painted side; chords then lie inside it */
-                int convex = ps != 0 && ts == ps;
-                tangents = ps != 0 && ts != 0 &&
-                           ((side == CONICA__FIT_IN && !convex) ||
-                            (side == CONICA__FIT_OUT && convex));
+            double sc[FIT_SIDE_SAMPLES + 2];
+            size_t ns = 0;
+            if (side != CONICA__FIT_CHORDS)
+                ns = side_changes(&e, a, b, painted, ctx, sc, FIT_SIDE_SAMPLES);
+            sc[ns] = b;
+            /* each piece between changes of the painted side on its own */
+            for (size_t h = 0; h <= ns && rc == CONICA_OK; h++) {
+                double pa = h ? sc[h - 1] : a, pb = sc[h];
+                int tangents = 0;
+                if (side != CONICA__FIT_CHORDS) {
+                    int ps = stretch_side(&e, pa, pb, painted, ctx);
+                    int ts = turn_sign(&e, 0.5 * (pa + pb));
+                    /* the painted region is convex here when the curve
+                     * turns towards the painted side; chords then lie
+                     * inside it */
+                    int convex = ps != 0 && ts == ps;
+                    tangents = ps != 0 && ts != 0 &&
+                               ((side == CONICA__FIT_IN && !convex) ||
+                                (side == CONICA__FIT_OUT && convex));
+                }
+                rc = stretch(&e, pa, pb, tangents, tol, fmin(max_turn, FIT_MAX_TURN),
+                             side == CONICA__FIT_CHORDS && !tangent_ends, o);
             }
-            rc = stretch(&e, a, b, tangents, tol, fmin(max_turn, FIT_MAX_TURN), o);
         }
         if (rc == CONICA_OK && tangent_ends)
             rc = add_end_tangents(&e, tol, chord, q, qe, i0, o);

@@ -10,7 +10,8 @@
 
 /* Which way the polygon may leave the drawn curve. */
 typedef enum conica__fit_side {
-    CONICA__FIT_CHORDS = 0, /* vertices on the curve, chords within the tolerance both ways */
+    CONICA__FIT_CHORDS = 0, /* vertices on the curve, chords within the tolerance both ways
+                               (a reference: each the longest to 1/64 of its length) */
     CONICA__FIT_IN,         /* the polygon within the painted region */
     CONICA__FIT_OUT         /* the polygon contains the painted region */
 } conica__fit_side;

@@ -77,6 +77,30 @@ msp.add_open_spline([(30, 20), (20, 30), (10, 10), (0, 20)], degree=3)
 msp.add_line((0, 0), (0, 20))
 save(doc, "mixed_chain.dxf")
 
+# curves meeting straight edges at corners (issue 35 / 31: the old fit
+# moved such a corner off its line): a plate whose convex top ARC meets
+# its vertical sides, a concave notch ARC in its bottom edge, and a
+# D-shaped hole (an ARC closed by a LINE), all LINE/ARC entities
+doc, msp = new()
+msp.add_line((0, 0), (15, 0))
+msp.add_arc((20, 0), 5, 0, 180)                           # the notch, into the material
+msp.add_line((25, 0), (40, 0))
+msp.add_line((40, 0), (40, 10))
+a = math.degrees(math.atan2(10, 20))
+msp.add_arc((20, 0), math.sqrt(500), a, 180 - a)          # the top, (40, 10) to (0, 10)
+msp.add_line((0, 10), (0, 0))
+msp.add_arc((30, 10), 4, 270, 90)                         # the hole: (30, 6) to (30, 14)
+msp.add_line((30, 14), (30, 6))
+save(doc, "corner_plate.dxf")
+
+# overlapping contours: two CIRCLEs that cross, filled even-odd as
+# OpenSCAD's import() reads them (the lens is not material: two crescents
+# that meet where the circles cross)
+doc, msp = new()
+msp.add_circle((0, 0), 10)
+msp.add_circle((12, 0), 10)
+save(doc, "overlap.dxf")
+
 # an outline that does not close (a gap of 0.5)
 doc, msp = new()
 msp.add_line((0, 0), (10, 0))
