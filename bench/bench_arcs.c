@@ -13,7 +13,8 @@
  * CHECK_SAMPLES curve points against its polyline). Prints, asserts
  * nothing.
  *
- * usage: build/bench/bench_arcs [--quick] */
+ * usage: build/bench/bench_arcs [--quick]
+ *        build/bench/bench_arcs --time SET T REPS  (conica alone, see time_set) */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -177,14 +178,46 @@ static int cmp_d(const void *a, const void *b)
     return x < y ? -1 : x > y;
 }
 
+/* --time SET T REPS: conica alone on the 1000 curves of set SET (0 cubic
+ * .. 4 rational quadratic) at T, REPS times: CPU per curve and points (for
+ * callgrind, or to compare builds without cairo's noise). */
+static int time_set(int set, double T, int reps)
+{
+    curve *cv = malloc(N_TIME * sizeof *cv);
+    double *xy = malloc(2 * XY_CAP * sizeof *xy);
+    if (!cv || !xy || set < 0 || set >= SET_COUNT || reps < 1)
+        return 1;
+    conica_polyline pl;
+    conica_polyline_init(&pl);
+    rng = 0x9E3779B97F4A7C15ull + (unsigned long long)set;
+    for (size_t i = 0; i < N_TIME; i++)
+        make_curve(set, &cv[i]);
+    size_t pts = 0;
+    double t0 = cpu_now();
+    for (int r = 0; r < reps; r++)
+        for (size_t i = 0; i < N_TIME; i++)
+            pts += conica_flat(&cv[i], T, xy, &pl);
+    double t = (cpu_now() - t0) / reps / N_TIME;
+    printf("%s, T = %g: %.3f us per curve, %.1f points\n", set_name[set], T, 1e6 * t,
+           (double)pts / reps / N_TIME);
+    for (size_t i = 0; i < N_TIME; i++)
+        conica_bspline_free(&cv[i].s);
+    conica_polyline_free(&pl);
+    free(cv);
+    free(xy);
+    return 0;
+}
+
 int main(int argc, char **argv)
 {
     size_t ntime = N_TIME, ngreedy = N_GREEDY;
+    if (argc == 5 && strcmp(argv[1], "--time") == 0)
+        return time_set(atoi(argv[2]), atof(argv[3]), atoi(argv[4]));
     if (argc > 1 && strcmp(argv[1], "--quick") == 0) {
         ntime = 200;
         ngreedy = 10;
     } else if (argc > 1) {
-        fprintf(stderr, "usage: bench_arcs [--quick]\n");
+        fprintf(stderr, "usage: bench_arcs [--quick | --time SET T REPS]\n");
         return 2;
     }
     curve *cv = malloc(ntime * sizeof *cv);

@@ -21,7 +21,9 @@
  *                   0.3 cos 3t + 0.1 sin 5t) of n points at the origin and
  *                   at (5000, 3000), with the inflection points inserted
  *
- *   build/bench/bench_scaling [--max N]   (largest n, default 10^6) */
+ *   build/bench/bench_scaling [--max N]   (largest n, default 10^6)
+ *   build/bench/bench_scaling --blob N R LEVELS   (the blob of radius R at
+ *       the origin and at (5000, 3000): counts, CPU and how far apart) */
 #define _DEFAULT_SOURCE /* wait4 */
 #include <math.h>
 #include <stdio.h>
@@ -107,6 +109,37 @@ static char *svg_doc_text(size_t n, size_t paths, size_t *len)
     return t;
 }
 
+/* The closed blob r = R (1 + 0.3 cos 3t + 0.1 sin 5t) of n points around
+ * (ox, oy) subdivided `levels` times into *o (with *info): its CPU
+ * seconds, or -1. */
+static double blob_subdivide(size_t n, double R, double ox, double oy, int levels,
+                             conica_curve *o, conica_subdiv_info *info)
+{
+    double *xy = malloc(2 * n * sizeof *xy), t0, t = -1;
+    if (!xy)
+        return -1;
+    for (size_t i = 0; i < n; i++) {
+        double a = 2 * M_PI * (double)i / (double)n;
+        double r = R * (1 + 0.3 * cos(3 * a) + 0.1 * sin(5 * a));
+        xy[2 * i] = ox + r * cos(a);
+        xy[2 * i + 1] = oy + r * sin(a);
+    }
+    conica_curve c;
+    conica_curve_init(&c);
+    conica_curve_init(o);
+    conica_subdiv_info_init(info);
+    if (conica_curve_set(xy, NULL, n, 1, &c, NULL) != CONICA_OK)
+        return -1;
+    free(xy);
+    conica_subdiv_settings s = conica_subdiv_defaults();
+    s.levels = levels;
+    t0 = cpu_now();
+    if (conica_subdivide(&c, &s, o, info, NULL) == CONICA_OK)
+        t = cpu_now() - t0;
+    conica_curve_free(&c);
+    return t;
+}
+
 /* Run job j on size n in this (child) process: its CPU seconds, or -1. */
 static double run_job(int j, size_t n)
 {
@@ -180,29 +213,55 @@ static double run_job(int j, size_t n)
             conica_svg_doc_save(doc, &out, &olen, NULL) == CONICA_OK)
             t = cpu_now() - t0;
     } else {
-        double ox = j == J_SUB_FAR ? 5000 : 0, oy = j == J_SUB_FAR ? 3000 : 0;
-        double *xy = malloc(2 * n * sizeof *xy);
-        if (!xy)
-            return -1;
-        for (size_t i = 0; i < n; i++) {
-            double a = 2 * M_PI * (double)i / (double)n;
-            double r = 100 * (1 + 0.3 * cos(3 * a) + 0.1 * sin(5 * a));
-            xy[2 * i] = ox + r * cos(a);
-            xy[2 * i + 1] = oy + r * sin(a);
-        }
-        conica_curve c, o;
-        conica_curve_init(&c);
-        conica_curve_init(&o);
-        if (conica_curve_set(xy, NULL, n, 1, &c, NULL) != CONICA_OK)
-            return -1;
-        free(xy);
-        conica_subdiv_settings s = conica_subdiv_defaults();
-        s.levels = 4;
-        t0 = cpu_now();
-        if (conica_subdivide(&c, &s, &o, NULL, NULL) == CONICA_OK)
-            t = cpu_now() - t0;
+        conica_curve o;
+        conica_subdiv_info info;
+        t = blob_subdivide(n, 100, j == J_SUB_FAR ? 5000 : 0, j == J_SUB_FAR ? 3000 : 0, 4, &o,
+                           &info);
     }
     return t;
+}
+
+/* --blob N R LEVELS: the blob of radius R at the origin and at (5000,
+ * 3000), its CPU, inflection points, grown patches and fallbacks, and how
+ * far the far output minus (5000, 3000) is from the near one, in ulps of
+ * 5000 (positions) and absolutely (unit normals), away from 32 input
+ * points either side of each inflection point (whose edge the input's own
+ * rounding decides). */
+static int blob_table(size_t n, double R, int levels)
+{
+    conica_curve o[2];
+    conica_subdiv_info info[2];
+    double t[2], dp = 0, dn = 0, ulp = nextafter(5000.0, 1e9) - 5000.0;
+    for (int k = 0; k < 2; k++)
+        if ((t[k] = blob_subdivide(n, R, k ? 5000 : 0, k ? 3000 : 0, levels, &o[k], &info[k])) < 0)
+            return 1;
+    if (o[0].n != o[1].n)
+        return 1;
+    size_t w = (size_t)32 << levels;
+    for (size_t i = 0; i < o[0].n; i++) {
+        int skip = 0;
+        for (int k = 0; k < 2; k++)
+            for (size_t m = 0; m < info[k].inflections; m++) {
+                size_t d = info[k].inflection_index[m];
+                skip |= i + w >= d && i <= d + w;
+            }
+        if (skip)
+            continue;
+        dp = fmax(dp, fmax(fabs(o[1].xy[2 * i] - 5000 - o[0].xy[2 * i]),
+                           fabs(o[1].xy[2 * i + 1] - 3000 - o[0].xy[2 * i + 1])));
+        dn = fmax(dn, fmax(fabs(o[1].nxy[2 * i] - o[0].nxy[2 * i]),
+                           fabs(o[1].nxy[2 * i + 1] - o[0].nxy[2 * i + 1])));
+    }
+    printf("| blob R = %g, %zu points, %d levels | inflections | grown | fallbacks | CPU s |\n"
+           "|---|---|---|---|---|\n",
+           R, n, levels);
+    for (int k = 0; k < 2; k++)
+        printf("| at %s | %zu | %zu | %zu | %.3f |\n", k ? "(5000, 3000)" : "(0, 0)",
+               info[k].inflections, info[k].patch_grown, info[k].midpoint_fallbacks, t[k]);
+    printf("\nfar - (5000, 3000) against near, outside 32 input points of the inflection points: "
+           "positions %.2f ulps of 5000, normals %.2g\n",
+           dp / ulp, dn);
+    return 0;
 }
 
 /* Job j at size n in a child: CPU seconds (or -1) and peak RSS in MB. */
@@ -237,8 +296,10 @@ int main(int argc, char **argv)
     size_t max = 1000000;
     if (argc == 3 && strcmp(argv[1], "--max") == 0)
         max = strtoul(argv[2], NULL, 10);
+    else if (argc == 5 && strcmp(argv[1], "--blob") == 0)
+        return blob_table(strtoul(argv[2], NULL, 10), atof(argv[3]), atoi(argv[4]));
     else if (argc != 1) {
-        fprintf(stderr, "usage: bench_scaling [--max N]\n");
+        fprintf(stderr, "usage: bench_scaling [--max N | --blob N R LEVELS]\n");
         return 2;
     }
     printf("Scaling: CPU seconds, us per item and peak RSS (MB, the whole child process) from "

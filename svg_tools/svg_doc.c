@@ -1746,9 +1746,12 @@ static conica_code check_settings(const conica_svg_settings *s, conica_status *s
     return CONICA_OK;
 }
 
-/* Geometry of one element as segments; 1 got some, 0 nothing to do. */
+/* Geometry of one element as segments, or for a polygon or polyline as
+ * its points (*pts, malloc'd, *npts of them: no segments needed); 1 got
+ * some, 0 nothing to do. */
 static int element_path(const conica_svg_settings *s, xmlNodePtr n, int kind, const char *what,
-                        conica_svg_path *p, double *precision, conica_code *rc, conica_status *st)
+                        conica_svg_path *p, double **pts, size_t *npts, double *precision,
+                        conica_code *rc, conica_status *st)
 {
     size_t line = (size_t)xmlGetLineNo(n);
     *rc = CONICA_OK;
@@ -1786,7 +1789,6 @@ static int element_path(const conica_svg_settings *s, xmlNodePtr n, int kind, co
         const char *a = get_attr_view(n, "points", s->limits.max_path_bytes, &too_long, &owned);
         double *xy = NULL;
         size_t np = 0, bad = 0, len;
-        int ok;
         if (too_long) {
             *rc = conica__fail(st, CONICA_ERR_LIMIT, line, 0,
                                "%s: points exceed the limit of %zu bytes (--max-path-bytes)", what,
@@ -1804,13 +1806,13 @@ static int element_path(const conica_svg_settings *s, xmlNodePtr n, int kind, co
         if (bad != (size_t)-1)
             warn(s, line, "%s: bad points list at byte %zu; %s", what, bad,
                  np ? "the valid pairs before it are kept" : "element left unchanged");
-        ok = conica_svg__points_path(xy, np, kind == 1, p);
-        free(xy);
-        if (!ok) {
-            *rc = conica__fail(st, CONICA_ERR_NOMEM, 0, 0, "out of memory");
+        if (!np) {
+            free(xy);
             return 0;
         }
-        return np > 0;
+        *pts = xy;
+        *npts = np;
+        return 1;
     }
     {
         const char *bad = "";
@@ -1934,9 +1936,11 @@ static conica_code collect(const conica_svg_doc *doc, const conica_svg_settings 
                 char what[96];
                 double prec;
                 conica_svg__describe(n, what, sizeof what);
+                double *pts = NULL;
+                size_t npts = 0;
                 p.n = 0;
                 p.has_error = 0;
-                if (element_path(s, n, kind, what, &p, &prec, &rc, st)) {
+                if (element_path(s, n, kind, what, &p, &pts, &npts, &prec, &rc, st)) {
                     conica_svg_element *el;
                     size_t first = shapes->nsubpaths, idx = shapes->nelements;
                     if (idx == cap) {
@@ -1947,6 +1951,7 @@ static conica_code collect(const conica_svg_doc *doc, const conica_svg_settings 
                             shapes->elements = te;
                         ti = te ? realloc(*items, nc * sizeof *ti) : NULL;
                         if (!te || !ti) {
+                            free(pts);
                             rc = conica__fail(st, CONICA_ERR_NOMEM, 0, 0, "out of memory");
                             break;
                         }
@@ -1969,9 +1974,13 @@ static conica_code collect(const conica_svg_doc *doc, const conica_svg_settings 
                         stats->io_seconds += t - mark;
                         mark = t;
                     }
-                    rc = conica_svg__path_polylines_progress(
-                        &p, s, what, el->line, idx, kind, prec, &budget, &stats->in_vertices,
-                        shapes, s->progress ? element_progress : NULL, &gp, st);
+                    if (pts)
+                        rc = conica_svg__points_polylines(&pts, npts, kind, s, what, idx, prec,
+                                                          &budget, &stats->in_vertices, shapes, st);
+                    else
+                        rc = conica_svg__path_polylines_progress(
+                            &p, s, what, el->line, idx, kind, prec, &budget, &stats->in_vertices,
+                            shapes, s->progress ? element_progress : NULL, &gp, st);
                     if (timing) {
                         double t = conica_svg__now();
                         stats->geometry_seconds += t - mark;

@@ -169,27 +169,35 @@ static conica_code simplify_samples(double *xy, size_t *n, int closed, double to
     return rc;
 }
 
+/* The n points xy (rewritten by the simplification) as one subpath of
+ * samples tagged `tag`, simplified within `simplify` first when it is > 0. */
+static conica_code add_samples_xy(conica_path *cp, double *xy, size_t n, int closed,
+                                  double simplify, const conica_path_settings *ps, size_t tag,
+                                  conica_status *st)
+{
+    conica_code rc = CONICA_OK;
+    if (simplify > 0)
+        rc = simplify_samples(xy, &n, closed, simplify, ps, st);
+    if (rc == CONICA_OK)
+        rc = conica_path_samples(cp, xy, NULL, n, closed, tag, st);
+    if (rc == CONICA_ERR_DEGENERATE) {
+        /* one point (or one repeated): kept as the point it is */
+        rc = conica_path_move_to(cp, xy[0], xy[1], tag, st);
+    }
+    return rc;
+}
+
 /* The on-curve vertices of segments [a, b) as samples (a polygon, a
- * polyline, or a subpath of straight segments taken as samples), simplified
- * within `simplify` first when it is > 0. */
+ * polyline, or a subpath of straight segments taken as samples). */
 static conica_code add_samples(conica_path *cp, const conica_svg_path *p, size_t a, size_t b,
                                int closed, double simplify, const conica_path_settings *ps,
                                conica_status *st)
 {
-    size_t n;
+    conica_code rc;
     double *xy = malloc(2 * (b - a + 1) * sizeof *xy);
-    conica_code rc = CONICA_OK;
     if (!xy)
         return conica__fail(st, CONICA_ERR_NOMEM, 0, 0, "out of memory");
-    n = subpath_vertices(p, a, b, xy);
-    if (simplify > 0)
-        rc = simplify_samples(xy, &n, closed, simplify, ps, st);
-    if (rc == CONICA_OK)
-        rc = conica_path_samples(cp, xy, NULL, n, closed, a, st);
-    if (rc == CONICA_ERR_DEGENERATE) {
-        /* one point (or one repeated): kept as the point it is */
-        rc = conica_path_move_to(cp, xy[0], xy[1], a, st);
-    }
+    rc = add_samples_xy(cp, xy, subpath_vertices(p, a, b, xy), closed, simplify, ps, a, st);
     free(xy);
     return rc;
 }
@@ -279,6 +287,105 @@ static conica_code add_drawn(conica_path *cp, const conica_svg_path *p, size_t a
     return rc;
 }
 
+/* The front end's settings for s at the numbers' precision, and the share
+ * of the tolerance the geometry keeps. */
+static void front_settings(const conica_svg_settings *s, double precision, size_t budget,
+                           conica_path_settings *ps, double *geom_share)
+{
+    *ps = conica_path_defaults();
+    ps->corner_angle = s->corner_angle_deg >= 180.0 ? M_PI : s->corner_angle_deg * M_PI / 180.0;
+    ps->precision = precision;
+    ps->max_points = budget;
+    ps->rough_t = 1; /* SVG has no use for the points' parameters */
+    /* digits from the tolerance (precision 0): the geometry keeps
+     * CONICA_SVG_ROUNDING_SHARE of it for the rounding of what is written */
+    *geom_share = s->precision == 0 ? 1.0 - CONICA_SVG_ROUNDING_SHARE : 1.0;
+    if (s->mode == CONICA_SVG_SMOOTH) {
+        ps->tolerance = s->fidelity * *geom_share;
+        ps->rel_tolerance *= *geom_share;
+        ps->levels = s->levels;
+        ps->level_tolerance = s->tolerance;
+    }
+}
+
+/* After the subpaths were added (rc their result): cp flattened, smoothed
+ * or kept per s->mode into *out; frees cp. */
+static conica_code front_polylines(conica_path *cp, conica_code rc, conica_path_settings *ps,
+                                   double geom_share, const conica_svg_settings *s,
+                                   const char *what, size_t element, size_t *budget,
+                                   conica_svg_shapes *out, conica_status *st)
+{
+    conica_path_result r;
+    size_t i;
+    conica_path_result_init(&r);
+    if (rc != CONICA_OK) {
+        char why[sizeof st->message];
+        snprintf(why, sizeof why, "%s", st ? st->message : "bad geometry");
+        conica_path_free(cp);
+        return conica__fail(st, rc, 0, 0, "%s: %s", what, why);
+    }
+    if (s->mode == CONICA_SVG_FLATTEN) {
+        ps->tolerance = s->tolerance * geom_share;
+        ps->fit = (conica_path_fit)s->fit;
+        rc = conica_path_flatten(cp, ps, &r, st);
+    } else if (s->mode == CONICA_SVG_SMOOTH) {
+        rc = conica_path_smooth(cp, ps, &r, st);
+    } else {
+        /* KEEP: the on-curve vertices (flattening within an infinite
+         * tolerance would be the same, less directly) */
+        for (i = 0; i < cp->nsub && rc == CONICA_OK; i++) {
+            const conica_path_subpath *sp = &cp->sub[i];
+            size_t n = sp->kind == CONICA_PATH_SAMPLES ? sp->n : sp->n + 1, k;
+            double *xy = malloc(2 * n * sizeof *xy);
+            if (!xy) {
+                rc = conica__fail(st, CONICA_ERR_NOMEM, 0, 0, "out of memory");
+                break;
+            }
+            xy[0] = sp->x0;
+            xy[1] = sp->y0;
+            for (k = 1; k < n; k++) {
+                const double *q = sp->kind == CONICA_PATH_SAMPLES
+                                      ? cp->smp + 4 * (sp->first + k)
+                                      : cp->pt + 3 * (cp->seg[sp->first + k - 1].first +
+                                                      (size_t)cp->seg[sp->first + k - 1].degree);
+                xy[2 * k] = q[0];
+                xy[2 * k + 1] = q[1];
+            }
+            if (sp->kind == CONICA_PATH_DRAWN && sp->closed && n > 1)
+                n--;
+            if (n > *budget)
+                rc = conica__fail(st, CONICA_ERR_LIMIT, 0, 0,
+                                  "%s: output would exceed the limit of %zu points (--max-points)",
+                                  what, s->limits.max_points);
+            else {
+                *budget -= n;
+                rc = push_subpath(out, element, sp->closed, &xy, n, st);
+            }
+            free(xy);
+        }
+        conica_path_free(cp);
+        return rc;
+    }
+    /* the input is no longer needed: its memory back before the output's copy */
+    conica_path_free(cp);
+    if (rc == CONICA_ERR_LIMIT)
+        rc = conica__fail(st, rc, 0, 0,
+                          "%s: output would exceed the limit of %zu points (--max-points)", what,
+                          s->limits.max_points);
+    else if (rc != CONICA_OK) {
+        char why[sizeof st->message];
+        snprintf(why, sizeof why, "%s", st ? st->message : "failed");
+        rc = conica__fail(st, rc, 0, 0, "%s: %s", what, why);
+    }
+    for (i = 0; i < r.n && rc == CONICA_OK; i++) {
+        conica_path_polyline *l = &r.lines[i]; /* its xy taken over: the result frees the rest */
+        *budget -= l->n <= *budget ? l->n : *budget;
+        rc = push_subpath(out, element, l->closed, &l->xy, l->n, st);
+    }
+    conica_path_result_free(&r);
+    return rc;
+}
+
 conica_code conica_svg__path_polylines(const conica_svg_path *p, const conica_svg_settings *s,
                                        const char *what, size_t line, size_t element, int kind,
                                        double precision, size_t *budget, size_t *in_vertices,
@@ -294,29 +401,15 @@ conica_code conica_svg__path_polylines_progress(
     conica_svg_shapes *out, conica_progress_fn pf, void *pctx, conica_status *st)
 {
     conica_path cp;
-    conica_path_result r;
-    conica_path_settings ps = conica_path_defaults();
+    conica_path_settings ps;
     conica_code rc = CONICA_OK;
     size_t i;
     double geom_share;
     (void)line;
     conica_path_init(&cp);
-    conica_path_result_init(&r);
-    ps.corner_angle = s->corner_angle_deg >= 180.0 ? M_PI : s->corner_angle_deg * M_PI / 180.0;
-    ps.precision = precision;
-    ps.max_points = *budget;
-    ps.rough_t = 1; /* SVG has no use for the points' parameters */
+    front_settings(s, precision, *budget, &ps, &geom_share);
     ps.progress = pf;
     ps.progress_ctx = pctx;
-    /* digits from the tolerance (precision 0): the geometry keeps
-     * CONICA_SVG_ROUNDING_SHARE of it for the rounding of what is written */
-    geom_share = s->precision == 0 ? 1.0 - CONICA_SVG_ROUNDING_SHARE : 1.0;
-    if (s->mode == CONICA_SVG_SMOOTH) {
-        ps.tolerance = s->fidelity * geom_share;
-        ps.rel_tolerance *= geom_share;
-        ps.levels = s->levels;
-        ps.level_tolerance = s->tolerance;
-    }
     /* the subpaths, as drawn or as samples */
     for (i = 0; i < p->n && rc == CONICA_OK;) {
         int closed, lines;
@@ -339,71 +432,32 @@ conica_code conica_svg__path_polylines_progress(
             rc = add_drawn(&cp, p, i, j, closed, st);
         i = j;
     }
-    if (rc != CONICA_OK) {
-        char why[sizeof st->message];
-        snprintf(why, sizeof why, "%s", st ? st->message : "bad geometry");
-        conica_path_free(&cp);
-        return conica__fail(st, rc, 0, 0, "%s: %s", what, why);
-    }
-    if (s->mode == CONICA_SVG_FLATTEN) {
-        ps.tolerance = s->tolerance * geom_share;
-        ps.fit = (conica_path_fit)s->fit;
-        rc = conica_path_flatten(&cp, &ps, &r, st);
-    } else if (s->mode == CONICA_SVG_SMOOTH) {
-        rc = conica_path_smooth(&cp, &ps, &r, st);
-    } else {
-        /* KEEP: the on-curve vertices (flattening within an infinite
-         * tolerance would be the same, less directly) */
-        for (i = 0; i < cp.nsub && rc == CONICA_OK; i++) {
-            const conica_path_subpath *sp = &cp.sub[i];
-            size_t n = sp->kind == CONICA_PATH_SAMPLES ? sp->n : sp->n + 1, k;
-            double *xy = malloc(2 * n * sizeof *xy);
-            if (!xy) {
-                rc = conica__fail(st, CONICA_ERR_NOMEM, 0, 0, "out of memory");
-                break;
-            }
-            xy[0] = sp->x0;
-            xy[1] = sp->y0;
-            for (k = 1; k < n; k++) {
-                const double *q = sp->kind == CONICA_PATH_SAMPLES
-                                      ? cp.smp + 4 * (sp->first + k)
-                                      : cp.pt + 3 * (cp.seg[sp->first + k - 1].first +
-                                                     (size_t)cp.seg[sp->first + k - 1].degree);
-                xy[2 * k] = q[0];
-                xy[2 * k + 1] = q[1];
-            }
-            if (sp->kind == CONICA_PATH_DRAWN && sp->closed && n > 1)
-                n--;
-            if (n > *budget)
-                rc = conica__fail(st, CONICA_ERR_LIMIT, 0, 0,
-                                  "%s: output would exceed the limit of %zu points (--max-points)",
-                                  what, s->limits.max_points);
-            else {
-                *budget -= n;
-                rc = push_subpath(out, element, sp->closed, &xy, n, st);
-            }
-            free(xy);
-        }
-        conica_path_free(&cp);
-        return rc;
-    }
-    if (rc == CONICA_ERR_LIMIT)
-        rc = conica__fail(st, rc, 0, 0,
-                          "%s: output would exceed the limit of %zu points (--max-points)", what,
-                          s->limits.max_points);
-    else if (rc != CONICA_OK) {
-        char why[sizeof st->message];
-        snprintf(why, sizeof why, "%s", st ? st->message : "failed");
-        rc = conica__fail(st, rc, 0, 0, "%s: %s", what, why);
-    }
-    for (i = 0; i < r.n && rc == CONICA_OK; i++) {
-        conica_path_polyline *l = &r.lines[i]; /* its xy taken over: the result frees the rest */
-        *budget -= l->n <= *budget ? l->n : *budget;
-        rc = push_subpath(out, element, l->closed, &l->xy, l->n, st);
-    }
-    conica_path_result_free(&r);
-    conica_path_free(&cp);
-    return rc;
+    return front_polylines(&cp, rc, &ps, geom_share, s, what, element, budget, out, st);
+}
+
+conica_code conica_svg__points_polylines(double **xy, size_t np, int kind,
+                                         const conica_svg_settings *s, const char *what,
+                                         size_t element, double precision, size_t *budget,
+                                         size_t *in_vertices, conica_svg_shapes *out,
+                                         conica_status *st)
+{
+    conica_path cp;
+    conica_path_settings ps;
+    conica_code rc = CONICA_OK;
+    double geom_share, *v = *xy;
+    conica_path_init(&cp);
+    front_settings(s, precision, *budget, &ps, &geom_share);
+    /* counted as conica_svg__path_polylines counts the points' path: a
+     * polygon that returns to its start has that vertex once */
+    *in_vertices += np;
+    if (kind == 1 && np && v[2 * np - 2] == v[0] && v[2 * np - 1] == v[1])
+        (*in_vertices)--;
+    if (np)
+        rc = add_samples_xy(&cp, v, np, kind == 1 || s->close_open,
+                            s->mode == CONICA_SVG_SMOOTH ? s->simplify : 0.0, &ps, 0, st);
+    free(v); /* copied into cp: its memory back before the result's */
+    *xy = NULL;
+    return front_polylines(&cp, rc, &ps, geom_share, s, what, element, budget, out, st);
 }
 
 conica_code conica_svg_path_polylines(const conica_svg_path *p, const conica_svg_settings *s,

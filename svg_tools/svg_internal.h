@@ -74,6 +74,15 @@ conica_code conica_svg__path_polylines_progress(
     const conica_svg_path *p, const conica_svg_settings *s, const char *what, size_t line,
     size_t element, int kind, double precision, size_t *budget, size_t *in_vertices,
     conica_svg_shapes *out, conica_progress_fn pf, void *pctx, conica_status *st);
+/* The same for a points list of a polygon (kind 1) or polyline (kind 2):
+ * the np points *xy (malloc'd; taken over and freed, *xy set to NULL) as
+ * one subpath of samples, without the segments of conica_svg__points_path
+ * (144 bytes a vertex, most of a single big polyline's peak memory). */
+conica_code conica_svg__points_polylines(double **xy, size_t np, int kind,
+                                         const conica_svg_settings *s, const char *what,
+                                         size_t element, double precision, size_t *budget,
+                                         size_t *in_vertices, conica_svg_shapes *out,
+                                         conica_status *st);
 
 /* Half a unit in the last digit of the numbers in text[0..len) (the most
  * decimals any of them has), or 0 when there is none. */

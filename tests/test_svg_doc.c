@@ -1304,3 +1304,68 @@ TEST_CASE("a single path of 10^6 vertices (a 17 MB attribute) is smoothed and fl
     }
     free(t);
 }
+
+/* The subpaths conica_svg_extract() makes of text under s, and the input
+ * vertices conica_svg_process() counts in it. */
+static size_t extract_text(const char *text, const conica_svg_settings *s, conica_svg_shapes *sh)
+{
+    conica_svg_doc *doc = NULL;
+    conica_status st;
+    conica_svg_stats stats;
+    REQUIRE(conica_svg_doc_load(text, strlen(text), NULL, &doc, &st) == CONICA_OK);
+    conica_svg_shapes_init(sh);
+    REQUIRE(conica_svg_extract(doc, s, sh, &st) == CONICA_OK);
+    REQUIRE(conica_svg_process(doc, s, &stats, &st) == CONICA_OK);
+    conica_svg_doc_free(doc);
+    return stats.in_vertices;
+}
+
+TEST_CASE("polygons and polylines give what the same points as straight path data give",
+          "[svg][doc]")
+{
+    /* Points lists go to the front end as samples straight from the parsed
+     * pairs (no segment structs): the result must be that of the same
+     * vertices written as M/L path data read as samples. */
+    char pts[4096], d[4096];
+    size_t kp = 0, kd = 0;
+    for (int i = 0; i < 40; i++) {
+        double a = 0.15 * i, x = 50 + 30 * cos(a) + 3 * sin(3 * a), y = 40 + 20 * sin(a);
+        kp += (size_t)snprintf(pts + kp, sizeof pts - kp, "%s%.3f,%.3f", i ? " " : "", x, y);
+        kd += (size_t)snprintf(d + kd, sizeof d - kd, "%s%.3f,%.3f", i ? " L" : "M", x, y);
+    }
+    for (int closed = 0; closed < 2; closed++) {
+        for (int simplify = 0; simplify < 2; simplify++) {
+            char a[9000], b[9000];
+            snprintf(a, sizeof a, "<svg xmlns='http://www.w3.org/2000/svg'><%s points='%s'/></svg>",
+                     closed ? "polygon" : "polyline", pts);
+            snprintf(b, sizeof b, "<svg xmlns='http://www.w3.org/2000/svg'><path d='%s%s'/></svg>",
+                     d, closed ? "Z" : "");
+            conica_svg_settings s = conica_svg_defaults();
+            s.levels = 2;
+            s.lines_as_samples = 1;
+            s.simplify = simplify ? 0.5 : 0;
+            conica_svg_shapes sa, sb;
+            size_t va = extract_text(a, &s, &sa), vb = extract_text(b, &s, &sb);
+            CHECK_EQ_U(va, 40);
+            CHECK_EQ_U(va, vb);
+            REQUIRE_EQ_U(sa.nsubpaths, 1);
+            REQUIRE_EQ_U(sb.nsubpaths, 1);
+            CHECK(sa.subpaths[0].closed == closed);
+            CHECK(sb.subpaths[0].closed == closed);
+            REQUIRE_EQ_U(sa.subpaths[0].n, sb.subpaths[0].n);
+            CHECK_GT((double)sa.subpaths[0].n, simplify ? 20.0 : 100.0);
+            CHECK(memcmp(sa.subpaths[0].xy, sb.subpaths[0].xy,
+                         2 * sa.subpaths[0].n * sizeof(double)) == 0);
+            conica_svg_shapes_free(&sa);
+            conica_svg_shapes_free(&sb);
+        }
+    }
+    /* a polygon that returns to its start has that vertex once */
+    conica_svg_settings s = conica_svg_defaults();
+    conica_svg_shapes sh;
+    CHECK_EQ_U(extract_text("<svg xmlns='http://www.w3.org/2000/svg'><polygon points='0,0 10,0 "
+                            "10,10 0,10 0,0'/></svg>",
+                            &s, &sh),
+               4);
+    conica_svg_shapes_free(&sh);
+}

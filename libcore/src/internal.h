@@ -103,5 +103,10 @@ static inline size_t conica__size_clamp(double x, size_t hi)
  * number of edges left marked. */
 size_t conica__infl_at_rounding(const double *xyd, const long double *xyl, size_t n, int closed,
                                 double noise, unsigned char *need);
+/* Subdivision's working origin (subdiv_origin.c): per coordinate the
+ * centre of the points' range when its magnitude is at least the range's
+ * width (then p - c is exact for every point), else 0. The points are xyd
+ * (double) or, when it is NULL, xyl; n >= 0. */
+void conica__subdiv_origin(const double *xyd, const long double *xyl, size_t n, long double c[2]);
 
 #endif

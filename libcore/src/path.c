@@ -618,14 +618,23 @@ void conica_path_seg_eval(const conica_path *p, size_t seg, double t, double pt[
     }
 }
 
-static int unit2(double x, double y, double out[2])
+/* (x, y) / |(x, y)| into out, and the length into *len when len is not
+ * NULL; 0 for a zero or non-finite vector. */
+static int unit2_len(double x, double y, double out[2], double *len)
 {
     double h = hypot(x, y);
     if (!(h > 0) || !isfinite(h))
         return 0;
     out[0] = x / h;
     out[1] = y / h;
+    if (len)
+        *len = h;
     return 1;
+}
+
+static int unit2(double x, double y, double out[2])
+{
+    return unit2_len(x, y, out, NULL);
 }
 
 /* Unit tangent at an end of a segment (end 0 or 1) from its control
@@ -1009,7 +1018,7 @@ static void join_normal(const join *J, double n[2])
 static double bulge(const conica_path *p, size_t s, double ta, double tb, const double a[2],
                     const double n[2], int sign);
 static double chord_line_dev(const conica_path *p, size_t s, double ta, double tb,
-                             const double a[2], const double b[2], double stop);
+                             const double a[2], const double n[2], double stop);
 
 
 /* The four directions of the bounding box: +x, -x, +y, -y. */
@@ -1220,35 +1229,49 @@ static double chord_overshoot(const conica_path *p, size_t s, double ta, double 
     return fmax(0.0, fmax(vmax - len, -vmin));
 }
 
-/* Largest distance of segment s on [ta, tb] from the chord segment a b:
- * the distance from its line (both sides), and where the curve reaches
- * past an end, sqrt(line^2 + overshoot^2), which bounds the distance from
- * the segment with its end caps from above. */
-static double chord_dev(const conica_path *p, size_t s, double ta, double tb, const double a[2],
-                        const double b[2], double stop)
+/* A chord a b as chord_dev() reads it: its unit normal n (n = perp(b -
+ * a) / |b - a|), unit direction u and length; ok = 0 for a = b. Set up
+ * once per chord, not per segment it covers (hypot was a tenth of a long
+ * path's flattening). */
+typedef struct chord_frame {
+    double n[2], u[2], len;
+    int ok;
+} chord_frame;
+
+static void chord_frame_init(chord_frame *f, const double a[2], const double b[2])
 {
-    double line = chord_line_dev(p, s, ta, tb, a, b, stop), u[2], len, over;
-    if (!(line <= stop) || !unit2(b[0] - a[0], b[1] - a[1], u) || p->seg[s].degree == 1 ||
-        !(tb > ta))
+    f->ok = unit2(b[1] - a[1], a[0] - b[0], f->n);
+    f->ok = f->ok && unit2_len(b[0] - a[0], b[1] - a[1], f->u, &f->len);
+}
+
+/* Largest distance of segment s on [ta, tb] from the chord segment a b
+ * (frame f): the distance from its line (both sides), and where the curve
+ * reaches past an end, sqrt(line^2 + overshoot^2), which bounds the
+ * distance from the segment with its end caps from above. */
+static double chord_dev(const conica_path *p, size_t s, double ta, double tb, const double a[2],
+                        const chord_frame *f, double stop)
+{
+    double line, over;
+    if (!f->ok)
+        return INFINITY;
+    line = chord_line_dev(p, s, ta, tb, a, f->n, stop);
+    if (!(line <= stop) || p->seg[s].degree == 1 || !(tb > ta))
         return line;
-    len = hypot(b[0] - a[0], b[1] - a[1]);
-    over = chord_overshoot(p, s, ta, tb, a, u, len);
+    over = chord_overshoot(p, s, ta, tb, a, f->u, f->len);
     return over > 0 ? hypot(line, over) : line;
 }
 
 /* Largest distance of segment s on [ta, tb] from the chord a b's line
  * (both sides). */
 static double chord_line_dev(const conica_path *p, size_t s, double ta, double tb,
-                             const double a[2], const double b[2], double stop)
+                             const double a[2], const double n[2], double stop)
 {
     /* both sides from one set of samples; the golden section only on a
      * side the curve reaches, and not once the answer is known to exceed
      * stop (the greedy chord search asks only whether a chord fits) */
     const double *q = seg_pts(p, s);
     int d = p->seg[s].degree;
-    double n[2], m[2], hi = 0, lo = 0, thi = ta, tlo = ta, h;
-    if (!unit2(b[1] - a[1], a[0] - b[0], n))
-        return INFINITY;
+    double m[2], hi = 0, lo = 0, thi = ta, tlo = ta, h;
     if (d == 1 || !(tb > ta))
         return 0.0;
     {
@@ -1395,6 +1418,8 @@ static double run_dev(const seg_run *R, double u0, double u1, const double a[2],
 {
     size_t k0 = (size_t)u0, k1;
     double worst = 0;
+    chord_frame f;
+    chord_frame_init(&f, a, b);
     if (k0 >= R->m)
         k0 = R->m - 1;
     k1 = u1 >= (double)R->m ? R->m - 1 : (size_t)u1;
@@ -1402,7 +1427,7 @@ static double run_dev(const seg_run *R, double u0, double u1, const double a[2],
         k1--; /* u1 is the start of segment k1: nothing of it */
     for (size_t k = k0; k <= k1; k++) {
         double ta = k == k0 ? u0 - (double)k : 0.0, tb = k == k1 ? u1 - (double)k : 1.0;
-        double dv = chord_dev(R->p, R->segs[k], ta, tb, a, b, stop);
+        double dv = chord_dev(R->p, R->segs[k], ta, tb, a, &f, stop);
         worst = dv > worst ? dv : worst;
         if (worst > stop)
             break; /* the chord does not fit: how far it misses is not asked */

@@ -390,6 +390,13 @@ static void enter_interval(march *m, size_t mu, const double *form)
     m->ua = m->ba;
 }
 
+static inline void put3(double *o, double x, double y, double w)
+{
+    o[0] = x;
+    o[1] = y;
+    o[2] = w;
+}
+
 /* De Casteljau split of the Bézier polygon P (p+1 points of H values) at
  * lam in [0, 1]: L gets the polygon of [0, lam], Rr that of [lam, 1]
  * (Rr is the working array; its last point is P's exactly). H is a
@@ -423,6 +430,23 @@ static inline void casteljau(const double *P, int p, int H, double lam, double *
         Rr[5] = ey;
         Rr[6] = x3;
         Rr[7] = y3;
+        return;
+    }
+    if (p == 2 && H == 3) {
+        /* the conic arc (homogeneous quadratic) written out likewise: the
+         * loop over H was not unrolled, and a third of the arcs' and
+         * circles' instructions were this split */
+        double x0 = P[0], y0 = P[1], w0 = P[2], x1 = P[3], y1 = P[4], w1 = P[5];
+        double x2 = P[6], y2 = P[7], w2 = P[8];
+        double ax = x0 + lam * (x1 - x0), ay = y0 + lam * (y1 - y0), aw = w0 + lam * (w1 - w0);
+        double bx = x1 + lam * (x2 - x1), by = y1 + lam * (y2 - y1), bw = w1 + lam * (w2 - w1);
+        double fx = ax + lam * (bx - ax), fy = ay + lam * (by - ay), fw = aw + lam * (bw - aw);
+        put3(L, x0, y0, w0);
+        put3(L + 3, ax, ay, aw);
+        put3(L + 6, fx, fy, fw);
+        put3(Rr, fx, fy, fw);
+        put3(Rr + 3, bx, by, bw);
+        put3(Rr + 6, x2, y2, w2);
         return;
     }
     size_t hh = (size_t)H, pp = (size_t)p;
@@ -766,6 +790,32 @@ static int signed_dists(const march *m, const double *P, int i0, int i1, const d
  * by halves near tol); otherwise the hull bound (tightened by halves for
  * a single sub-arc). `steer` asks for the tight value also when D is
  * under tol (growth decisions). */
+/* bez_cert for one planar conic sub-arc (p = 2, h = 3, no P2, positive
+ * weights) whose middle control point projects onto the chord: the
+ * signed-distance form's exact maximum |s_1| w_1 / (w_1 + sqrt(w_0 w_2))
+ * over |c| (conica__r2_absmax with s_0 = s_2 = 0), in the homogeneous
+ * points A, M, B themselves. With C = B w_0 - A w_2 and E = M w_0 - A w_1
+ * (the chord and the middle point's offset times w_0 w_2 and w_0 w_1), it
+ * is |E x C| / (w_0 (w_1 + sqrt(w_0 w_2)) |C|): one division instead of
+ * the eight of the general code below, whose chain of divisions and
+ * square roots bounded the arcs' and circles' speed. Returns -1 when the
+ * middle point projects beyond the chord or a weight is not positive (the
+ * general code decides then). */
+static double conic_cert(march *m, const double *P)
+{
+    double w0 = P[2], w1 = P[5], w2 = P[8];
+    if (!(w0 > 0 && w1 > 0 && w2 > 0))
+        return -1.0;
+    double Cx = P[6] * w0 - P[0] * w2, Cy = P[7] * w0 - P[1] * w2;
+    double Ex = P[3] * w0 - P[0] * w1, Ey = P[4] * w0 - P[1] * w1;
+    double c2 = Cx * Cx + Cy * Cy, t = Ex * Cx + Ey * Cy;
+    /* 0 <= e.c <= |c|^2 for e = E / (w0 w1), c = C / (w0 w2) */
+    if (!(c2 > 0) || !(t >= 0 && t * w2 <= c2 * w1))
+        return -1.0;
+    m->flops += 30.0;
+    return fabs(Ex * Cy - Ey * Cx) / (w0 * (w1 + sqrt(w0 * w2)) * sqrt(c2));
+}
+
 static double bez_cert(march *m, const double *P1, const double *P2, int steer)
 {
     int p = m->p, d = m->d, h = m->h;
@@ -773,6 +823,11 @@ static double bez_cert(march *m, const double *P1, const double *P2, int steer)
     int rational = h > d;
     const double *Pe = P2 ? P2 : P1;
     double a[3], b[3];
+    if (p == 2 && h == 3 && d == 2 && !P2) {
+        double D = conic_cert(m, P1);
+        if (D >= 0.0)
+            return D;
+    }
     proj(m, P1, a);
     proj(m, Pe + pp * hh, b);
     int near_tol_check = 0;

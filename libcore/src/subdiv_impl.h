@@ -22,7 +22,10 @@
  * bisector l(t) becomes the y axis, so the new point is (0, y) and maps back
  * to m + y*perp(h) with h the half edge. The scale factor 2^-e is a power of
  * two, so scaling itself is exact; results do not depend on position, size
- * or rotation beyond the rounding of the input coordinates.
+ * or rotation beyond the rounding of the input coordinates. The levels'
+ * points are stored relative to the working origin of subdiv_origin.c, so
+ * that their own rounding is that of the curve's size, not of where it
+ * sits.
  */
 
 /* ------------------------------------------------------------------ types */
@@ -1700,6 +1703,7 @@ static conica_code SFX(run)(const SFX(input) *in, const conica_subdiv_settings *
     REAL *A = NULL, *An = NULL, *B = NULL, *Bn = NULL;
     unsigned char *F[2] = {NULL, NULL}; /* inflection flags, double-buffered like A/B */
     size_t *infl = NULL;
+    REAL org[2] = {0, 0}; /* the working origin (subdiv_origin.c) */
     SFX(job) job;
     SFX(worker) wk[CONICA__MAX_THREADS];
 #if REAL_IS_DOUBLE
@@ -1768,6 +1772,19 @@ static conica_code SFX(run)(const SFX(input) *in, const conica_subdiv_settings *
         size_t cur = SFX(load)(in, ref, need, sx, sn, L > 0 ? F[L % 2] : NULL, infl);
 
         free(need);
+        /* The levels measure from the working origin (subdiv_origin.c),
+         * added back below: exact for the input points (Sterbenz). The
+         * reference's mode keeps its absolute coordinates. */
+        if (!ref && L > 0) {
+            long double c[2];
+            conica__subdiv_origin(in->xyd, in->xyl, in->n, c);
+            org[0] = (REAL)c[0];
+            org[1] = (REAL)c[1];
+            for (i = 0; i < cur; i++) {
+                sx[2 * i] -= org[0];
+                sx[2 * i + 1] -= org[1];
+            }
+        }
 
         job.wev = (REAL)s->w_edge_point;
         job.wen = (REAL)s->w_edge_normal;
@@ -1846,6 +1863,10 @@ static conica_code SFX(run)(const SFX(input) *in, const conica_subdiv_settings *
     for (i = 0; i < N; i++) {
         REAL nx = An[2 * i], ny = An[2 * i + 1], len;
         REAL mag = SFX(maxabs)(nx, ny);
+        if (org[0] != 0 || org[1] != 0) {
+            A[2 * i] += org[0];
+            A[2 * i + 1] += org[1];
+        }
         if (!isfinite(A[2 * i]) || !isfinite(A[2 * i + 1]) || !(mag > 0) || !isfinite(mag)) {
             code = conica__fail(st, CONICA_ERR_NUMERIC, 0, i,
                                 "point %zu of the output is not finite or has no normal", i);
