@@ -855,6 +855,19 @@ def _check_net(co4):
                                          "numbers" % (k, p[3]))
 
 
+def surface_grid(ctrl, nu, nv, du, dv, ku, kv, w, tol, budget):
+    """(grid, gu, gv) of _conica.surface for a control net moved so that its
+    bounding box's centre is the origin, the grid moved back: a translation
+    changes no distance, and the plotter's cell bounds and rounding slack
+    scale with the size of the coordinates, not of the surface."""
+    centre = [(max(ctrl[k::3]) + min(ctrl[k::3])) / 2 for k in range(3)]
+    moved = array.array("d", (c - centre[k % 3] for k, c in enumerate(ctrl)))
+    grid, gu, gv, _info = _conica.surface(
+        moved, nu=nu, nv=nv, degree_u=du, degree_v=dv, knots_u=ku,
+        knots_v=kv, weights=w, tolerance=tol, max_points=budget)
+    return [c + centre[k % 3] for k, c in enumerate(grid)], gu, gv
+
+
 def surface_grid_mesh(grid, gu, gv, cyclic_u, cyclic_v):
     """(verts, faces) of the plotted quad grid; in a cyclic direction the
     last grid line is the first one again and is dropped, the quads wrap."""
@@ -988,9 +1001,8 @@ class OBJECT_OT_conic_surface_to_mesh(bpy.types.Operator):
                     tol, plot_tol = self._tolerance(ctrl, where, problems)
                     if budget < 4:
                         raise _conica.LimitError("over budget")
-                    grid, gu, gv, _info = _conica.surface(
-                        ctrl, nu=nu, nv=nv, degree_u=du, degree_v=dv, knots_u=ku,
-                        knots_v=kv, weights=w, tolerance=plot_tol, max_points=budget)
+                    grid, gu, gv = surface_grid(ctrl, nu, nv, du, dv, ku, kv, w,
+                                                plot_tol, budget)
                 except _conica.LimitError as exc:
                     problems.append("%s: %s" % (where, _budget_message(exc, self.max_vertices)))
                     continue
