@@ -2530,6 +2530,158 @@ def surface_grid_where_it_sits():
            "(CPU %.3f s, %.3f s)" % (gu0, gv0, gu1, gv1, moved, t1 - t0, t2 - t1))
 
 
+def _three_circles(name):
+    ob = new_curve(name)
+    for k in range(3):
+        add_poly(ob.data, [(3 * k + math.cos(2 * math.pi * i / 12),
+                            math.sin(2 * math.pi * i / 12), 0.0) for i in range(12)], True)
+    select_only(ob)
+    return ob
+
+
+@case
+def escape_cancels_unchanged():
+    """Esc between chunks (job.py): headless Blender has no events, so the
+    operators' own cancel path is driven by job.simulated_escape, which
+    stops a run after n chunks exactly as Esc does. The scene is left as it
+    was (no spline, point, object or mesh changes), the run is CANCELLED
+    (no undo step) and says so; the same run without it finishes."""
+    jobmod = importlib.import_module(conica_pkg().__name__ + ".job")
+    results = []
+    try:
+        for edit in (False, True):
+            fresh_scene()
+            ob = _three_circles("esc")
+            if edit:
+                bpy.ops.object.mode_set(mode="EDIT")
+                bpy.ops.curve.select_all(action="SELECT")
+            for n in (1, 3):
+                before = [full_snapshot(sp) for sp in ob.data.splines]
+                jobmod.simulated_escape = n
+                r = bpy.ops.curve.conic_subdivide(levels=4)
+                jobmod.simulated_escape = None
+                after = [full_snapshot(sp) for sp in ob.data.splines]
+                msg = [m for _, m in last_reports()]
+                ok = r == {"CANCELLED"} and after == before and \
+                    msg == ["Conic Subdivide: cancelled after %d of 3 splines; nothing changed"
+                            % n]
+                results.append(("curve edit=%s n=%d" % (edit, n), ok, r, msg))
+            r = bpy.ops.curve.conic_subdivide(levels=4)
+            results.append(("curve edit=%s to the end" % edit, r == {"FINISHED"} and
+                            [len(sp.points) for sp in ob.data.splines] == [192] * 3, r,
+                            [len(sp.points) for sp in ob.data.splines]))
+            if edit:
+                bpy.ops.object.mode_set(mode="OBJECT")
+        fresh_scene()
+        for k in range(2):
+            bpy.ops.surface.primitive_nurbs_surface_sphere_add(location=(3 * k, 0, 0))
+        for o in bpy.data.objects:
+            o.select_set(True)
+        names = sorted(o.name for o in bpy.data.objects)
+        meshes = len(bpy.data.meshes)
+        jobmod.simulated_escape = 1
+        r = bpy.ops.object.conic_surface_to_mesh(tolerance=1e-2)
+        jobmod.simulated_escape = None
+        results.append(("surface", r == {"CANCELLED"} and
+                        sorted(o.name for o in bpy.data.objects) == names and
+                        len(bpy.data.meshes) == meshes, r, last_reports()))
+        r = bpy.ops.object.conic_surface_to_mesh(tolerance=1e-2)
+        results.append(("surface to the end", r == {"FINISHED"} and
+                        len(bpy.data.objects) == 4, r, last_reports()))
+        # invoke() without a window (headless, or a script's INVOKE_DEFAULT)
+        # runs to the end at once
+        fresh_scene()
+        _three_circles("inv")
+        r = bpy.ops.curve.conic_subdivide("INVOKE_DEFAULT", levels=8)
+        results.append(("invoke without a window", r == {"FINISHED"}, r, last_reports()))
+    finally:
+        jobmod.simulated_escape = None
+    for name, ok, r, why in results:
+        report("escape_cancels_unchanged: " + name, ok, "%r %r" % (r, why))
+
+
+class _FakeWM:
+    """The window manager calls a modal run makes, recorded."""
+
+    def __init__(self):
+        self.calls = []
+
+    def __getattr__(self, name):
+        def call(*args, **kw):
+            self.calls.append(name)
+            return "timer" if name == "event_timer_add" else None
+        return call
+
+
+class _FakeEvent:
+    def __init__(self, kind):
+        self.type = kind
+
+
+@case
+def modal_run_escape_and_finish():
+    """job.ModalRun's invoke/modal on a stand-in operator (Blender-free:
+    a window manager and events of its own, since headless Blender sends
+    none): big work starts a modal run with progress and a timer; timer
+    events process chunks; Esc stops it with the writes never made,
+    progress ended, the timer removed; without Esc the writes come after
+    the last chunk."""
+    jobmod = importlib.import_module(conica_pkg().__name__ + ".job")
+
+    class Stand(jobmod.ModalRun):
+        bl_label = "Stand"
+
+        def __init__(self, n):
+            self.n, self.made, self.finished, self.reports = 0, n, False, []
+
+        def _start(self, context):
+            def chunks():
+                for _ in range(self.made):
+                    time.sleep(0.02)
+                    self.n += 1
+                    yield
+            return jobmod.Job(chunks(), self.made), jobmod.LONG_WORK
+
+        def _finish(self, context):
+            self.finished = True
+            return {"FINISHED"}
+
+        def _report(self, level, message):
+            self.reports.append((level, message))
+
+    class Ctx:
+        def __init__(self):
+            self.window = object()
+            self.window_manager = _FakeWM()
+
+    ctx, op = Ctx(), Stand(20)
+    r0 = op.invoke(ctx, None)
+    r1 = op.modal(ctx, _FakeEvent("TIMER"))
+    r2 = op.modal(ctx, _FakeEvent("MOUSEMOVE"))
+    seen = op.n
+    r3 = op.modal(ctx, _FakeEvent("ESC"))
+    calls = ctx.window_manager.calls
+    report("modal_run_escape", r0 == r1 == r2 == {"RUNNING_MODAL"} and r3 == {"CANCELLED"} and
+           0 < seen < 20 and op.n == seen and not op.finished and
+           calls[:3] == ["progress_begin", "event_timer_add", "modal_handler_add"] and
+           "event_timer_remove" in calls and calls[-1] == "progress_end" and
+           op.reports == [("INFO", "Stand: cancelled after %d of 20 splines; nothing changed"
+                           % seen)], "%r %r %d %r %r" % ((r0, r1, r2, r3), calls, seen,
+                                                         op.finished, op.reports))
+    ctx, op = Ctx(), Stand(5)
+    rs = [op.invoke(ctx, None)]
+    while rs[-1] == {"RUNNING_MODAL"} and len(rs) < 50:
+        rs.append(op.modal(ctx, _FakeEvent("TIMER")))
+    report("modal_run_finish", rs[-1] == {"FINISHED"} and op.finished and op.n == 5 and
+           ctx.window_manager.calls[-1] == "progress_end", "%r %d" % (rs, op.n))
+    # a small run does not go modal: invoke() does it all
+    ctx, op = Ctx(), Stand(3)
+    op._start = lambda context: (jobmod.Job(iter([None] * 3), 3), 10)
+    r = op.invoke(ctx, None)
+    report("modal_run_small_at_once", r == {"FINISHED"} and op.finished and
+           not ctx.window_manager.calls, "%r %r" % (r, ctx.window_manager.calls))
+
+
 @case
 def save_and_reload():
     fresh_scene()
