@@ -23,6 +23,7 @@
 # (which cost more than Blender's whole Subdivide, see the README); the
 # edit-mode undo step pushed after the operator stores the new list.
 import array
+import itertools
 import math
 import re
 import time
@@ -907,22 +908,27 @@ def surface_grid(ctrl, nu, nv, du, dv, ku, kv, w, tol, budget):
     grid, gu, gv, _info = _conica.surface(
         moved, nu=nu, nv=nv, degree_u=du, degree_v=dv, knots_u=ku,
         knots_v=kv, weights=w, tolerance=tol, max_points=budget)
-    return [c + centre[k % 3] for k, c in enumerate(grid)], gu, gv
+    for k in range(3):  # back where it was (float adds in C, via map)
+        grid[k::3] = array.array("d", map(centre[k].__add__, grid[k::3]))
+    return grid, gu, gv
 
 
 def surface_grid_mesh(grid, gu, gv, cyclic_u, cyclic_v):
     """(verts, faces) of the plotted quad grid; in a cyclic direction the
     last grid line is the first one again and is dropped, the quads wrap."""
-    pts = [(grid[3 * k], grid[3 * k + 1], grid[3 * k + 2]) for k in range(gu * gv)]
+    pts = list(zip(grid[0::3], grid[1::3], grid[2::3]))  # grid line i: pts[i * gv:]
     nu = gu - 1 if cyclic_u else gu
     nv = gv - 1 if cyclic_v else gv
-    verts = [pts[i * gv + j] for i in range(nu) for j in range(nv)]
+    verts = pts[:nu * gv] if nv == gv else \
+        list(itertools.chain.from_iterable(pts[i * gv:i * gv + nv] for i in range(nu)))
+    # quad (i, j): i nv + j, i2 nv + j, i2 nv + j2, i nv + j2 with i2 = i + 1,
+    # j2 = j + 1 (mod nu, nv in a cyclic direction); one row at a time
+    j2 = list(range(1, nv)) + ([0] if cyclic_v else [])
     faces = []
     for i in range(nu if cyclic_u else nu - 1):
-        i2 = (i + 1) % nu
-        for j in range(nv if cyclic_v else nv - 1):
-            j2 = (j + 1) % nv
-            faces.append((i * nv + j, i2 * nv + j, i2 * nv + j2, i * nv + j2))
+        a, b = i * nv, (i + 1) % nu * nv
+        faces.extend(zip(range(a, a + len(j2)), range(b, b + len(j2)),
+                         map(b.__add__, j2), map(a.__add__, j2)))
     return verts, faces
 
 
@@ -1091,7 +1097,7 @@ class OBJECT_OT_conic_surface_to_mesh(job.ModalRun, bpy.types.Operator):
         for (v, f), mat in parts:
             base = len(verts)
             verts.extend(v)
-            faces.extend(tuple(base + k for k in q) for q in f)
+            faces.extend(f if base == 0 else (tuple(base + k for k in q) for q in f))
             mats.extend([mat] * len(f))
         me = bpy.data.meshes.new(ob.name + ".mesh")
         me.from_pydata(verts, [], faces)
