@@ -23,6 +23,7 @@
 # (which cost more than Blender's whole Subdivide, see the README); the
 # edit-mode undo step pushed after the operator stores the new list.
 import array
+import itertools
 import math
 import re
 import time
@@ -30,7 +31,7 @@ import time
 import bpy
 from bpy.props import BoolProperty, EnumProperty, FloatProperty, IntProperty
 
-from . import _conica, editable, hidden
+from . import _conica, editable, hidden, job
 
 # A 3D spline is processed in its best-fit plane when its points lie within
 # PLANE_TOL of its size from that plane (issue 8). Blender stores
@@ -541,8 +542,21 @@ def blender_words(exc, op):
     return msg
 
 
-class _CurveOperator:
-    """Shared driver: collect, compute everything, then write."""
+class _Run:
+    """What a curve operator's run has computed so far (job.py's chunks
+    fill it; _finish writes it)."""
+
+    def __init__(self, edit, t_start):
+        self.edit, self.t_start = edit, t_start
+        self.plans = []  # (object, [_Result])
+        self.problems = []
+        self.skipped = self.unchanged = 0
+        self.t_lib = self.t_core = self.t_read = 0.0
+
+
+class _CurveOperator(job.ModalRun):
+    """Shared driver: collect, compute everything (in chunks, job.py), then
+    write."""
 
     def nothing_message(self, edit, skipped, unchanged):
         if unchanged:
@@ -575,7 +589,12 @@ class _CurveOperator:
         """A warning about the spline being processed that does not stop it."""
         self._notes.append("%s: %s" % (self._where, message))
 
-    def execute(self, context):
+    def work(self, n):  # -> estimated output points of a spline of n points
+        raise NotImplementedError
+
+    def _start(self, context):
+        """The run's Job (job.py) and its estimated output points, or
+        CANCELLED when no curve is selected."""
         last_reports.clear()
         self._notes = []
         self._where = ""
@@ -583,66 +602,84 @@ class _CurveOperator:
         if not objs:
             self._report("ERROR", "No curve object selected")
             return {"CANCELLED"}
-        return self._run(context, objs, edit, time.perf_counter())
+        self._run = run = _Run(edit, time.perf_counter())
+        splines = [sp for ob in objs for sp in ob.data.splines]
+        work = sum(self.work(len(sp.points) + len(sp.bezier_points)) for sp in splines) \
+            if len(splines) > 1 else 0
+        return job.Job(self._chunks(objs, run), len(splines)), work
 
-    def _run(self, context, objs, edit, t_start):
-        t_lib = t_core = t_read = 0.0
-        plans = []  # (object, [results])
-        problems = []
-        skipped = 0
-        unchanged = 0
+    def _chunks(self, objs, run):
+        """Compute every spline's result into run (one yield per spline);
+        the scene is not touched."""
         for ob in objs:
             results = []
             locked = editable.locked_reason(ob)
             if locked is not None:
-                problems.append("%s: %s; left unchanged" % (ob.name, locked))
+                run.problems.append("%s: %s; left unchanged" % (ob.name, locked))
+                yield from range(len(ob.data.splines))
                 continue
             if ob.data.shape_keys is not None:
                 # Points inserted between shape-keyed points would need every
                 # key block to grow with them (Blender's own edit operators
                 # track that internally; Python cannot): refuse, unchanged.
-                problems.append("%s: has shape keys, which %s cannot carry over; "
-                                "left unchanged" % (ob.name, self.bl_label))
+                run.problems.append("%s: has shape keys, which %s cannot carry over; "
+                                    "left unchanged" % (ob.name, self.bl_label))
+                yield from range(len(ob.data.splines))
                 continue
             for i, sp in enumerate(ob.data.splines):
-                t0 = time.perf_counter()
-                data = SplineData(sp)
-                t_read += time.perf_counter() - t0
-                if not self.wants(sp, data, edit):
-                    continue
-                self._where = "%s, spline %d" % (ob.name, i)
-                try:
-                    data.check()
-                    if data.hidden is not None and (data.type != "POLY" or
-                                                    self.output == "BEZIER"):
-                        raise _conica.ConicaError(
-                            "has hidden points, which %s leaves as they are only on "
-                            "Poly splines with Poly output; reveal them (Alt H) to "
-                            "process the spline" % self.bl_label)
-                    r = self.process(ob, sp, data)
-                except _conica.ConicaError as exc:
-                    problems.append("%s, spline %d: %s" % (ob.name, i, blender_words(exc, self)))
-                    continue
-                if r is None:
-                    skipped += 1
-                    continue
-                if r[0].kind == "POLY" and data.type == "POLY" and same_points(r[0].co, data):
-                    unchanged += 1  # nothing to insert (straight between corners)
-                    continue
-                t_lib += r[1]
-                r = r[0]
-                t_core += r.t_core
-                r.index = i
-                r.cyclic = data.cyclic
-                r.material = sp.material_index
-                r.smooth = sp.use_smooth
-                r.resolution = sp.resolution_u
-                r.selected = edit
-                r.hidden = data.hidden
-                r.default_attrs = data.default_attrs and r.attrs is None
-                results.append(r)
+                r = self._spline(ob, i, sp, run)
+                if r is not None:
+                    results.append(r)
+                yield
             if results:
-                plans.append((ob, results))
+                run.plans.append((ob, results))
+
+    def _spline(self, ob, i, sp, run):
+        """One spline's _Result, or None (not wanted, skipped, unchanged or
+        refused: counted in run)."""
+        edit = run.edit
+        t0 = time.perf_counter()
+        data = SplineData(sp)
+        run.t_read += time.perf_counter() - t0
+        if not self.wants(sp, data, edit):
+            return None
+        self._where = "%s, spline %d" % (ob.name, i)
+        try:
+            data.check()
+            if data.hidden is not None and (data.type != "POLY" or
+                                            self.output == "BEZIER"):
+                raise _conica.ConicaError(
+                    "has hidden points, which %s leaves as they are only on "
+                    "Poly splines with Poly output; reveal them (Alt H) to "
+                    "process the spline" % self.bl_label)
+            r = self.process(ob, sp, data)
+        except _conica.ConicaError as exc:
+            run.problems.append("%s, spline %d: %s" % (ob.name, i, blender_words(exc, self)))
+            return None
+        if r is None:
+            run.skipped += 1
+            return None
+        if r[0].kind == "POLY" and data.type == "POLY" and same_points(r[0].co, data):
+            run.unchanged += 1  # nothing to insert (straight between corners)
+            return None
+        run.t_lib += r[1]
+        r = r[0]
+        run.t_core += r.t_core
+        r.index = i
+        r.cyclic = data.cyclic
+        r.material = sp.material_index
+        r.smooth = sp.use_smooth
+        r.resolution = sp.resolution_u
+        r.selected = edit
+        r.hidden = data.hidden
+        r.default_attrs = data.default_attrs and r.attrs is None
+        return r
+
+    def _finish(self, context):
+        """Write every result (the scene changes here only) and report."""
+        run = self._run
+        edit, plans, problems = run.edit, run.plans, run.problems
+        skipped, unchanged = run.skipped, run.unchanged
         t_write = time.perf_counter()
         done = 0
         for ob, results in plans:
@@ -659,8 +696,8 @@ class _CurveOperator:
         last_timing.clear()
         # read/write: bpy data transfer; extension: the _conica calls
         # (conversion + libcore); libcore: measured inside the C code.
-        last_timing.update(total=t_end - t_start, read=t_read, extension=t_lib,
-                           libcore=t_core, write=t_end - t_write, splines=done)
+        last_timing.update(total=t_end - run.t_start, read=run.t_read, extension=run.t_lib,
+                           libcore=run.t_core, write=t_end - t_write, splines=done)
         for p in self._notes + problems:
             self._report("WARNING", p)
         if done == 0:
@@ -717,6 +754,9 @@ class CURVE_OT_conic_subdivide(_CurveOperator, bpy.types.Operator):
         step=0.01, description=FIDELITY_HELP)
     output: EnumProperty(name="Output", items=OUTPUT_ITEMS, default="REPLACE")
 
+    def work(self, n):
+        return n << self.levels
+
     def process(self, ob, sp, data):
         kind = "BEZIER" if self.output == "BEZIER" else "POLY"
         t0 = time.perf_counter()
@@ -731,7 +771,7 @@ class CURVE_OT_conic_subdivide(_CurveOperator, bpy.types.Operator):
         r.t_core = res[3]["seconds"]
         r.co, r.attrs = res[0], res[2]
         r.hl, r.hr = (res[4], res[5]) if kind == "BEZIER" else (None, None)
-        if data.hidden is not None:  # POLY output of a POLY spline (see _run)
+        if data.hidden is not None:  # POLY output of a POLY spline (see _spline)
             kept = hidden.drop_hidden_segments(r.co, r.attrs, data.hidden, data.cyclic, 4)
             if kept is None:
                 raise _conica.ConicaError("has hidden points whose places in the result "
@@ -778,6 +818,9 @@ class CURVE_OT_adaptive_to_poly(_CurveOperator, bpy.types.Operator):
         layout.prop(self, "tolerance")
         exact_value(layout, "Tolerance", self.tolerance, " m")
         layout.prop(self, "output")
+
+    def work(self, n):  # a few tens of points per segment at the default
+        return 32 * n
 
     def process(self, ob, sp, data):
         if data.type == "POLY":
@@ -855,19 +898,37 @@ def _check_net(co4):
                                          "numbers" % (k, p[3]))
 
 
+def surface_grid(ctrl, nu, nv, du, dv, ku, kv, w, tol, budget):
+    """(grid, gu, gv) of _conica.surface for a control net moved so that its
+    bounding box's centre is the origin, the grid moved back: a translation
+    changes no distance, and the plotter's cell bounds and rounding slack
+    scale with the size of the coordinates, not of the surface."""
+    centre = [(max(ctrl[k::3]) + min(ctrl[k::3])) / 2 for k in range(3)]
+    moved = array.array("d", (c - centre[k % 3] for k, c in enumerate(ctrl)))
+    grid, gu, gv, _info = _conica.surface(
+        moved, nu=nu, nv=nv, degree_u=du, degree_v=dv, knots_u=ku,
+        knots_v=kv, weights=w, tolerance=tol, max_points=budget)
+    for k in range(3):  # back where it was (float adds in C, via map)
+        grid[k::3] = array.array("d", map(centre[k].__add__, grid[k::3]))
+    return grid, gu, gv
+
+
 def surface_grid_mesh(grid, gu, gv, cyclic_u, cyclic_v):
     """(verts, faces) of the plotted quad grid; in a cyclic direction the
     last grid line is the first one again and is dropped, the quads wrap."""
-    pts = [(grid[3 * k], grid[3 * k + 1], grid[3 * k + 2]) for k in range(gu * gv)]
+    pts = list(zip(grid[0::3], grid[1::3], grid[2::3]))  # grid line i: pts[i * gv:]
     nu = gu - 1 if cyclic_u else gu
     nv = gv - 1 if cyclic_v else gv
-    verts = [pts[i * gv + j] for i in range(nu) for j in range(nv)]
+    verts = pts[:nu * gv] if nv == gv else \
+        list(itertools.chain.from_iterable(pts[i * gv:i * gv + nv] for i in range(nu)))
+    # quad (i, j): i nv + j, i2 nv + j, i2 nv + j2, i nv + j2 with i2 = i + 1,
+    # j2 = j + 1 (mod nu, nv in a cyclic direction); one row at a time
+    j2 = list(range(1, nv)) + ([0] if cyclic_v else [])
     faces = []
     for i in range(nu if cyclic_u else nu - 1):
-        i2 = (i + 1) % nu
-        for j in range(nv if cyclic_v else nv - 1):
-            j2 = (j + 1) % nv
-            faces.append((i * nv + j, i2 * nv + j, i2 * nv + j2, i * nv + j2))
+        a, b = i * nv, (i + 1) % nu * nv
+        faces.extend(zip(range(a, a + len(j2)), range(b, b + len(j2)),
+                         map(b.__add__, j2), map(a.__add__, j2)))
     return verts, faces
 
 
@@ -895,7 +956,7 @@ def _budget_message(exc, budget):
             "the Tolerance or Fidelity, or the budget" % (budget, need))
 
 
-class OBJECT_OT_conic_surface_to_mesh(bpy.types.Operator):
+class OBJECT_OT_conic_surface_to_mesh(job.ModalRun, bpy.types.Operator):
     """Convert NURBS surfaces to meshes adaptively"""
     bl_description = ("Convert NURBS surfaces to meshes adaptively: every vertex on the "
                       "surface, grid lines placed where the curvature needs them, every "
@@ -965,43 +1026,54 @@ class OBJECT_OT_conic_surface_to_mesh(bpy.types.Operator):
             tol = achievable
         return tol, tol - FLOAT32_ROUNDING * spacing
 
-    def execute(self, context):
+    def _start(self, context):
+        """The run's Job (job.py, one chunk per spline) and a work estimate
+        that makes invoke() modal for more than one spline (any one may
+        take seconds)."""
         last_reports.clear()
         objs = [o for o in context.selected_objects if o.type == "SURFACE"]
         ao = context.active_object
         if not objs and ao is not None and ao.type == "SURFACE":
             objs = [ao]
         jobs = [(ob, i, sp) for ob in objs for i, sp in enumerate(ob.data.splines)]
-        plans, problems, budget = {}, [], self.max_vertices
-        wm = context.window_manager
-        wm.progress_begin(0, max(1, len(jobs)))
+        self._plans, self._problems = {}, []
+        return (job.Job(self._chunks(jobs), len(jobs)),
+                job.LONG_WORK if len(jobs) > 1 else 0)
+
+    def _chunks(self, jobs):
+        self._budget = self.max_vertices
+        for ob, i, sp in jobs:
+            self._plan(ob, i, sp)
+            yield
+
+    def _plan(self, ob, i, sp):
+        """One spline's mesh part into self._plans, or a problem."""
+        problems = self._problems
+        where = "%s, spline %d" % (ob.name, i)
+        if sp.point_count_v < 2 or sp.point_count_u < 2:
+            problems.append("%s: one row of control points is a curve, not a "
+                            "surface; left out" % where)
+            return
         try:
-            for k, (ob, i, sp) in enumerate(jobs):
-                wm.progress_update(k)
-                where = "%s, spline %d" % (ob.name, i)
-                if sp.point_count_v < 2 or sp.point_count_u < 2:
-                    problems.append("%s: one row of control points is a curve, not a "
-                                    "surface; left out" % where)
-                    continue
-                try:
-                    ctrl, nu, nv, du, dv, ku, kv, w, cu, cv = surface_patch(sp)
-                    tol, plot_tol = self._tolerance(ctrl, where, problems)
-                    if budget < 4:
-                        raise _conica.LimitError("over budget")
-                    grid, gu, gv, _info = _conica.surface(
-                        ctrl, nu=nu, nv=nv, degree_u=du, degree_v=dv, knots_u=ku,
-                        knots_v=kv, weights=w, tolerance=plot_tol, max_points=budget)
-                except _conica.LimitError as exc:
-                    problems.append("%s: %s" % (where, _budget_message(exc, self.max_vertices)))
-                    continue
-                except _conica.ConicaError as exc:
-                    problems.append("%s: %s" % (where, exc))
-                    continue
-                budget -= gu * gv
-                plans.setdefault(ob, []).append(
-                    (surface_grid_mesh(grid, gu, gv, cu, cv), sp.material_index))
-        finally:
-            wm.progress_end()
+            ctrl, nu, nv, du, dv, ku, kv, w, cu, cv = surface_patch(sp)
+            tol, plot_tol = self._tolerance(ctrl, where, problems)
+            if self._budget < 4:
+                raise _conica.LimitError("over budget")
+            grid, gu, gv = surface_grid(ctrl, nu, nv, du, dv, ku, kv, w,
+                                        plot_tol, self._budget)
+        except _conica.LimitError as exc:
+            problems.append("%s: %s" % (where, _budget_message(exc, self.max_vertices)))
+            return
+        except _conica.ConicaError as exc:
+            problems.append("%s: %s" % (where, exc))
+            return
+        self._budget -= gu * gv
+        self._plans.setdefault(ob, []).append(
+            (surface_grid_mesh(grid, gu, gv, cu, cv), sp.material_index))
+
+    def _finish(self, context):
+        """Make the meshes (the scene changes here only) and report."""
+        plans, problems = self._plans, self._problems
         for p in problems:
             self._report("WARNING", p)
         if not plans:
@@ -1025,7 +1097,7 @@ class OBJECT_OT_conic_surface_to_mesh(bpy.types.Operator):
         for (v, f), mat in parts:
             base = len(verts)
             verts.extend(v)
-            faces.extend(tuple(base + k for k in q) for q in f)
+            faces.extend(f if base == 0 else (tuple(base + k for k in q) for q in f))
             mats.extend([mat] * len(f))
         me = bpy.data.meshes.new(ob.name + ".mesh")
         me.from_pydata(verts, [], faces)

@@ -598,6 +598,11 @@ static conica_code plot_surface(const conica_bspline_surface *s, const conica_pl
  * over the true deviation falls by about 16x per doubling. */
 #define CELL_SPLITS 4
 
+/* Splits of block_bound's first, coarse look at a cell (CELL_SPLITS must
+ * be a multiple): a quarter of the sub-patches, enough to pass over the
+ * cells that cannot be a block's worst. */
+#define COARSE_SPLITS 2
+
 /* Relative size (to the squared corner extent) below which the turn of a
  * quad's projected corners counts as zero (a pole's collapsed edge). */
 #define QUAD_FLAT_EPS 1e-12
@@ -642,6 +647,7 @@ typedef struct cert_block {
     double *net;      /* (p+1)(q+1) homogeneous points of the span pair */
     double *row;      /* (p+1)(q+1) x 4: u-blossoms per net column */
     double *rows;     /* CELL_SPLITS such row sets: a cell column's (cell_rows) */
+    double *rows2;    /* COARSE_SPLITS such row sets */
     double *fu, *fv;  /* subpatch_bound's degree-elevation factors, (p+2) x 2, (q+2) x 2 */
     double *h;        /* (p+1)(q+1) x 4: the sub-patch's Bézier net */
     double *tmp;      /* max(p,q)+1 x 4 */
@@ -805,36 +811,41 @@ static void block_point(cert_block *B, double u, double v, double *out)
         out[x] = h[x] / h[3];
 }
 
-/* The u halves of the CELL_SPLITS sub-patch columns of the cell column
- * [u0,u1] (subpatch_rows of each u sub-interval), into B->rows: every
- * cell of that column shares them. */
-static void cell_rows(cert_block *B, double u0, double u1)
+/* The u halves of the `splits` sub-patch columns of the cell column
+ * [u0,u1] (subpatch_rows of each u sub-interval), into rows: every cell
+ * of that column shares them. */
+static void cell_rows(cert_block *B, double u0, double u1, int splits, double *rows)
 {
     size_t np4 = (size_t)(B->p + 1) * (size_t)(B->q + 1) * 4;
-    for (int a = 0; a < CELL_SPLITS; a++) {
-        double s0 = (double)a / CELL_SPLITS, s1 = (double)(a + 1) / CELL_SPLITS;
+    for (int a = 0; a < splits; a++) {
+        double s0 = (double)a / splits, s1 = (double)(a + 1) / splits;
         subpatch_rows(B, u0 + s0 * (u1 - u0), u0 + s1 * (u1 - u0), B->p,
-                      B->rows + (size_t)a * np4);
+                      rows + (size_t)a * np4);
     }
 }
 
-/* Bound of the cell [u0,u1] x [v0,v1] of the block: its bilinear quad
- * through the surface's corner points against the surface, over
- * CELL_SPLITS^2 sub-patches, plus the quad's triangulation term.
- * cell_rows(B, u0, u1) must have filled B->rows. */
-static double cell_bound(cert_block *B, double u0, double u1, double v0, double v1)
+/* The surface's corner points of the cell [u0,u1] x [v0,v1]. */
+static void cell_corners(cert_block *B, double u0, double u1, double v0, double v1,
+                         double C[2][2][3])
 {
-    double C[2][2][3];
-    size_t np4 = (size_t)(B->p + 1) * (size_t)(B->q + 1) * 4;
     block_point(B, u0, v0, C[0][0]);
     block_point(B, u1, v0, C[1][0]);
     block_point(B, u0, v1, C[0][1]);
     block_point(B, u1, v1, C[1][1]);
+}
+
+/* Largest sub-patch bound of the cell [v0,v1] of a cell column whose
+ * rows (cell_rows with the same splits) are given, over splits^2
+ * sub-patches, against the bilinear quad through the corners C. */
+static double cell_subpatches(cert_block *B, const double *rows, int splits, double v0,
+                              double v1, double C[2][2][3])
+{
+    size_t np4 = (size_t)(B->p + 1) * (size_t)(B->q + 1) * 4;
     double worst = 0;
-    for (int a = 0; a < CELL_SPLITS; a++) {
-        double s0 = (double)a / CELL_SPLITS, s1 = (double)(a + 1) / CELL_SPLITS;
-        for (int b = 0; b < CELL_SPLITS; b++) {
-            double t0 = (double)b / CELL_SPLITS, t1 = (double)(b + 1) / CELL_SPLITS;
+    for (int a = 0; a < splits; a++) {
+        double s0 = (double)a / splits, s1 = (double)(a + 1) / splits;
+        for (int b = 0; b < splits; b++) {
+            double t0 = (double)b / splits, t1 = (double)(b + 1) / splits;
             double c[2][2][3];
             for (int x = 0; x < 3; x++)
                 for (int ia = 0; ia <= 1; ia++)
@@ -844,13 +855,24 @@ static double cell_bound(cert_block *B, double u0, double u1, double v0, double 
                                        sl * (1 - tl) * C[1][0][x] + (1 - sl) * tl * C[0][1][x] +
                                        sl * tl * C[1][1][x];
                     }
-            subpatch_cols(B, B->rows + (size_t)a * np4, v0 + t0 * (v1 - v0),
+            subpatch_cols(B, rows + (size_t)a * np4, v0 + t0 * (v1 - v0),
                           v0 + t1 * (v1 - v0), B->p, B->q);
             double d = subpatch_bound(B, c);
             worst = d > worst ? d : worst;
         }
     }
-    return worst + quad_term(C) + B->slack;
+    return worst;
+}
+
+/* Bound of the cell [u0,u1] x [v0,v1] of the block: its bilinear quad
+ * through the surface's corner points against the surface, over
+ * CELL_SPLITS^2 sub-patches, plus the quad's triangulation term.
+ * cell_rows(B, u0, u1, CELL_SPLITS, B->rows) must have filled B->rows. */
+static double cell_bound(cert_block *B, double u0, double u1, double v0, double v1)
+{
+    double C[2][2][3];
+    cell_corners(B, u0, u1, v0, v1, C);
+    return cell_subpatches(B, B->rows, CELL_SPLITS, v0, v1, C) + quad_term(C) + B->slack;
 }
 
 /* Distinct knots of the domain knots[p..n]: their count, written to out
@@ -903,23 +925,57 @@ static void cell_range(double lo, double hi, size_t n, size_t a, double *c0, dou
 
 /* Largest cell bound of block (i, j) with cu x cv equal cells; the first
  * one above limit once there is one. wc (may be NULL) receives the centre
- * (u, v) of the worst cell. */
+ * (u, v) of the worst cell. hint (may be NULL): a point (u, v) whose cell
+ * is bounded first; a cell whose coarse bound (COARSE_SPLITS^2
+ * sub-patches, never below its CELL_SPLITS^2 bound: the finer nets are
+ * subdivisions of the coarser ones, and |sum l D| / sum l W <= max |D| / W)
+ * stays below that one by more than the rounding slack cannot be the worst
+ * and is not bounded finely. The result and wc are those of bounding every
+ * cell: only cells below the maximum are skipped. */
 static double block_bound(cert_grid *G, size_t i, size_t j, size_t cu, size_t cv, double limit,
-                          double *wc)
+                          double *wc, const double *hint)
 {
     cert_block *B = &G->B;
     block_load(G, i, j);
+    double lu = G->bu[i], hu = G->bu[i + 1], lv = G->bv[j], hv = G->bv[j + 1];
+    double T = 0;
+    if (hint && hint[0] >= lu && hint[0] <= hu && hint[1] >= lv && hint[1] <= hv) {
+        size_t a = (size_t)((hint[0] - lu) / (hu - lu) * (double)cu);
+        size_t b = (size_t)((hint[1] - lv) / (hv - lv) * (double)cv);
+        double ua, ub, va, vb;
+        a = a < cu ? a : cu - 1;
+        b = b < cv ? b : cv - 1;
+        cell_range(lu, hu, cu, a, &ua, &ub);
+        cell_range(lv, hv, cv, b, &va, &vb);
+        cell_rows(B, ua, ub, CELL_SPLITS, B->rows);
+        T = cell_bound(B, ua, ub, va, vb);
+        if (T > limit)
+            return T; /* the block's bound is at least that */
+    }
     double worst = 0;
+    int first = 1;
     for (size_t a = 0; a < cu; a++) {
         double ua, ub;
-        cell_range(G->bu[i], G->bu[i + 1], cu, a, &ua, &ub);
-        cell_rows(B, ua, ub);
+        cell_range(lu, hu, cu, a, &ua, &ub);
+        int fine_rows = 0;
+        if (T > 0)
+            cell_rows(B, ua, ub, COARSE_SPLITS, B->rows2);
         for (size_t b = 0; b < cv; b++) {
-            double va, vb;
-            cell_range(G->bv[j], G->bv[j + 1], cv, b, &va, &vb);
-            double d = cell_bound(B, ua, ub, va, vb);
-            if (d > worst || (a == 0 && b == 0)) {
+            double va, vb, C[2][2][3];
+            cell_range(lv, hv, cv, b, &va, &vb);
+            cell_corners(B, ua, ub, va, vb, C);
+            double extra = quad_term(C) + B->slack;
+            if (T > 0 &&
+                cell_subpatches(B, B->rows2, COARSE_SPLITS, va, vb, C) + extra + B->slack < T)
+                continue;
+            if (!fine_rows) {
+                cell_rows(B, ua, ub, CELL_SPLITS, B->rows);
+                fine_rows = 1;
+            }
+            double d = cell_subpatches(B, B->rows, CELL_SPLITS, va, vb, C) + extra;
+            if (d > worst || first) {
                 worst = d;
+                first = 0;
                 if (wc) {
                     wc[0] = 0.5 * (ua + ub);
                     wc[1] = 0.5 * (va + vb);
@@ -944,7 +1000,7 @@ static double cell_at(cert_grid *G, size_t i, size_t j, size_t cu, size_t cv, do
     cell_range(lu, hu, cu, a, &ua, &ub);
     cell_range(lv, hv, cv, b, &va, &vb);
     block_load(G, i, j);
-    cell_rows(&G->B, ua, ub);
+    cell_rows(&G->B, ua, ub, CELL_SPLITS, G->B.rows);
     return cell_bound(&G->B, ua, ub, va, vb);
 }
 
@@ -952,14 +1008,16 @@ static void column_bounds(cert_grid *G, size_t i)
 {
     for (size_t j = 0; j < G->nsv; j++)
         G->bb[i * G->nsv + j] =
-            block_bound(G, i, j, G->cu[i], G->cv[j], INFINITY, G->wc + 2 * (i * G->nsv + j));
+            block_bound(G, i, j, G->cu[i], G->cv[j], INFINITY, G->wc + 2 * (i * G->nsv + j),
+                        G->wc + 2 * (i * G->nsv + j));
 }
 
 static void row_bounds(cert_grid *G, size_t j)
 {
     for (size_t i = 0; i < G->nsu; i++)
         G->bb[i * G->nsv + j] =
-            block_bound(G, i, j, G->cu[i], G->cv[j], INFINITY, G->wc + 2 * (i * G->nsv + j));
+            block_bound(G, i, j, G->cu[i], G->cv[j], INFINITY, G->wc + 2 * (i * G->nsv + j),
+                        G->wc + 2 * (i * G->nsv + j));
 }
 
 static size_t sum_sz(const size_t *c, size_t n)
@@ -985,7 +1043,7 @@ static int cert_try_drop(cert_grid *G, int dir, size_t k, double tol)
     for (size_t m = 0; m < other && ok; m++) {
         size_t i = dir ? m : k, j = dir ? k : m;
         nb[m] = block_bound(G, i, j, dir ? G->cu[i] : G->cu[i] - 1, dir ? G->cv[j] - 1 : G->cv[j],
-                            tol, nc + 2 * m);
+                            tol, nc + 2 * m, G->wc + 2 * (i * G->nsv + j));
         ok = nb[m] <= tol;
     }
     if (ok) {
@@ -1005,6 +1063,7 @@ static void cert_grid_free(cert_grid *G)
     free(G->B.net);
     free(G->B.row);
     free(G->B.rows);
+    free(G->B.rows2);
     free(G->B.fu);
     free(G->B.h);
     free(G->B.tmp);
@@ -1046,6 +1105,7 @@ conica_code conica_plot_surface_certified(const conica_bspline_surface *s,
     G.B.row = malloc(np * 4 * sizeof(double));
     G.B.h = malloc(np * 4 * sizeof(double));
     G.B.rows = malloc(CELL_SPLITS * np * 4 * sizeof(double));
+    G.B.rows2 = malloc(COARSE_SPLITS * np * 4 * sizeof(double));
     G.B.fu = malloc((size_t)(2 * (p + 2) + 2 * (q + 2)) * sizeof(double));
     if (G.B.fu) {
         /* B^p_i B^1_a = C(p,i) C(1,a) / C(p+1,i+a) B^{p+1}_{i+a}: K = i + a */
@@ -1069,8 +1129,8 @@ conica_code conica_plot_surface_certified(const conica_bspline_surface *s,
     G.cu = malloc(mxu * sizeof *G.cu);
     G.cv = malloc(mxv * sizeof *G.cv);
     G.bb = malloc(mxu * mxv * sizeof *G.bb);
-    G.wc = malloc(2 * mxu * mxv * sizeof *G.wc);
-    if (!G.B.net || !G.B.row || !G.B.rows || !G.B.fu || !G.B.h || !G.B.tmp || !G.B.args || !G.bu || !G.bv || !G.mu ||
+    G.wc = calloc(2 * mxu * mxv, sizeof *G.wc); /* block_bound's first hints */
+    if (!G.B.net || !G.B.row || !G.B.rows || !G.B.rows2 || !G.B.fu || !G.B.h || !G.B.tmp || !G.B.args || !G.bu || !G.bv || !G.mu ||
         !G.mv || !G.cu || !G.cv || !G.bb || !G.wc) {
         cert_grid_free(&G);
         return conica__fail(st, CONICA_ERR_NOMEM, 0, 0, "out of memory");

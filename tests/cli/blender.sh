@@ -165,7 +165,27 @@ check_grep '^Warning: keyed: has shape keys' "$log" \
     "a curve with shape keys is reported as a warning"
 fi
 
-# One case per check the script reported.
+# Esc in a real window: the modal run of job.py under Xvfb, an Esc press
+# sent through Blender's event queue (--enable-event-simulate); a second
+# Blender run, since the first one has no window.
+if [ -z "${CONICA_CASES:-}" ]; then
+begin_case "blender: Esc in a window: the script runs to its end"
+if ! command -v xvfb-run >/dev/null 2>&1; then
+    skip_case "xvfb-run (xvfb) is not installed"
+else
+    mkdir -p "$tmp/wscripts" "$tmp/wconfig"
+    BLENDER_USER_SCRIPTS=$tmp/wscripts BLENDER_USER_CONFIG=$tmp/wconfig CONICA_ZIP=$zip \
+        xvfb-run -a "$blender" --factory-startup --enable-event-simulate \
+        --python tests/blender/test_escape_window.py >"$tmp/window.log" 2>&1
+    check_grep '^SUMMARY ' "$tmp/window.log" "Blender under Xvfb ran the script to its end"
+    if ! grep -q '^SUMMARY ' "$tmp/window.log"; then
+        tail -n 20 "$tmp/window.log"
+    fi
+    grep -E '^(PASS|FAIL) ' "$tmp/window.log" >>"$log"
+fi
+fi
+
+# One case per check the scripts reported.
 grep -E '^(PASS|FAIL) ' "$log" >"$tmp/results"
 while IFS= read -r line; do
     status=${line%% *}
