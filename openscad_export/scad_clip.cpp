@@ -220,22 +220,22 @@ double conica__polys_max_abs(const conica__polys *p)
     return m;
 }
 
+int conica__winding_step(const double *u, const double *v, double x, double y)
+{
+    double c = (v[0] - u[0]) * (y - u[1]) - (x - u[0]) * (v[1] - u[1]);
+    if (u[1] <= y)
+        return v[1] > y && c > 0;
+    return -(v[1] <= y && c < 0);
+}
+
 int conica__polys_winding(const conica__polys *p, double x, double y)
 {
     int w = 0;
     for (size_t i = 0; i < p->n; i++) {
         size_t a = p->start[i], b = p->start[i + 1], n = b - a;
         const double *xy = p->xy + 2 * a;
-        for (size_t k = 0; k < n; k++) {
-            const double *u = xy + 2 * k, *v = xy + 2 * ((k + 1) % n);
-            double c = (v[0] - u[0]) * (y - u[1]) - (x - u[0]) * (v[1] - u[1]);
-            if (u[1] <= y) {
-                if (v[1] > y && c > 0)
-                    w++;
-            } else if (v[1] <= y && c < 0) {
-                w--;
-            }
-        }
+        for (size_t k = 0; k < n; k++)
+            w += conica__winding_step(xy + 2 * k, xy + 2 * ((k + 1) % n), x, y);
     }
     return w;
 }
