@@ -32,3 +32,13 @@ $(BUILD)/bin/scadprofile: $(BUILD)/obj/openscad_export/scadprofile.o $(SCAD_A) $
 	@mkdir -p $(@D)
 	$(CC) $(LDFLAGS) -o $@ $(BUILD)/obj/openscad_export/scadprofile.o $(ALL_LIBS) $(CLIP_LIBS) $(ALL_LDLIBS)
 endif
+
+# glyphsvg (tests/tools/glyphsvg.c): DejaVu glyphs as SVG documents, for
+# tests/cli/scadprofile_glyphs.sh's pixel comparisons with rsvg-convert.
+# Only the test support's FreeType loader; its library is named by path
+# (the Makefile defines TS_A after including the modules).
+GLYPHSVG := $(BUILD)/tests/glyphsvg
+$(GLYPHSVG): $(BUILD)/obj/tests/tools/glyphsvg.o $(BUILD)/lib/libconica_testsupport.a
+	@mkdir -p $(@D)
+	$(CC) $(LDFLAGS) -o $@ $< $(BUILD)/lib/libconica_testsupport.a $(FT_LIBS) -lm
+TEST_EXTRA += $(GLYPHSVG)

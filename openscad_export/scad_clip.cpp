@@ -220,46 +220,22 @@ double conica__polys_max_abs(const conica__polys *p)
     return m;
 }
 
+int conica__winding_step(const double *u, const double *v, double x, double y)
+{
+    double c = (v[0] - u[0]) * (y - u[1]) - (x - u[0]) * (v[1] - u[1]);
+    if (u[1] <= y)
+        return v[1] > y && c > 0;
+    return -(v[1] <= y && c < 0);
+}
+
 int conica__polys_winding(const conica__polys *p, double x, double y)
-{
-    return conica__polys_winding_boxed(p, NULL, x, y);
-}
-
-void conica__polys_boxes(const conica__polys *p, double *box)
-{
-    for (size_t i = 0; i < p->n; i++) {
-        double *b = box + 4 * i;
-        b[0] = b[1] = INFINITY;
-        b[2] = b[3] = -INFINITY;
-        for (size_t k = p->start[i]; k < p->start[i + 1]; k++) {
-            b[0] = std::fmin(b[0], p->xy[2 * k]);
-            b[1] = std::fmin(b[1], p->xy[2 * k + 1]);
-            b[2] = std::fmax(b[2], p->xy[2 * k]);
-            b[3] = std::fmax(b[3], p->xy[2 * k + 1]);
-        }
-    }
-}
-
-int conica__polys_winding_boxed(const conica__polys *p, const double *box, double x, double y)
 {
     int w = 0;
     for (size_t i = 0; i < p->n; i++) {
         size_t a = p->start[i], b = p->start[i + 1], n = b - a;
-        /* a closed polygon winds 0 times round a point outside its box */
-        if (box && !(x >= box[4 * i] && y >= box[4 * i + 1] && x <= box[4 * i + 2] &&
-                     y <= box[4 * i + 3]))
-            continue;
         const double *xy = p->xy + 2 * a;
-        for (size_t k = 0; k < n; k++) {
-            const double *u = xy + 2 * k, *v = xy + 2 * ((k + 1) % n);
-            double c = (v[0] - u[0]) * (y - u[1]) - (x - u[0]) * (v[1] - u[1]);
-            if (u[1] <= y) {
-                if (v[1] > y && c > 0)
-                    w++;
-            } else if (v[1] <= y && c < 0) {
-                w--;
-            }
-        }
+        for (size_t k = 0; k < n; k++)
+            w += conica__winding_step(xy + 2 * k, xy + 2 * ((k + 1) % n), x, y);
     }
     return w;
 }

@@ -43,12 +43,10 @@ double conica__polys_max_abs(const conica__polys *p);
 /* Winding number of (x, y) summed over every polygon (points on an edge
  * count as either side). */
 int conica__polys_winding(const conica__polys *p, double x, double y);
-/* The bounding box of each polygon: 4 doubles (xmin, ymin, xmax, ymax) per
- * polygon into box. */
-void conica__polys_boxes(const conica__polys *p, double *box);
-/* conica__polys_winding() looking only at the polygons whose box (from
- * conica__polys_boxes(); NULL: every polygon) holds the point. */
-int conica__polys_winding_boxed(const conica__polys *p, const double *box, double x, double y);
+/* What the edge u -> v adds to the winding number of (x, y): +1, -1 or 0
+ * (the rule of conica__polys_winding(), for callers with their own edge
+ * lists). */
+int conica__winding_step(const double *u, const double *v, double x, double y);
 
 /* Largest coordinate Clipper takes (its hiRange is 2^62 - 1), with room for
  * offsets. */

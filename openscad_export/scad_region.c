@@ -133,23 +133,119 @@ static conica_code map_path(const conica_path *src, const conica_svg_matrix *m, 
 
 /* ------------------------------------------------------------ fills */
 
+/* The dense fill's edges in horizontal bands, so that a winding number
+ * reads only the edges of its point's band (the fit asks for thousands).
+ * Each entry is an edge by the index of its first point and of its second. */
+typedef struct wind_index {
+    const conica__polys *p;
+    double y0, h;
+    size_t nb;
+    size_t *first; /* nb + 1 offsets into edge */
+    size_t *edge;  /* pairs */
+} wind_index;
+
+static size_t band_of(const wind_index *w, double y)
+{
+    double b = floor((y - w->y0) / w->h);
+    return b < 0 ? 0 : b >= (double)w->nb ? w->nb - 1 : (size_t)b;
+}
+
+/* 0, or -1 out of memory (w is then empty: winding reads every edge). */
+static int wind_index_build(wind_index *w, const conica__polys *p)
+{
+    double lo = INFINITY, hi = -INFINITY;
+    size_t ne = 0;
+    memset(w, 0, sizeof *w);
+    w->p = p;
+    for (size_t k = 0; k < p->npts; k++) {
+        lo = fmin(lo, p->xy[2 * k + 1]);
+        hi = fmax(hi, p->xy[2 * k + 1]);
+    }
+    if (p->npts < 64 || !(hi > lo))
+        return 0;
+    w->nb = (size_t)sqrt((double)p->npts);
+    w->y0 = lo;
+    w->h = (hi - lo) / (double)w->nb;
+    w->first = calloc(w->nb + 1, sizeof *w->first);
+    if (!w->first)
+        goto fail;
+    for (int pass = 0; pass < 2; pass++) {
+        for (size_t i = 0; i < p->n; i++) {
+            size_t a = p->start[i], n = p->start[i + 1] - a;
+            for (size_t k = 0; k < n; k++) {
+                double ya = p->xy[2 * (a + k) + 1], yb = p->xy[2 * (a + (k + 1) % n) + 1];
+                if (ya == yb)
+                    continue; /* never counted */
+                for (size_t b = band_of(w, fmin(ya, yb)); b <= band_of(w, fmax(ya, yb)); b++) {
+                    if (pass == 0) {
+                        w->first[b + 1]++;
+                        ne++;
+                    } else {
+                        size_t at = w->first[b]++;
+                        w->edge[2 * at] = a + k;
+                        w->edge[2 * at + 1] = a + (k + 1) % n;
+                    }
+                }
+            }
+        }
+        if (pass == 0) {
+            for (size_t b = 0; b < w->nb; b++)
+                w->first[b + 1] += w->first[b];
+            w->edge = malloc(2 * (ne ? ne : 1) * sizeof *w->edge);
+            if (!w->edge)
+                goto fail;
+        } else { /* each first[b] moved to first[b + 1]: shift back */
+            memmove(w->first + 1, w->first, w->nb * sizeof *w->first);
+            w->first[0] = 0;
+        }
+    }
+    return 0;
+fail:
+    free(w->first);
+    free(w->edge);
+    memset(w, 0, sizeof *w);
+    w->p = p;
+    return -1;
+}
+
+static void wind_index_free(wind_index *w)
+{
+    free(w->first);
+    free(w->edge);
+}
+
+/* conica__polys_winding(w->p, x, y), by the band of y. */
+static int wind_at(const wind_index *w, double x, double y)
+{
+    int c = 0;
+    if (!w->nb)
+        return conica__polys_winding(w->p, x, y);
+    if (y < w->y0 || y > w->y0 + w->h * (double)w->nb)
+        return 0;
+    size_t b = band_of(w, y);
+    for (size_t i = w->first[b]; i < w->first[b + 1]; i++)
+        c += conica__winding_step(w->p->xy + 2 * w->edge[2 * i], w->p->xy + 2 * w->edge[2 * i + 1],
+                                  x, y);
+    return c;
+}
+
 typedef struct side_ctx {
-    const conica__polys *dense;
-    const double *box; /* dense's polygon boxes (conica__polys_boxes), or NULL */
+    wind_index dense;
     double eps;
 } side_ctx;
 
-/* Painted side from the item's dense fill: probes either side of the curve. */
+/* Painted side from the item's dense fill: probes either side of the curve
+ * (dir NULL: is pt itself painted). */
 static int painted_side(void *ctx, const double pt[2], const double dir[2])
 {
     const side_ctx *c = ctx;
+    if (!dir)
+        return wind_at(&c->dense, pt[0], pt[1]) != 0;
     double n[2] = {-dir[1], dir[0]};
     for (int k = 0; k < 2; k++) {
-        double e = k ? c->eps / 16 : c->eps;
-        double lx = pt[0] + e * n[0], ly = pt[1] + e * n[1];
-        double rx = pt[0] - e * n[0], ry = pt[1] - e * n[1];
-        int l = conica__polys_winding_boxed(c->dense, c->box, lx, ly) != 0;
-        int r = conica__polys_winding_boxed(c->dense, c->box, rx, ry) != 0;
+        double e = k ? c->eps : c->eps / 16; /* near first: a thin feature is not jumped */
+        int l = wind_at(&c->dense, pt[0] + e * n[0], pt[1] + e * n[1]) != 0;
+        int r = wind_at(&c->dense, pt[0] - e * n[0], pt[1] - e * n[1]) != 0;
         if (l != r)
             return l ? 1 : -1;
     }
@@ -202,17 +298,10 @@ static conica_code fill_polys(const conica_path *path, double tol, conica__fit_s
     buf b = {NULL, 0, 0};
     side_ctx sc;
     conica_code rc = CONICA_OK;
-    double *box = NULL;
-    /* many contours (a perforated plate): each probe reads the few whose
-     * box holds it */
-    if (dense && dense->n) {
-        box = malloc(4 * dense->n * sizeof *box);
-        if (!box)
-            return conica__fail(st, CONICA_ERR_NOMEM, 0, 0, "out of memory");
-        conica__polys_boxes(dense, box);
-    }
-    sc.dense = dense;
-    sc.box = box;
+    if (dense && wind_index_build(&sc.dense, dense) != 0)
+        return conica__fail(st, CONICA_ERR_NOMEM, 0, 0, "out of memory");
+    if (!dense)
+        memset(&sc.dense, 0, sizeof sc.dense);
     sc.eps = eps;
     for (size_t i = 0; i < path->nsub && rc == CONICA_OK; i++) {
         if (path->sub[i].kind != CONICA_PATH_DRAWN)
@@ -247,7 +336,7 @@ static conica_code fill_polys(const conica_path *path, double tol, conica__fit_s
             rc = conica__fail(st, CONICA_ERR_NOMEM, 0, 0, "out of memory");
     }
     free(b.xy);
-    free(box);
+    wind_index_free(&sc.dense);
     return rc;
 }
 
@@ -638,55 +727,181 @@ static int cmp_pt(const void *a, const void *b)
     return 0;
 }
 
-/* Clipper's strictly simple output can still have two contours meet at a
- * vertex (two squares corner to corner, a hole touching its outline),
- * which OpenSCAD's polygon() and a later extrusion must not be given: each
- * copy of such a vertex moves into its own contour's material (to the left
- * of travel: outlines run counter-clockwise, holes clockwise) by
- * CONICA__REGION_TOUCH_FRACTION of the tolerance, along the bisector of
- * its edges' normals. Returns how many moved, or SIZE_MAX when out of
- * memory. */
+/* Clipper's strictly simple output can still have contours meet at a
+ * vertex (two squares corner to corner, a hole touching its outline, three
+ * triangles at one apex), which OpenSCAD's polygon() and a later extrusion
+ * must not be given. Around such a point the edges of every visit (the
+ * edge in and the edge out of each copy of the vertex) divide the plane
+ * into sectors; material is to the left of travel (outlines run
+ * counter-clockwise, holes clockwise), so each material sector runs
+ * counter-clockwise from some visit's edge out to the next edge, which is
+ * some visit's edge in. Each such sector gets its own copy of the point,
+ * moved along the sector's bisector by CONICA__REGION_TOUCH_FRACTION of
+ * the tolerance, and the edge in and the edge out that bound it are joined
+ * there: the contours no longer meet, none crosses another (each new edge
+ * stays in its own sector), and where a hole touched its outline the two
+ * become one contour with a notch. Returns how many moved, SIZE_MAX when
+ * out of memory; r is rebuilt when contours were joined. */
+#define REGION_PI 3.14159265358979323846
+
+typedef struct visit {
+    size_t k;         /* index of this copy of the point */
+    double in, out;   /* angles of the edges to the previous and next vertex */
+} visit;
+
+/* the counter-clockwise turn from angle a to angle b, in (0, 2 pi] */
+static double ccw(double a, double b)
+{
+    double d = b - a;
+    while (d <= 0)
+        d += 2 * REGION_PI;
+    while (d > 2 * REGION_PI)
+        d -= 2 * REGION_PI;
+    return d;
+}
+
 static size_t separate_touching(conica__polys *r, double tol)
 {
-    double *key = malloc(3 * (r->npts ? r->npts : 1) * sizeof *key);
-    size_t moved = 0;
-    if (!key)
-        return SIZE_MAX;
-    for (size_t k = 0; k < r->npts; k++) {
+    size_t np = r->npts, moved = 0;
+    double *key = malloc(3 * (np ? np : 1) * sizeof *key), *nxy = NULL;
+    size_t *next = malloc((np ? np : 1) * sizeof *next), *prev = malloc((np ? np : 1) * sizeof *prev);
+    visit *vs = NULL;
+    size_t nvs = 0, vcap = 0;
+    int relinked = 0;
+    if (!key || !next || !prev)
+        goto nomem;
+    for (size_t c = 0; c < r->n; c++)
+        for (size_t k = r->start[c]; k < r->start[c + 1]; k++) {
+            size_t n = r->start[c + 1] - r->start[c];
+            next[k] = r->start[c] + (k - r->start[c] + 1) % n;
+            prev[k] = r->start[c] + (k - r->start[c] + n - 1) % n;
+        }
+    nxy = malloc(2 * (np ? np : 1) * sizeof *nxy);
+    if (!nxy)
+        goto nomem;
+    memcpy(nxy, r->xy, 2 * np * sizeof *nxy);
+    for (size_t k = 0; k < np; k++) {
         key[3 * k] = r->xy[2 * k];
         key[3 * k + 1] = r->xy[2 * k + 1];
         key[3 * k + 2] = (double)k;
     }
-    qsort(key, r->npts, 3 * sizeof *key, cmp_pt);
-    for (size_t i = 0; i + 1 < r->npts; i++) {
-        if (cmp_pt(key + 3 * i, key + 3 * (i + 1)) != 0)
-            continue;
-        size_t j = i;
-        while (j + 1 < r->npts && cmp_pt(key + 3 * j, key + 3 * (j + 1)) == 0)
-            j++;
-        for (size_t g = i; g <= j; g++) {
-            size_t k = (size_t)key[3 * g + 2], c = 0;
-            while (r->start[c + 1] <= k)
-                c++;
-            size_t a = r->start[c], n = r->start[c + 1] - a, at = k - a;
-            const double *v = r->xy + 2 * k, *pv = r->xy + 2 * (a + (at + n - 1) % n),
-                         *nx = r->xy + 2 * (a + (at + 1) % n);
-            double e0x = v[0] - pv[0], e0y = v[1] - pv[1], e1x = nx[0] - v[0], e1y = nx[1] - v[1];
-            double l0 = hypot(e0x, e0y), l1 = hypot(e1x, e1y);
-            if (!(l0 > 0) || !(l1 > 0))
+    qsort(key, np, 3 * sizeof *key, cmp_pt);
+    {
+        size_t *nnext = malloc((np ? np : 1) * sizeof *nnext);
+        if (!nnext)
+            goto nomem;
+        memcpy(nnext, next, np * sizeof *nnext);
+        for (size_t i = 0; i + 1 < np; i++) {
+            if (cmp_pt(key + 3 * i, key + 3 * (i + 1)) != 0)
                 continue;
-            double bx = -e0y / l0 - e1y / l1, by = e0x / l0 + e1x / l1, bl = hypot(bx, by);
-            if (!(bl > 0))
-                continue;
-            double step = fmin(tol * CONICA__REGION_TOUCH_FRACTION, 0.25 * fmin(l0, l1));
-            r->xy[2 * k] = v[0] + step * bx / bl;
-            r->xy[2 * k + 1] = v[1] + step * by / bl;
-            moved++;
+            size_t j = i;
+            while (j + 1 < np && cmp_pt(key + 3 * j, key + 3 * (j + 1)) == 0)
+                j++;
+            nvs = 0;
+            if (j - i + 1 > vcap) {
+                visit *nv = realloc(vs, (j - i + 1) * sizeof *nv);
+                if (!nv) {
+                    free(nnext);
+                    goto nomem;
+                }
+                vs = nv;
+                vcap = j - i + 1;
+            }
+            const double *o = key + 3 * i;
+            for (size_t g = i; g <= j; g++) {
+                size_t k = (size_t)key[3 * g + 2];
+                const double *pv = r->xy + 2 * prev[k], *nx = r->xy + 2 * next[k];
+                if ((pv[0] == o[0] && pv[1] == o[1]) || (nx[0] == o[0] && nx[1] == o[1]))
+                    continue; /* a repeated point within one contour: leave it */
+                vs[nvs].k = k;
+                vs[nvs].in = atan2(pv[1] - o[1], pv[0] - o[0]);
+                vs[nvs].out = atan2(nx[1] - o[1], nx[0] - o[0]);
+                nvs++;
+            }
+            /* each visit's edge out opens a sector that the nearest edge
+             * counter-clockwise closes: an edge in (of visit m) */
+            for (size_t a = 0; a < nvs; a++) {
+                double best = INFINITY;
+                size_t m = SIZE_MAX;
+                for (size_t b = 0; b < nvs; b++) {
+                    double din = ccw(vs[a].out, vs[b].in);
+                    if (din < best) {
+                        best = din;
+                        m = b;
+                    }
+                }
+                for (size_t b = 0; b < nvs && m != SIZE_MAX; b++)
+                    if (b != a && ccw(vs[a].out, vs[b].out) < best)
+                        m = SIZE_MAX; /* an edge out first: overlapping, leave it */
+                if (m == SIZE_MAX || !(best < 2 * REGION_PI))
+                    continue;
+                size_t km = vs[m].k, ka = vs[a].k;
+                double th = vs[a].out + 0.5 * best;
+                const double *pv = r->xy + 2 * prev[km], *nx = r->xy + 2 * next[ka];
+                double l0 = hypot(pv[0] - o[0], pv[1] - o[1]), l1 = hypot(nx[0] - o[0], nx[1] - o[1]);
+                double step = fmin(tol * CONICA__REGION_TOUCH_FRACTION, 0.25 * fmin(l0, l1));
+                /* the copy that closes the sector (visit m's) is the point
+                 * there; it goes on along visit a's edge out */
+                nxy[2 * km] = o[0] + step * cos(th);
+                nxy[2 * km + 1] = o[1] + step * sin(th);
+                nnext[km] = next[ka];
+                if (ka != km)
+                    relinked = 1;
+                moved++;
+            }
+            i = j;
         }
-        i = j;
+        memcpy(next, nnext, np * sizeof *next);
+        free(nnext);
+    }
+    if (relinked) { /* trace the joined contours */
+        conica__polys out;
+        unsigned char *seen = calloc(np ? np : 1, 1);
+        double *tmp = malloc(2 * (np ? np : 1) * sizeof *tmp);
+        conica__polys_init(&out);
+        if (!seen || !tmp) {
+            free(seen);
+            free(tmp);
+            goto nomem;
+        }
+        for (size_t s0 = 0; s0 < np; s0++) {
+            size_t m = 0, k = s0;
+            if (seen[s0])
+                continue;
+            while (!seen[k] && m < np) {
+                seen[k] = 1;
+                tmp[2 * m] = nxy[2 * k];
+                tmp[2 * m + 1] = nxy[2 * k + 1];
+                m++;
+                k = next[k];
+            }
+            if (conica__polys_add(&out, tmp, m) != 0) {
+                free(seen);
+                free(tmp);
+                conica__polys_free(&out);
+                goto nomem;
+            }
+        }
+        free(seen);
+        free(tmp);
+        conica__polys_free(r);
+        *r = out;
+    } else {
+        memcpy(r->xy, nxy, 2 * np * sizeof *nxy);
     }
     free(key);
+    free(next);
+    free(prev);
+    free(nxy);
+    free(vs);
     return moved;
+nomem:
+    free(key);
+    free(next);
+    free(prev);
+    free(nxy);
+    free(vs);
+    return SIZE_MAX;
 }
 
 /* ------------------------------------------------------------ driver */

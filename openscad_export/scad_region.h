@@ -43,10 +43,11 @@ typedef enum conica__region_fit {
  * span many grid steps). */
 #define CONICA__REGION_GRID_FRACTION 0.01
 #define CONICA__REGION_GRID_FINE 3e-4
-/* Where two contours of the result meet at a vertex, each copy moves this
- * fraction of the tolerance into its own material (less than the check's
- * slack). */
-#define CONICA__REGION_TOUCH_FRACTION 0.01
+/* Where contours of the result meet at a vertex, each sector of material
+ * there gets its own copy of it, moved this fraction of the tolerance into
+ * the sector (well under the check's slack, also where the sector is a
+ * needle whose sides are themselves up to the slack from the drawing). */
+#define CONICA__REGION_TOUCH_FRACTION 0.004
 /* The check's slack spans at least this many grid steps. */
 #define CONICA__REGION_CHECK_STEPS 16.0
 

@@ -41,13 +41,6 @@
 /* Tangents closer to parallel than this (radians): the piece is straight to
  * rounding; its chord is exact. */
 #define FIT_PARALLEL 1e-10
-/* CONICA__FIT_CHORDS through conica__path_fit() (a dense reference):
- * each piece is the longest within the tolerance to this fraction of its
- * length, not to the bisection's last step. */
-#define FIT_COARSE_REL (1.0 / 64)
-/* The painted side is sampled at this many points of each stretch, for
- * where another subpath crosses it. */
-#define FIT_SIDE_SAMPLES 8
 
 /* A segment's curve in homogeneous form: position and first two
  * derivatives at t. */
@@ -297,96 +290,262 @@ static conica_code put(out_buf *o, double x, double y)
     return CONICA_OK;
 }
 
-/* The vertices of stretch [a, b] after P(a) (which is out already), up to
- * and with P(b) unless b is the segment's end. */
-static conica_code stretch(const seg_eval *e, double a, double b, int tangents, double tol,
-                           double max_turn, int coarse, out_buf *o)
+/* How the pieces of a stretch are cut: tangent legs or chords, within tol,
+ * turning at most max_turn; where `painted` is set, the polygon's edge
+ * must also lie on the side `want` (1 painted, 0 not): a feature thinner
+ * than the tolerance has another edge of the outline within reach, and an
+ * edge moved by the full tolerance would cross it. */
+typedef struct piece_rule {
+    int tangents;
+    double tol, max_turn;
+    conica__painted_fn painted;
+    void *ctx;
+    int want;
+} piece_rule;
+
+/* Points of the polygon's edge for [u, v] nearer the curve than this
+ * fraction of the tolerance are not tested for their side: the caller's
+ * region is only that exact, and they cannot cross an edge by more. */
+#define FIT_SIDE_MARGIN (1.0 / 64.0)
+/* Points tested on each leg (a chord: twice as many, less one). */
+#define FIT_SIDE_POINTS 2
+
+/* Does the polygon's edge for [u, v] (chord, or legs through X) keep to
+ * r->want? Points along it are tested. */
+static int piece_sided(const seg_eval *e, double u, double v, const piece_rule *r)
 {
-    double u = a;
-    conica_code rc = CONICA_OK;
-    while (u < b && rc == CONICA_OK) {
-        double v = b;
-        if (!(piece_error(e, u, b, tangents, max_turn) <= tol)) {
-            double lo = u, hi = b;
-            for (int k = 0; k < FIT_BISECT; k++) {
-                double mid = 0.5 * (lo + hi);
-                if (piece_error(e, u, mid, tangents, max_turn) <= tol)
-                    lo = mid;
-                else
-                    hi = mid;
-                if (coarse && hi - lo <= FIT_COARSE_REL * (lo - u))
-                    break; /* within tol is all a reference needs */
-            }
-            v = lo > u ? lo : hi; /* no progress: a piece too small to matter */
+    double Pu[2], Pv[2], X[2], Y[2 * FIT_SIDE_POINTS][2];
+    int n = 0;
+    seg_at(e, u, Pu, NULL, NULL);
+    seg_at(e, v, Pv, NULL, NULL);
+    if (r->tangents && tangent_meet(e, u, v, X)) {
+        for (int k = 1; k <= FIT_SIDE_POINTS; k++, n += 2) {
+            double f = (double)k / FIT_SIDE_POINTS;
+            Y[n][0] = Pu[0] + f * (X[0] - Pu[0]);
+            Y[n][1] = Pu[1] + f * (X[1] - Pu[1]);
+            Y[n + 1][0] = Pv[0] + f * (X[0] - Pv[0]);
+            Y[n + 1][1] = Pv[1] + f * (X[1] - Pv[1]);
         }
-        if (tangents) {
+    } else {
+        for (n = 0; n < 2 * FIT_SIDE_POINTS - 1; n++) {
+            double f = (n + 1.0) / (2 * FIT_SIDE_POINTS);
+            Y[n][0] = Pu[0] + f * (Pv[0] - Pu[0]);
+            Y[n][1] = Pu[1] + f * (Pv[1] - Pu[1]);
+        }
+    }
+    for (int k = 0; k < n; k++)
+        if ((r->painted(r->ctx, Y[k], NULL) != 0) != r->want &&
+            -piece_max(e, u, v, near_pt, Y[k]) > FIT_SIDE_MARGIN * r->tol)
+            return 0;
+    return 1;
+}
+
+/* Is [u, v] one piece within tol: its error, its side (sided: when the
+ * rule has one), and where the piece ends at a tip (leg0: at u, leg1: at
+ * v) the tangent leg ending there within tol of it too (at a tip the next
+ * edge runs back along that leg, the two cancel in the fill, and the
+ * polygon must still reach within tol of the tip). */
+static int piece_ok(const seg_eval *e, double u, double v, const piece_rule *r, int leg0,
+                    int leg1, int sided)
+{
+    double X[2], P[2];
+    if (!(piece_error(e, u, v, r->tangents, r->max_turn) <= r->tol))
+        return 0;
+    if (r->tangents && (leg0 || leg1) && tangent_meet(e, u, v, X)) {
+        if (leg0) {
+            seg_at(e, u, P, NULL, NULL);
+            if (!(hypot(X[0] - P[0], X[1] - P[1]) <= r->tol))
+                return 0;
+        }
+        if (leg1) {
+            seg_at(e, v, P, NULL, NULL);
+            if (!(hypot(X[0] - P[0], X[1] - P[1]) <= r->tol))
+                return 0;
+        }
+    }
+    return !sided || !r->painted || piece_sided(e, u, v, r);
+}
+
+/* The longest [u, v], v in (u, hi], that piece_ok() takes, by bisection
+ * (hi itself when no shorter one is taken: a piece too small to matter). */
+static double bisect_end(const seg_eval *e, double u, double hi, const piece_rule *r, int l0,
+                         int sided)
+{
+    double lo = u;
+    for (int k = 0; k < FIT_BISECT; k++) {
+        double mid = 0.5 * (lo + hi);
+        if (piece_ok(e, u, mid, r, l0, 0, sided))
+            lo = mid;
+        else
+            hi = mid;
+    }
+    return lo > u ? lo : hi;
+}
+
+/* The longest piece from u towards `end` that piece_ok() takes: by its
+ * error first, then (rarely needed, and costlier) by its side. */
+static double piece_end(const seg_eval *e, double u, double end, const piece_rule *r, int l0,
+                        int l1)
+{
+    double v = end;
+    if (!piece_ok(e, u, end, r, l0, l1, 0))
+        v = bisect_end(e, u, end, r, l0, 0);
+    if (r->painted && v > u && !piece_sided(e, u, v, r))
+        v = bisect_end(e, u, v, r, l0, 1);
+    return v;
+}
+
+/* The vertices of stretch [a, b] after P(a) (which is out already), up to
+ * and with P(b) unless b is the segment's end. tip0 / tip1: the segment's
+ * start / end is a tip (the polygon turns back there). */
+static conica_code stretch(const seg_eval *e, double a, double b, const piece_rule *r, int tip0,
+                           int tip1, out_buf *o)
+{
+    double u = a, end = b;
+    int leg0 = tip0 && a == 0.0, leg1 = tip1 && b == 1.0 && r->tangents;
+    conica_code rc = CONICA_OK;
+    if (leg1 && !piece_ok(e, a, b, r, leg0, 1, 0)) {
+        /* the last piece first: the longest [t, b] whose leg reaches the tip */
+        double lo = a, hi = b;
+        for (int k = 0; k < FIT_BISECT; k++) {
+            double mid = 0.5 * (lo + hi);
+            if (piece_ok(e, mid, b, r, 0, 1, 0))
+                hi = mid;
+            else
+                lo = mid;
+        }
+        end = hi;
+    }
+    while (u < b && rc == CONICA_OK) {
+        double v = piece_end(e, u, end, r, leg0 && u == a, leg1 && end == b);
+        if (r->tangents) {
             double X[2];
             if (tangent_meet(e, u, v, X))
                 rc = put(o, X[0], X[1]);
         }
         if (rc == CONICA_OK && v < 1.0) {
             double P[2];
-            if (v < b && tangents) {
+            if (v < b && r->tangents) {
                 u = v;
+                if (u >= end)
+                    end = b;
                 continue; /* the next leg starts on the same tangent */
             }
             seg_at(e, v, P, NULL, NULL);
             rc = put(o, P[0], P[1]);
         }
         u = v;
+        if (u >= end)
+            end = b;
     }
     return rc;
 }
 
-/* Painted side of stretch [a, b]: the caller's answer at its middle. */
-static int stretch_side(const seg_eval *e, double a, double b, conica__painted_fn painted,
-                        void *ctx)
+/* Painted side at t: the caller's answer there. */
+static int side_at(const seg_eval *e, double t, conica__painted_fn painted, void *ctx)
 {
-    double P[2], t[2], m = 0.5 * (a + b);
+    double P[2], d[2];
     if (!painted)
         return 0;
-    seg_at(e, m, P, NULL, NULL);
-    tangent(e, m, 1, t);
-    return painted(ctx, P, t);
+    seg_at(e, t, P, NULL, NULL);
+    tangent(e, t, 1, d);
+    return painted(ctx, P, d);
 }
 
-/* Where the painted side changes within [a, b] (another subpath of the
- * region crosses the curve there, as two overlapping contours filled
- * even-odd do): the side sampled at FIT_SIDE_SAMPLES points, each change
- * between two samples found by bisection. At most cap parameters,
- * ascending, into out; their number. A change missed between two samples
- * (two crossings close together) leaves a stretch on the wrong side, which
- * the caller's check against the drawn region finds. */
-static size_t side_changes(const seg_eval *e, double a, double b, conica__painted_fn painted,
-                           void *ctx, double *out, size_t cap)
+/* The parts of a segment that each turn one way and have one painted
+ * side: its inflections (cut[0..nc)) and where the painted side changes,
+ * because another outline of the same fill crosses the curve there (the
+ * fill rule resolves overlaps and self-crossings, so one curve can bound
+ * the region, lie inside it and bound it from the other side in turn).
+ * The side is read at points no farther apart than FIT_SIDE_SPACING
+ * tolerances along the control polygon (at least FIT_SIDE_SAMPLES, at most
+ * FIT_SIDE_MAX_SAMPLES per stretch between inflections) and each change
+ * located by bisection, so that a piece never straddles a crossing it
+ * could cross to the wrong side of (two crossings closer than the spacing
+ * can still be missed: the piece's side test and the caller's check catch
+ * what that leaves). part gets the ends of the parts (the last is 1), side
+ * each part's side; returns the number of parts. */
+#define FIT_SIDE_SAMPLES 8
+#define FIT_SIDE_MAX_SAMPLES 64
+#define FIT_SIDE_SPACING 16.0
+#define FIT_SIDE_BISECT 30
+#define FIT_SIDE_END (1.0 / 16.0)
+#define FIT_MAX_INFLECTIONS 6
+#define FIT_MAX_PARTS ((FIT_MAX_INFLECTIONS + 1) * (FIT_SIDE_MAX_SAMPLES + 3))
+
+static size_t seg_parts(const seg_eval *e, const double *cut, size_t nc, double tol, int tip0,
+                        int tip1, conica__painted_fn painted, void *ctx, double *part, int *side)
 {
-    size_t n = 0;
-    double tp = a;
-    int sp = 0;
-    if (!painted)
-        return 0;
-    for (int i = 0; i <= FIT_SIDE_SAMPLES; i++) {
-        double t = a + (b - a) * (i + 0.5) / (FIT_SIDE_SAMPLES + 1), P[2], d[2];
-        seg_at(e, t, P, NULL, NULL);
-        tangent(e, t, 1, d);
-        int si = painted(ctx, P, d);
-        if (i > 0 && si != sp && n < cap) {
-            double lo = tp, hi = t;
-            for (int k = 0; k < FIT_BISECT; k++) {
-                double mid = 0.5 * (lo + hi);
-                seg_at(e, mid, P, NULL, NULL);
-                tangent(e, mid, 1, d);
-                if (painted(ctx, P, d) == sp)
-                    lo = mid;
-                else
-                    hi = mid;
-            }
-            out[n++] = 0.5 * (lo + hi);
-        }
-        tp = t;
-        sp = si;
+    double len = 0;
+    for (int k = 0; k < e->d; k++) {
+        double x0 = e->h[k][0] / e->h[k][2], y0 = e->h[k][1] / e->h[k][2];
+        double x1 = e->h[k + 1][0] / e->h[k + 1][2], y1 = e->h[k + 1][1] / e->h[k + 1][2];
+        len += hypot(x1 - x0, y1 - y0);
     }
-    return n;
+    double t[FIT_MAX_PARTS], sc[FIT_MAX_PARTS];
+    int sd[FIT_MAX_PARTS], sn[FIT_MAX_PARTS];
+    size_t ns = 0, nsc = 0, np = 0, i = 0, j = 0;
+    for (size_t k = 0; k <= nc; k++) {
+        double a = k ? cut[k - 1] : 0.0, b = k < nc ? cut[k] : 1.0;
+        double want = ceil((b - a) * len / (FIT_SIDE_SPACING * tol));
+        int m = !(want > FIT_SIDE_SAMPLES) ? FIT_SIDE_SAMPLES
+                : want < FIT_SIDE_MAX_SAMPLES ? (int)want
+                                              : FIT_SIDE_MAX_SAMPLES;
+        /* the middles of m equal parts, and near both ends (a crossing
+         * close to a corner) */
+        for (int q = -1; q <= m; q++, ns++) {
+            double f = q < 0 ? FIT_SIDE_END / m : q == m ? 1 - FIT_SIDE_END / m : (q + 0.5) / m;
+            t[ns] = a + (b - a) * f;
+            sd[ns] = side_at(e, t[ns], painted, ctx);
+        }
+    }
+    for (size_t q = 1; q < ns; q++) {
+        if (sd[q] == sd[q - 1])
+            continue;
+        double lo = t[q - 1], hi = t[q];
+        for (int k = 0; k < FIT_SIDE_BISECT; k++) {
+            double mid = 0.5 * (lo + hi);
+            if (side_at(e, mid, painted, ctx) == sd[q - 1])
+                lo = mid;
+            else
+                hi = mid;
+        }
+        sc[nsc] = 0.5 * (lo + hi);
+        sn[nsc++] = sd[q];
+    }
+    /* merge the inflections and the side changes */
+    side[0] = sd[0];
+    while (i < nc || j < nsc) {
+        int take_side = j < nsc && (i >= nc || sc[j] <= cut[i]);
+        double c = take_side ? sc[j] : cut[i];
+        if (c > 0.0 && c < 1.0 && (np == 0 || c > part[np - 1])) {
+            part[np] = c;
+            side[np + 1] = side[np];
+            np++;
+        }
+        if (take_side) {
+            if (np > 0)
+                side[np] = sn[j];
+            else
+                side[0] = sn[j];
+            j++;
+        } else {
+            i++;
+        }
+    }
+    part[np++] = 1.0;
+    /* at a tip the outline is thinner than the probes reach: the part
+     * there has the side of the part before it (after it, at the start) */
+    if (tip1 && np > 1 && side[np - 1] == 0) {
+        part[np - 2] = 1.0;
+        np--;
+    }
+    if (tip0 && np > 1 && side[0] == 0) {
+        memmove(part, part + 1, (np - 1) * sizeof *part);
+        memmove(side, side + 1, (np - 1) * sizeof *side);
+        np--;
+    }
+    return np;
 }
 
 /* Strokes: a point this far along each curved segment's end tangents, so
@@ -439,6 +598,54 @@ static conica_code add_end_tangents(const seg_eval *e, double tol, double chord,
     return CONICA_OK;
 }
 
+/* Unit direction of drawn segment s at its start (end 0) or end (end 1),
+ * in the direction of travel. */
+static void seg_dir(const conica_path *p, size_t s, int end, double out[2])
+{
+    if (seg_is_straight(p, s)) {
+        const conica_path_seg *g = &p->seg[s];
+        const double *q = p->pt + 3 * g->first, *r = q + 3 * g->degree;
+        double dx = r[0] - q[0], dy = r[1] - q[1], l = hypot(dx, dy);
+        out[0] = l > 0 ? dx / l : 1;
+        out[1] = l > 0 ? dy / l : 0;
+        return;
+    }
+    seg_eval e;
+    seg_load(p, s, &e);
+    tangent(&e, (double)end, end ? -1 : 1, out);
+}
+
+/* Tips: the polygon turns back by more than pi - FIT_TIP_ANGLE where two
+ * drawn pieces meet. */
+#define FIT_TIP_ANGLE 1e-3
+
+/* Does the fill's outline turn back at the start (end 0) or end (end 1) of
+ * segment j of subpath sp: the neighbour (the segment before or after; an
+ * open subpath is closed by a straight edge) leaves along the same line? */
+static int is_tip(const conica_path *p, const conica_path_subpath *sp, size_t j, int end)
+{
+    size_t s = sp->first + j, nb;
+    double d0[2], d1[2];
+    int last = j + 1 == sp->n, first = j == 0;
+    seg_dir(p, s, end, d0);
+    if (!sp->closed && (end ? last : first)) {
+        /* the closing edge, from the subpath's end to its start */
+        const conica_path_seg *z = &p->seg[sp->first + sp->n - 1];
+        const double *ze = p->pt + 3 * (z->first + (size_t)z->degree);
+        double dx = sp->x0 - ze[0], dy = sp->y0 - ze[1], l = hypot(dx, dy);
+        if (l > 0) {
+            d1[0] = dx / l;
+            d1[1] = dy / l;
+            return d0[0] * d1[0] + d0[1] * d1[1] < -cos(FIT_TIP_ANGLE);
+        }
+    }
+    nb = end ? (last ? sp->first : s + 1) : (first ? sp->first + sp->n - 1 : s - 1);
+    if (nb == s)
+        return 0;
+    seg_dir(p, nb, !end, d1);
+    return d0[0] * d1[0] + d0[1] * d1[1] < -cos(FIT_TIP_ANGLE);
+}
+
 static conica_code walk(const conica_path *p, size_t sub, double tol, conica__fit_side side,
                         conica__painted_fn painted, void *ctx, out_buf *o, int tangent_ends,
                         double max_turn)
@@ -456,41 +663,48 @@ static conica_code walk(const conica_path *p, size_t sub, double tol, conica__fi
         size_t s = sp->first + j;
         const double *q = p->pt + 3 * p->seg[s].first;
         seg_eval e;
-        double cut[8];
+        double cut[FIT_MAX_INFLECTIONS];
         size_t nc;
         rc = put(o, q[0], q[1]); /* the segment's start, exactly as drawn */
         if (rc != CONICA_OK || seg_is_straight(p, s))
             continue;
         seg_load(p, s, &e);
-        nc = conica__path_seg_inflections(p, s, cut, 6);
+        nc = conica__path_seg_inflections(p, s, cut, FIT_MAX_INFLECTIONS);
         const double *qe = q + 3 * p->seg[s].degree;
         double chord = hypot(qe[0] - q[0], qe[1] - q[1]);
         size_t i0 = *o->n - 1; /* where the segment's start went */
-        for (size_t k = 0; k <= nc && rc == CONICA_OK; k++) {
-            double a = k ? cut[k - 1] : 0.0, b = k < nc ? cut[k] : 1.0;
-            double sc[FIT_SIDE_SAMPLES + 2];
-            size_t ns = 0;
-            if (side != CONICA__FIT_CHORDS)
-                ns = side_changes(&e, a, b, painted, ctx, sc, FIT_SIDE_SAMPLES);
-            sc[ns] = b;
-            /* each piece between changes of the painted side on its own */
-            for (size_t h = 0; h <= ns && rc == CONICA_OK; h++) {
-                double pa = h ? sc[h - 1] : a, pb = sc[h];
-                int tangents = 0;
-                if (side != CONICA__FIT_CHORDS) {
-                    int ps = stretch_side(&e, pa, pb, painted, ctx);
-                    int ts = turn_sign(&e, 0.5 * (pa + pb));
-                    /* the painted region is convex here when the curve
-                     * turns towards the painted side; chords then lie
-                     * inside it */
-                    int convex = ps != 0 && ts == ps;
-                    tangents = ps != 0 && ts != 0 &&
-                               ((side == CONICA__FIT_IN && !convex) ||
-                                (side == CONICA__FIT_OUT && convex));
-                }
-                rc = stretch(&e, pa, pb, tangents, tol, fmin(max_turn, FIT_MAX_TURN),
-                             side == CONICA__FIT_CHORDS && !tangent_ends, o);
+        int tip0 = side != CONICA__FIT_CHORDS && is_tip(p, sp, j, 0);
+        int tip1 = side != CONICA__FIT_CHORDS && is_tip(p, sp, j, 1);
+        double pc[FIT_MAX_PARTS];
+        int ps[FIT_MAX_PARTS];
+        size_t np;
+        if (side != CONICA__FIT_CHORDS && painted) {
+            np = seg_parts(&e, cut, nc, tol, tip0, tip1, painted, ctx, pc, ps);
+        } else { /* the inflections alone */
+            for (np = 0; np < nc; np++) {
+                pc[np] = cut[np];
+                ps[np] = 0;
             }
+            pc[np] = 1.0;
+            ps[np++] = 0;
+        }
+        for (size_t k = 0; k < np && rc == CONICA_OK; k++) {
+            double a = k ? pc[k - 1] : 0.0, b = pc[k];
+            int pside = ps[k];
+            /* the painted region is convex here when the curve turns
+             * towards the painted side; chords then lie inside it */
+            int ts = turn_sign(&e, 0.5 * (a + b));
+            int convex = pside != 0 && ts == pside;
+            piece_rule r;
+            r.tangents = side != CONICA__FIT_CHORDS && pside != 0 && ts != 0 &&
+                         ((side == CONICA__FIT_IN && !convex) ||
+                          (side == CONICA__FIT_OUT && convex));
+            r.tol = tol;
+            r.max_turn = fmin(max_turn, FIT_MAX_TURN);
+            r.painted = side != CONICA__FIT_CHORDS && pside != 0 ? painted : NULL;
+            r.ctx = ctx;
+            r.want = side == CONICA__FIT_IN;
+            rc = stretch(&e, a, b, &r, tip0, tip1, o);
         }
         if (rc == CONICA_OK && tangent_ends)
             rc = add_end_tangents(&e, tol, chord, q, qe, i0, o);

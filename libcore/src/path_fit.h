@@ -10,15 +10,15 @@
 
 /* Which way the polygon may leave the drawn curve. */
 typedef enum conica__fit_side {
-    CONICA__FIT_CHORDS = 0, /* vertices on the curve, chords within the tolerance both ways
-                               (a reference: each the longest to 1/64 of its length) */
+    CONICA__FIT_CHORDS = 0, /* vertices on the curve, chords within the tolerance both ways */
     CONICA__FIT_IN,         /* the polygon within the painted region */
     CONICA__FIT_OUT         /* the polygon contains the painted region */
 } conica__fit_side;
 
 /* Which side of the curve is painted near `pt`: +1 the side to the left of
  * the direction of travel `dir` (y up), -1 the right, 0 neither or both
- * (the curve bounds nothing there). */
+ * (the curve bounds nothing there); dir NULL: 1 when pt itself is painted,
+ * else 0. */
 typedef int (*conica__painted_fn)(void *ctx, const double pt[2], const double dir[2]);
 
 /* The polygon of subpath `sub` of p (a DRAWN subpath; an open one is

@@ -121,22 +121,30 @@ def main(argv):
         sys.stderr.write(__doc__)
         return 2
     try:
-        wa, ha, ra = alpha_rows(args[0])
-        wb, hb, rb = alpha_rows(args[1])
+        line, ok = compare(args[0], args[1], frac, t)
     except (OSError, ValueError, zlib.error, struct.error) as e:
         sys.stderr.write('pixdiff: error: %s\n' % e)
         return 2
+    print(line)
+    return 0 if ok else 1
+
+
+def compare(png_a, png_b, frac=0.001, t=1):
+    """The comparison of main(): (its line, whether it holds); ValueError
+    (and the PNG reader's errors) on bad input or different sizes. For
+    callers that compare many pairs in one process."""
+    wa, ha, ra = alpha_rows(png_a)
+    wb, hb, rb = alpha_rows(png_b)
     if (wa, ha) != (wb, hb):
-        sys.stderr.write('pixdiff: error: sizes differ: %dx%d and %dx%d\n' % (wa, ha, wb, hb))
-        return 2
+        raise ValueError('sizes differ: %dx%d and %dx%d' % (wa, ha, wb, hb))
     ma, mb = masks(ra, wa, t), masks(rb, wb, t)
     da, db = dilate(ma, wa), dilate(mb, wb)
     lost = count([a & ~b for a, b in zip(ma, db)])
     added = count([b & ~a for a, b in zip(da, mb)])
     pa, pb = count(ma), count(mb)
-    print('painted %d %d lost %d added %d' % (pa, pb, lost, added))
     lim = frac * max(pa, 1)
-    return 0 if lost <= lim and added <= lim else 1
+    return ('painted %d %d lost %d added %d' % (pa, pb, lost, added),
+            lost <= lim and added <= lim)
 
 
 if __name__ == '__main__':

@@ -19,6 +19,13 @@ pixel counts as lost or added only outside the 1 px band round the other
 image's painted pixels): its line `painted A B lost L added D` is printed,
 exit 1 when lost or added exceeds --limit of the painted pixels (default
 0.1 %), 2 on a usage or tool error.
+
+    scad_pixels.py --batch LIST [--px 600] [--limit 0.001]
+
+compares many pairs in one process (the CLI suites: one python start, not
+one per icon): each line of LIST is `LABEL MODULE.scad DOC.svg`; prints
+`ok LABEL: LINE` or `FAIL LABEL: LINE` (or the error) per line, exit 1 when
+any failed, 2 on a usage error.
 """
 import os
 import re
@@ -27,7 +34,9 @@ import subprocess
 import sys
 import tempfile
 
-PIXDIFF = os.path.join(os.path.dirname(os.path.abspath(__file__)), "pixdiff.py")
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+sys.dont_write_bytecode = True  # nothing written into the source tree
+import pixdiff  # noqa: E402  (tests/support/pixdiff.py)
 
 
 def module_polygon(text):
@@ -63,9 +72,44 @@ def render(svg_path, px, out):
                    check=True)
 
 
+def compare(scad, svg, px, limit, d):
+    """Render both into directory d; pixdiff's (line, ok)."""
+    contours = module_polygon(open(scad).read())
+    w, h = doc_size(svg)
+    k = px / max(w, h)
+    size = (max(1, round(w * k)), max(1, round(h * k)))
+    os.makedirs(d, exist_ok=True)
+    poly_svg = os.path.join(d, "module.svg")
+    with open(poly_svg, "w") as f:
+        f.write(polygon_svg(contours, w, h))
+    render(svg, size, os.path.join(d, "doc.png"))
+    render(poly_svg, size, os.path.join(d, "module.png"))
+    return pixdiff.compare(os.path.join(d, "doc.png"), os.path.join(d, "module.png"), limit, 128)
+
+
+def batch(listfile, px, limit):
+    bad = 0
+    with tempfile.TemporaryDirectory() as d:
+        for row in open(listfile):
+            f = row.split()
+            if not f:
+                continue
+            if len(f) != 3:
+                print("FAIL %s: not LABEL MODULE DOC" % row.strip())
+                bad += 1
+                continue
+            try:
+                line, ok = compare(f[1], f[2], px, limit, d)
+            except (ValueError, subprocess.CalledProcessError, OSError) as e:
+                line, ok = "error: %s" % e, False
+            print("%s %s: %s" % ("ok" if ok else "FAIL", f[0], line))
+            bad += not ok
+    return 1 if bad else 0
+
+
 def main(argv):
     args = [a for a in argv[1:]]
-    px, limit, keep = 600, 0.001, None
+    px, limit, keep, lst = 600, 0.001, None, None
     pos = []
     i = 0
     while i < len(args):
@@ -75,26 +119,18 @@ def main(argv):
             limit = float(args[i + 1]); i += 2
         elif args[i] == "--keep":
             keep = args[i + 1]; i += 2
+        elif args[i] == "--batch":
+            lst = args[i + 1]; i += 2
         else:
             pos.append(args[i]); i += 1
+    if lst is not None and not pos:
+        return batch(lst, px, limit)
     if len(pos) != 2:
         print(__doc__, file=sys.stderr)
         return 2
-    scad, svg = pos
-    contours = module_polygon(open(scad).read())
-    w, h = doc_size(svg)
-    k = px / max(w, h)
-    size = (max(1, round(w * k)), max(1, round(h * k)))
-    d = keep or tempfile.mkdtemp()
-    os.makedirs(d, exist_ok=True)
-    poly_svg = os.path.join(d, "module.svg")
-    with open(poly_svg, "w") as f:
-        f.write(polygon_svg(contours, w, h))
-    render(svg, size, os.path.join(d, "doc.png"))
-    render(poly_svg, size, os.path.join(d, "module.png"))
-    r = subprocess.run([sys.executable, PIXDIFF, os.path.join(d, "doc.png"),
-                        os.path.join(d, "module.png"), "--alpha", "128", "--max-frac", str(limit)])
-    return r.returncode
+    line, ok = compare(pos[0], pos[1], px, limit, keep or tempfile.mkdtemp())
+    print(line)
+    return 0 if ok else 1
 
 
 if __name__ == "__main__":
