@@ -93,3 +93,11 @@ $(SVGSCENE): $(BUILD)/obj/tests/tools/svgscene.o $(SVG_A) $(CORE_A)
 	$(CC) $(LDFLAGS) -o $@ $< $(SVG_A) $(CORE_A) $(ALL_LDLIBS)
 TEST_EXTRA += $(SVGSCENE)
 SAN_EXTRA += $(SVGSCENE)
+
+# glyphsvg (tests/tools/glyphsvg.c): DejaVu glyphs as SVG files, the glyph
+# part of scripts/bench-svgsmooth-corpus.sh's corpus (issue 32).
+GLYPHSVG := $(BUILD)/tests/glyphsvg
+$(GLYPHSVG): $(BUILD)/obj/tests/tools/glyphsvg.o $(BUILD)/lib/libconica_testsupport.a
+	@mkdir -p $(@D)
+	$(CC) $(LDFLAGS) -o $@ $< $(BUILD)/lib/libconica_testsupport.a $(FT_LIBS) -lm
+TEST_EXTRA += $(GLYPHSVG)

@@ -98,6 +98,31 @@ for n in googlefonts primefaces channel4; do
     check "svgcheck" "$svgcheck" --lines-tol 0.5 "$f" "$tmp/s.svg"
     check_grep '^ratio=0\.[0-9]+ over=0 .* crossings=0 ' "$out" "$n: within 0.5, no crossing: $(cat "$out")"
 done
+# two near-parallel wiggly polylines 0.02 apart, the lower sagging by 0.04:
+# each alone is within 0.05 of its chord, and the chords cross (the upper
+# one starts at the sag's bottom and ends above the lower chord); and the
+# same two joined into one subpath by a detour. Plain simplification
+# crossed them (1 crossing between the subpaths, 2 within the one); the
+# vertices there come back until none is left.
+wiggle() { # wiggle K0 K1 LIFT: "x yL x y ...", vertices k = K0..K1 at x = k / 4
+    awk -v k0="$1" -v k1="$2" -v lift="$3" 'BEGIN { for (k = k0; k <= k1; k++) {
+        x = k * 0.25; y = lift - 0.04 * sin(3.141592653589793 * x / 10) + 0.004 * (k % 2 ? -1 : 1)
+        printf "%s%.6g %.6g", k == k0 ? "" : k == k0 + 1 ? "L" : " ", x, y } }'
+}
+lower=$(wiggle 0 40 0)
+upper=$(wiggle 20 38 0.02)
+printf '<svg xmlns="http://www.w3.org/2000/svg"><path d="M%sM%s"/></svg>\n' "$lower" "$upper" >"$tmp/x2.svg"
+printf '<svg xmlns="http://www.w3.org/2000/svg"><path d="M%s 10 1 4.5 1 %s"/></svg>\n' "$lower" \
+    "$(echo "$upper" | tr L ' ')" >"$tmp/x1.svg"
+for f in x2 x1; do
+    for m in "" --lines-as-samples; do
+        # shellcheck disable=SC2086
+        within --simplify 0.05 $m -- --lines-tol 0.05 -- "$tmp/$f.svg"
+        check_grep ' self=0 ' "$out" "$f $m: no new crossing within the subpath: $(cat "$out")"
+        # still simplified: fewer points than the 60 (63) drawn
+        [ -z "$m" ] && check_grep 'points=([0-9]|[1-4][0-9])$' "$out" "$f: simplified: $(cat "$out")"
+    done
+done
 # feather's volume: a polygon whose joins turn 38.7 degrees
 pv=tests/data/icons/feather/volume.svg
 if [ -f "$pv" ]; then
