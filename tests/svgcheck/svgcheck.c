@@ -294,8 +294,22 @@ static int check_pair(const opts *o, const char *in, const char *outp, char *why
             }
             if (h.max / t > worst)
                 worst = h.max / t;
-            if (h.max > t)
+            if (h.max > t) {
                 over++;
+                const double *wa = polys[k].xy + 2 * (h.poly_worst.edge % polys[k].n);
+                const double *wb = polys[k].xy + 2 * ((h.poly_worst.edge + 1) % polys[k].n);
+                double u = h.poly_worst.u;
+                if (getenv("SVGCHECK_VERBOSE"))
+                    fprintf(stderr, "element %zu subpath %zu: %g times the tolerance %g "
+                            "(written point %.17g %.17g; %s, segment %zu t %g)\n", i + 1, k + 1,
+                            h.max / t, t, wa[0] + u * (wb[0] - wa[0]), wa[1] + u * (wb[1] - wa[1]),
+                            h.curve_to_poly >= h.poly_to_curve ? "drawn to written"
+                                                               : "written to drawn",
+                            (h.curve_to_poly >= h.poly_to_curve ? h.curve_worst.seg
+                                                                : h.poly_nearest.seg) + 1,
+                            h.curve_to_poly >= h.poly_to_curve ? h.curve_worst.t
+                                                               : h.poly_nearest.t);
+            }
             {
                 const double *f = polys[k].xy, *l = polys[k].xy + 2 * (polys[k].n - 1);
                 const ts_seg *ls = &si[k].c.seg[si[k].c.n - 1];
