@@ -23,7 +23,7 @@
 /* A segment is entered in the cells within this fraction of a cell of it
  * (rounding at cell borders never loses a pair). */
 #define UNCROSS_CELL_MARGIN 1e-6
-#define UNCROSS_ENTRIES_PER_EDGE 24
+#define UNCROSS_ENTRIES_PER_EDGE 8
 #define UNCROSS_COARSER 6
 /* Cap on the edge pairs tested, per edge and in all; past it the element
  * is not judged (the caller keeps every vertex of its simplified subpaths). */
