@@ -320,8 +320,9 @@ typedef struct conica_svg_settings {
      *  with it, path subpaths made only of straight segments: traced
      *  outlines) before smoothing: the fewest vertices whose smoothed curve
      *  passes within this distance (user units) of every original vertex,
-     *  corners kept (conica/simplify.h). Default 0: every vertex is
-     *  interpolated. */
+     *  corners kept (conica/simplify.h), and no crossing made that the
+     *  drawing has not (the vertices there kept). Default 0: every vertex
+     *  is interpolated. */
     double simplify;
     /** Non-zero: open subpaths are closed with a straight edge, as SVG
      *  fills them (for tools that need regions). */

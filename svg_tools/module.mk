@@ -95,3 +95,11 @@ $(SVGSCENE): $(BUILD)/obj/tests/tools/svgscene.o $(SVG_A) $(CORE_A)
 	$(CC) $(LDFLAGS) -o $@ $< $(SVG_A) $(CORE_A) $(ALL_LDLIBS)
 TEST_EXTRA += $(SVGSCENE)
 SAN_EXTRA += $(SVGSCENE)
+
+# glyphset (tests/tools/glyphset.c): DejaVu glyphs as SVG files, the glyph
+# part of scripts/bench-svgsmooth-corpus.sh's corpus (issue 32).
+GLYPHSET := $(BUILD)/tests/glyphset
+$(GLYPHSET): $(BUILD)/obj/tests/tools/glyphset.o $(BUILD)/lib/libconica_testsupport.a
+	@mkdir -p $(@D)
+	$(CC) $(LDFLAGS) -o $@ $< $(BUILD)/lib/libconica_testsupport.a $(FT_LIBS) -lm
+TEST_EXTRA += $(GLYPHSET)

@@ -143,101 +143,120 @@ static size_t subpath_vertices(const conica_svg_path *p, size_t a, size_t b, dou
     return n;
 }
 
-/* Keep only the vertices conica_simplify() chooses (xy[0..2*n) rewritten). */
-static conica_code simplify_samples(double *xy, size_t *n, int closed, double tolerance,
-                                    const conica_path_settings *ps, conica_status *st)
+/* How one SVG subpath goes into the path model: drawn as it is, its
+ * vertices as samples to smooth through (a polygon, a polyline, a path of
+ * lines with lines_as_samples), or a path of lines kept straight under
+ * --simplify. Under --simplify a plan holds its input vertices and the
+ * kept ones, simplified again when svg_uncross.c marks vertices to keep. */
+enum { PLAN_DRAWN, PLAN_SAMPLES, PLAN_LINES };
+typedef struct sub_plan {
+    size_t a, b; /* its segments [a, b) */
+    int closed, how;
+    double *xy;  /* under --simplify: the input vertices (sm.n), else NULL */
+    size_t *keep;
+    size_t nforced; /* vertices marked to keep when last simplified */
+    conica_svg__simp sm;
+} sub_plan;
+
+/* A plan's vertices simplified: every vertex it marks to keep kept. A
+ * polygon kept straight (PLAN_LINES) is simplified at 0 levels as the open
+ * polyline from its start round to it again: Douglas-Peucker seeds, corners
+ * kept, its start kept. Within the tolerance both ways: every dropped
+ * vertex is within it of the chord that replaces its run, and that run, a
+ * path from the chord's one end to the other inside the band, passes
+ * within it of every point of the chord. */
+static conica_code plan_simplify(sub_plan *pl, double tolerance, const conica_path_settings *ps,
+                                 conica_status *st)
 {
     conica_simplify_settings ss = conica_simplify_defaults();
-    size_t *keep, m = 0, i;
-    conica_code rc;
-    if (*n < 3)
+    size_t i;
+    if (pl->sm.n < 3) {
+        for (i = 0; i < pl->sm.n; i++)
+            pl->keep[i] = i;
+        pl->sm.nkeep = pl->sm.n;
         return CONICA_OK;
-    keep = malloc(*n * sizeof *keep);
-    if (!keep)
-        return conica__fail(st, CONICA_ERR_NOMEM, 0, 0, "out of memory");
+    }
     ss.tolerance = tolerance;
     ss.path = *ps;
-    rc = conica_simplify(xy, *n, closed, &ss, keep, &m, NULL, st);
-    if (rc == CONICA_OK) {
-        for (i = 0; i < m; i++) {
-            xy[2 * i] = xy[2 * keep[i]];
-            xy[2 * i + 1] = xy[2 * keep[i] + 1];
-        }
-        *n = m;
+    ss.keep_mask = pl->sm.force;
+    if (pl->how == PLAN_LINES) {
+        ss.path.levels = 0;
+        ss.path.level_tolerance = 0;
     }
-    free(keep);
-    return rc;
+    return conica_simplify(pl->xy, pl->sm.n, pl->sm.wrap, &ss, pl->keep, &pl->sm.nkeep, NULL, st);
 }
 
-/* The n points xy (rewritten by the simplification) as one subpath of
- * samples tagged `tag`, simplified within `simplify` first when it is > 0. */
-static conica_code add_samples_xy(conica_path *cp, double *xy, size_t n, int closed,
-                                  double simplify, const conica_path_settings *ps, size_t tag,
-                                  conica_status *st)
+/* The plan's input vertices (under --simplify), simplified once. */
+static conica_code plan_prepare(sub_plan *pl, const conica_svg_path *p, double tolerance,
+                                const conica_path_settings *ps, conica_status *st)
 {
-    conica_code rc = CONICA_OK;
-    if (simplify > 0)
-        rc = simplify_samples(xy, &n, closed, simplify, ps, st);
-    if (rc == CONICA_OK)
-        rc = conica_path_samples(cp, xy, NULL, n, closed, tag, st);
-    if (rc == CONICA_ERR_DEGENERATE) {
-        /* one point (or one repeated): kept as the point it is */
-        rc = conica_path_move_to(cp, xy[0], xy[1], tag, st);
+    size_t n, room = pl->b - pl->a + 2;
+    pl->xy = malloc(2 * room * sizeof *pl->xy);
+    pl->keep = malloc(room * sizeof *pl->keep);
+    pl->sm.force = calloc(room, 1);
+    if (!pl->xy || !pl->keep || !pl->sm.force)
+        return conica__fail(st, CONICA_ERR_NOMEM, 0, 0, "out of memory");
+    n = subpath_vertices(p, pl->a, pl->b, pl->xy);
+    if (pl->how == PLAN_LINES && pl->closed && n > 1 &&
+        (pl->xy[2 * n - 2] != pl->xy[0] || pl->xy[2 * n - 1] != pl->xy[1])) {
+        pl->xy[2 * n] = pl->xy[0]; /* round to the start again */
+        pl->xy[2 * n + 1] = pl->xy[1];
+        n++;
     }
-    return rc;
+    pl->sm.xy = pl->xy;
+    pl->sm.n = n;
+    pl->sm.wrap = pl->how == PLAN_SAMPLES && pl->closed;
+    pl->sm.keep = pl->keep;
+    return plan_simplify(pl, tolerance, ps, st);
+}
+
+static void plan_free(sub_plan *pl)
+{
+    free(pl->xy);
+    free(pl->keep);
+    free(pl->sm.force);
 }
 
 /* The on-curve vertices of segments [a, b) as samples (a polygon, a
- * polyline, or a subpath of straight segments taken as samples). */
-static conica_code add_samples(conica_path *cp, const conica_svg_path *p, size_t a, size_t b,
-                               int closed, double simplify, const conica_path_settings *ps,
+ * polyline, or a subpath of straight segments taken as samples), or under
+ * --simplify the plan's kept vertices. */
+static conica_code add_samples(conica_path *cp, const conica_svg_path *p, const sub_plan *pl,
                                conica_status *st)
 {
+    size_t n, i;
+    double *xy = malloc(2 * (pl->b - pl->a + 1) * sizeof *xy);
     conica_code rc;
-    double *xy = malloc(2 * (b - a + 1) * sizeof *xy);
     if (!xy)
         return conica__fail(st, CONICA_ERR_NOMEM, 0, 0, "out of memory");
-    rc = add_samples_xy(cp, xy, subpath_vertices(p, a, b, xy), closed, simplify, ps, a, st);
+    if (pl->xy) {
+        for (i = 0, n = pl->sm.nkeep; i < n; i++) {
+            xy[2 * i] = pl->xy[2 * pl->keep[i]];
+            xy[2 * i + 1] = pl->xy[2 * pl->keep[i] + 1];
+        }
+    } else
+        n = subpath_vertices(p, pl->a, pl->b, xy);
+    rc = conica_path_samples(cp, xy, NULL, n, pl->closed, pl->a, st);
+    if (rc == CONICA_ERR_DEGENERATE) {
+        /* one point (or one repeated): kept as the point it is */
+        rc = conica_path_move_to(cp, xy[0], xy[1], pl->a, st);
+    }
     free(xy);
     return rc;
 }
 
-/* A subpath of straight segments [a, b) simplified as a polygon (its
- * edges stay straight): the fewest of its vertices whose polygon passes
- * within `simplify` of every vertex (conica_simplify() judging at 0
- * levels: Douglas-Peucker seeds, corners kept), the drawn start kept (a
- * closed one is simplified as the open polyline from its start round to
- * it again). Within the tolerance both ways: every dropped vertex is
- * within it of the chord that replaces its run, and that run, a path from
- * the chord's one end to the other inside the band, passes within it of
- * every point of the chord. */
-static conica_code add_simplified_lines(conica_path *cp, const conica_svg_path *p, size_t a,
-                                        size_t b, int closed, double simplify,
-                                        const conica_path_settings *ps, conica_status *st)
+/* A subpath of straight segments under --simplify: the plan's kept
+ * vertices as a polygon (its edges stay straight). */
+static conica_code add_simplified_lines(conica_path *cp, const sub_plan *pl, conica_status *st)
 {
-    size_t i, n = 0;
-    double *xy = malloc(2 * (b - a + 2) * sizeof *xy);
-    conica_path_settings flat = *ps;
-    conica_code rc = CONICA_OK;
-    if (!xy)
-        return conica__fail(st, CONICA_ERR_NOMEM, 0, 0, "out of memory");
-    n = subpath_vertices(p, a, b, xy);
-    if (closed && n > 1 && (xy[2 * n - 2] != xy[0] || xy[2 * n - 1] != xy[1])) {
-        xy[2 * n] = xy[0]; /* round to the start again */
-        xy[2 * n + 1] = xy[1];
-        n++;
-    }
-    flat.levels = 0;
-    flat.level_tolerance = 0;
-    rc = simplify_samples(xy, &n, 0, simplify, &flat, st);
-    if (rc == CONICA_OK)
-        rc = conica_path_move_to(cp, xy[0], xy[1], a, st);
+    size_t i, n = pl->sm.nkeep;
+    const double *xy = pl->xy;
+    const size_t *k = pl->keep;
+    conica_code rc = conica_path_move_to(cp, xy[2 * k[0]], xy[2 * k[0] + 1], pl->a, st);
     for (i = 1; i < n && rc == CONICA_OK; i++)
-        if (!(closed && i + 1 == n)) /* the closing edge is the close's */
-            rc = conica_path_line_to(cp, xy[2 * i], xy[2 * i + 1], a, st);
-    if (rc == CONICA_OK && closed)
+        if (!(pl->closed && i + 1 == n)) /* the closing edge is the close's */
+            rc = conica_path_line_to(cp, xy[2 * k[i]], xy[2 * k[i] + 1], pl->a, st);
+    if (rc == CONICA_OK && pl->closed)
         rc = conica_path_close(cp, st);
-    free(xy);
     return rc;
 }
 
@@ -287,6 +306,93 @@ static conica_code add_drawn(conica_path *cp, const conica_svg_path *p, size_t a
     return rc;
 }
 
+static void free_plans(sub_plan *plans, size_t n)
+{
+    size_t i;
+    for (i = 0; i < n; i++)
+        plan_free(&plans[i]);
+    free(plans);
+}
+
+/* The path model of the plans, one subpath each. */
+static conica_code build_path(conica_path *cp, const conica_svg_path *p, const sub_plan *plans,
+                              size_t n, conica_status *st)
+{
+    conica_code rc = CONICA_OK;
+    size_t i;
+    for (i = 0; i < n && rc == CONICA_OK; i++) {
+        const sub_plan *pl = &plans[i];
+        if (pl->how == PLAN_SAMPLES)
+            rc = add_samples(cp, p, pl, st);
+        else if (pl->how == PLAN_LINES)
+            rc = add_simplified_lines(cp, pl, st);
+        else
+            rc = add_drawn(cp, p, pl->a, pl->b, pl->closed, st);
+    }
+    if (rc == CONICA_OK && cp->nsub != n)
+        rc = conica__fail(st, CONICA_ERR_DEGENERATE, 0, 0, "a subpath made %zu", cp->nsub);
+    return rc;
+}
+
+/* Smoothing under --simplify: smoothed, then searched for crossings the
+ * simplification made (svg_uncross.c); while there are, the vertices there
+ * are kept, the marked plans simplified again and the element smoothed
+ * again, at most UNCROSS_ROUNDS times. Past the rounds, or when the element
+ * is too large to judge, its simplified subpaths keep every vertex (what
+ * the drawing has, nothing new). */
+#define UNCROSS_ROUNDS 16
+static conica_code smooth_uncrossed(conica_path *cp, const conica_svg_path *p, sub_plan *plans,
+                                    size_t nplan, double tolerance, const conica_path_settings *ps,
+                                    conica_path_result *r, conica_status *st)
+{
+    conica_svg__simp **view = malloc((nplan ? nplan : 1) * sizeof *view);
+    conica_code rc;
+    size_t i, k, round;
+    if (!view)
+        return conica__fail(st, CONICA_ERR_NOMEM, 0, 0, "out of memory");
+    for (i = 0; i < nplan; i++)
+        view[i] = plans[i].xy ? &plans[i].sm : NULL;
+    for (round = 0;; round++) {
+        size_t marked = 0;
+        int judged = 1, last = round == UNCROSS_ROUNDS;
+        rc = conica_path_smooth(cp, ps, r, st);
+        if (rc == CONICA_OK && !last)
+            rc = conica_svg__uncross(cp, r, view, &marked, &judged, st);
+        if (rc != CONICA_OK || last || (judged && marked == 0))
+            break;
+        for (i = 0; i < nplan && rc == CONICA_OK; i++) {
+            sub_plan *pl = &plans[i];
+            size_t nf = 0;
+            if (!pl->xy)
+                continue;
+            for (k = 0; k < pl->sm.n; k++)
+                nf += pl->sm.force[k];
+            if (nf > 0 && (!judged || round + 1 == UNCROSS_ROUNDS)) {
+                for (k = 0; k < pl->sm.n; k++) /* as drawn: every vertex */
+                    pl->sm.force[k] = 1;
+                nf = pl->sm.n;
+            }
+            if (!judged && nf == 0)
+                memset(pl->sm.force, 1, pl->sm.n), nf = pl->sm.n;
+            if (nf != pl->nforced)
+                rc = plan_simplify(pl, tolerance, ps, st);
+            pl->nforced = nf;
+        }
+        conica_path_result_free(r);
+        conica_path_result_init(r);
+        conica_path_free(cp);
+        conica_path_init(cp);
+        if (rc == CONICA_OK)
+            rc = build_path(cp, p, plans, nplan, st);
+        if (rc != CONICA_OK)
+            break;
+        if (!judged)
+            round = UNCROSS_ROUNDS - 1; /* smoothed once more, not judged */
+    }
+    free(view);
+    return rc;
+}
+
 /* The front end's settings for s at the numbers' precision, and the share
  * of the tolerance the geometry keeps. */
 static void front_settings(const conica_svg_settings *s, double precision, size_t budget,
@@ -309,9 +415,12 @@ static void front_settings(const conica_svg_settings *s, double precision, size_
 }
 
 /* After the subpaths were added (rc their result): cp flattened, smoothed
- * or kept per s->mode into *out; frees cp. */
+ * (under --simplify through smooth_uncrossed() with the plans of path p;
+ * plans NULL: none was simplified) or kept per s->mode into *out; frees
+ * cp, not the plans. */
 static conica_code front_polylines(conica_path *cp, conica_code rc, conica_path_settings *ps,
                                    double geom_share, const conica_svg_settings *s,
+                                   const conica_svg_path *p, sub_plan *plans, size_t nplan,
                                    const char *what, size_t element, size_t *budget,
                                    conica_svg_shapes *out, conica_status *st)
 {
@@ -328,6 +437,8 @@ static conica_code front_polylines(conica_path *cp, conica_code rc, conica_path_
         ps->tolerance = s->tolerance * geom_share;
         ps->fit = (conica_path_fit)s->fit;
         rc = conica_path_flatten(cp, ps, &r, st);
+    } else if (s->mode == CONICA_SVG_SMOOTH && plans && s->simplify > 0) {
+        rc = smooth_uncrossed(cp, p, plans, nplan, s->simplify, ps, &r, st);
     } else if (s->mode == CONICA_SVG_SMOOTH) {
         rc = conica_path_smooth(cp, ps, &r, st);
     } else {
@@ -403,16 +514,23 @@ conica_code conica_svg__path_polylines_progress(
     conica_path cp;
     conica_path_settings ps;
     conica_code rc = CONICA_OK;
-    size_t i;
+    size_t i, nplan = 0;
     double geom_share;
+    int closed, lines, simplifying = s->mode == CONICA_SVG_SMOOTH && s->simplify > 0;
+    sub_plan *plans;
     (void)line;
     conica_path_init(&cp);
     front_settings(s, precision, *budget, &ps, &geom_share);
     ps.progress = pf;
     ps.progress_ctx = pctx;
     /* the subpaths, as drawn or as samples */
-    for (i = 0; i < p->n && rc == CONICA_OK;) {
-        int closed, lines;
+    for (i = 0; i < p->n; nplan++)
+        i = subpath_end(p, i, &closed, &lines);
+    plans = calloc(nplan ? nplan : 1, sizeof *plans);
+    if (!plans)
+        return conica__fail(st, CONICA_ERR_NOMEM, 0, 0, "%s: out of memory", what);
+    for (i = 0, nplan = 0; i < p->n && rc == CONICA_OK; nplan++) {
+        sub_plan *pl = &plans[nplan];
         size_t j = subpath_end(p, i, &closed, &lines), k;
         if (kind == 1 || s->close_open)
             closed = 1;
@@ -422,17 +540,25 @@ conica_code conica_svg__path_polylines_progress(
         if (closed && j > i + 1 && p->seg[j - 1].type == CONICA_SVG_SEG_CLOSE &&
             p->seg[j - 1].x0 == p->seg[j - 1].x1 && p->seg[j - 1].y0 == p->seg[j - 1].y1)
             (*in_vertices)--; /* it returned to its start: that vertex is the first */
+        pl->a = i;
+        pl->b = j;
+        pl->closed = closed;
+        pl->how = PLAN_DRAWN;
         if (kind == 1 || kind == 2 ||
             (lines && s->lines_as_samples && s->mode == CONICA_SVG_SMOOTH))
-            rc = add_samples(&cp, p, i, j, closed,
-                             s->mode == CONICA_SVG_SMOOTH ? s->simplify : 0.0, &ps, st);
-        else if (lines && s->simplify > 0 && s->mode == CONICA_SVG_SMOOTH)
-            rc = add_simplified_lines(&cp, p, i, j, closed, s->simplify, &ps, st);
-        else
-            rc = add_drawn(&cp, p, i, j, closed, st);
+            pl->how = PLAN_SAMPLES;
+        else if (lines && simplifying)
+            pl->how = PLAN_LINES;
+        if (pl->how != PLAN_DRAWN && simplifying)
+            rc = plan_prepare(pl, p, s->simplify, &ps, st);
         i = j;
     }
-    return front_polylines(&cp, rc, &ps, geom_share, s, what, element, budget, out, st);
+    if (rc == CONICA_OK)
+        rc = build_path(&cp, p, plans, nplan, st);
+    rc = front_polylines(&cp, rc, &ps, geom_share, s, p, plans, nplan, what, element, budget, out,
+                         st);
+    free_plans(plans, nplan);
+    return rc;
 }
 
 conica_code conica_svg__points_polylines(double **xy, size_t np, int kind,
@@ -445,6 +571,22 @@ conica_code conica_svg__points_polylines(double **xy, size_t np, int kind,
     conica_path_settings ps;
     conica_code rc = CONICA_OK;
     double geom_share, *v = *xy;
+    int closed = kind == 1 || s->close_open;
+    if (s->mode == CONICA_SVG_SMOOTH && s->simplify > 0) {
+        /* --simplify and its crossing checks work on a path's plans */
+        conica_svg_path p;
+        conica_svg_path_init(&p);
+        if (!conica_svg__points_path(v, np, kind == 1, &p)) {
+            conica_svg_path_free(&p);
+            return conica__fail(st, CONICA_ERR_NOMEM, 0, 0, "%s: out of memory", what);
+        }
+        free(v);
+        *xy = NULL;
+        rc = conica_svg__path_polylines(&p, s, what, 0, element, kind, precision, budget,
+                                        in_vertices, out, st);
+        conica_svg_path_free(&p);
+        return rc;
+    }
     conica_path_init(&cp);
     front_settings(s, precision, *budget, &ps, &geom_share);
     /* counted as conica_svg__path_polylines counts the points' path: a
@@ -452,12 +594,15 @@ conica_code conica_svg__points_polylines(double **xy, size_t np, int kind,
     *in_vertices += np;
     if (kind == 1 && np && v[2 * np - 2] == v[0] && v[2 * np - 1] == v[1])
         (*in_vertices)--;
-    if (np)
-        rc = add_samples_xy(&cp, v, np, kind == 1 || s->close_open,
-                            s->mode == CONICA_SVG_SMOOTH ? s->simplify : 0.0, &ps, 0, st);
+    if (np) {
+        rc = conica_path_samples(&cp, v, NULL, np, closed, 0, st);
+        if (rc == CONICA_ERR_DEGENERATE) /* one point (or one repeated): kept as it is */
+            rc = conica_path_move_to(&cp, v[0], v[1], 0, st);
+    }
     free(v); /* copied into cp: its memory back before the result's */
     *xy = NULL;
-    return front_polylines(&cp, rc, &ps, geom_share, s, what, element, budget, out, st);
+    return front_polylines(&cp, rc, &ps, geom_share, s, NULL, NULL, 0, what, element, budget, out,
+                           st);
 }
 
 conica_code conica_svg_path_polylines(const conica_svg_path *p, const conica_svg_settings *s,

@@ -83,6 +83,33 @@ conica_code conica_svg__points_polylines(double **xy, size_t np, int kind,
                                          size_t element, double precision, size_t *budget,
                                          size_t *in_vertices, conica_svg_shapes *out,
                                          conica_status *st);
+/* A subpath simplified by --simplify (svg_geom.c), as svg_uncross.c judges
+ * it: its input vertices, the ones kept (ascending), and the vertices to
+ * keep when it is simplified again (set by conica_svg__uncross()). wrap:
+ * the vertex list is a closed loop (samples of a polygon); else its kept
+ * arc j runs from keep[j] to keep[j + 1] (a closed path of lines lists its
+ * start again at the end). */
+typedef struct conica_svg__simp {
+    const double *xy;
+    size_t n;
+    int wrap;
+    const size_t *keep;
+    size_t nkeep;
+    unsigned char *force; /* n */
+} conica_svg__simp;
+
+/* New crossings of simplified subpaths (svg_uncross.c): r holds the
+ * smoothed polylines of cp's subpaths (one each, in order), simp[k] the
+ * simplification of subpath k or NULL. Every proper crossing between two
+ * edges of r (of different subpaths or one) that involves a simplified
+ * subpath, where what was drawn around the two edges does not cross,
+ * marks the dropped vertex nearest to it in simp[]->force; *marked counts
+ * them (0: no new crossing a vertex could undo). *judged 0: too many edges
+ * or crossings to judge within the caps (nothing marked; the caller keeps
+ * every vertex). */
+conica_code conica_svg__uncross(const conica_path *cp, const conica_path_result *r,
+                                conica_svg__simp *const *simp, size_t *marked, int *judged,
+                                conica_status *st);
 
 /* Half a unit in the last digit of the numbers in text[0..len) (the most
  * decimals any of them has), or 0 when there is none. */

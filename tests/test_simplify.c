@@ -60,9 +60,10 @@ typedef struct outcome {
     int near[8];       /* whether a kept vertex lies within the tolerance of them */
 } outcome;
 
-/* Simplify, smooth the kept vertices as the tools do, and measure. */
-static outcome run(const double *xy, size_t n, int closed, double tol, const double *truth,
-                   size_t nt, const size_t *want, size_t nwant)
+/* Simplify (vertices set in `mask` kept; mask may be NULL), smooth the
+ * kept vertices as the tools do, and measure. */
+static outcome run_masked(const double *xy, size_t n, int closed, double tol, const double *truth,
+                          size_t nt, const size_t *want, size_t nwant, const unsigned char *mask)
 {
     conica_simplify_settings s = conica_simplify_defaults();
     conica_simplify_info info;
@@ -75,6 +76,7 @@ static outcome run(const double *xy, size_t n, int closed, double tol, const dou
     REQUIRE(keep != NULL);
     REQUIRE(kxy != NULL);
     s.tolerance = tol;
+    s.keep_mask = mask;
     REQUIRE(conica_simplify(xy, n, closed, &s, keep, &m, &info, NULL) == CONICA_OK);
     CHECK_EQ_U(info.kept, m);
     CHECK_EQ(info.kept_all, 0);
@@ -108,6 +110,12 @@ static outcome run(const double *xy, size_t n, int closed, double tol, const dou
     free(keep);
     free(kxy);
     return o;
+}
+
+static outcome run(const double *xy, size_t n, int closed, double tol, const double *truth,
+                   size_t nt, const size_t *want, size_t nwant)
+{
+    return run_masked(xy, n, closed, tol, truth, nt, want, nwant, NULL);
 }
 
 #define DENSE 20000
@@ -253,6 +261,51 @@ TEST_CASE("simplify: deterministic, tighter tolerance keeps more, coincident poi
     s.tolerance = 0.005;
     REQUIRE(conica_simplify(xy, 121, 1, &s, c, &nc, NULL, NULL) == CONICA_OK);
     CHECK_GT(nc, na);
+}
+
+TEST_CASE("simplify: vertices the caller marks are kept, the curve still within T", "[simplify]")
+{
+    enum { N = 200 };
+    double xy[2 * N];
+    unsigned char mask[N];
+    size_t want[4] = {17, 18, 101, 199}, i;
+    uint64_t seed = 11;
+    outcome plain, masked;
+    for (i = 0; i < N; i++) { /* a jittered open wave */
+        double t = 4 * M_PI * (double)i / (N - 1);
+        xy[2 * i] = t + 0.01 * rnd(&seed);
+        xy[2 * i + 1] = sin(t) + 0.01 * rnd(&seed);
+    }
+    memset(mask, 0, sizeof mask);
+    plain = run(xy, N, 0, 0.05, NULL, 0, want, 3);
+    CHECK_EQ(plain.has[0] && plain.has[1] && plain.has[2], 0); /* not all kept unasked */
+    for (i = 0; i < 3; i++)
+        mask[want[i]] = 1;
+    masked = run_masked(xy, N, 0, 0.05, NULL, 0, want, 3, mask);
+    CHECK(masked.has[0]);
+    CHECK(masked.has[1]);
+    CHECK(masked.has[2]);
+    CHECK_LE(masked.to_samples, 0.05 * (1 + 1e-9));
+    CHECK_LT(masked.kept, (size_t)N / 4); /* the rest still simplified */
+    /* a closed curve: marked vertices kept, a repeated closing vertex never */
+    for (i = 0; i < N; i++) {
+        double t = 2 * M_PI * (double)i / (N - 1);
+        xy[2 * i] = 5 * cos(t) + 0.01 * rnd(&seed);
+        xy[2 * i + 1] = 3 * sin(t) + 0.01 * rnd(&seed);
+    }
+    xy[2 * N - 2] = xy[0];
+    xy[2 * N - 1] = xy[1];
+    memset(mask, 0, sizeof mask);
+    mask[N - 1] = 1;
+    mask[50] = 1;
+    masked = run_masked(xy, N, 1, 0.05, NULL, 0, want, 4, mask);
+    CHECK(masked.has[3] == 0); /* the copy itself is never kept */
+    {
+        size_t fifty = 50;
+        outcome f = run_masked(xy, N, 1, 0.05, NULL, 0, &fifty, 1, mask);
+        CHECK(f.has[0]);
+        CHECK_LE(f.to_samples, 0.05 * (1 + 1e-9));
+    }
 }
 
 TEST_CASE("simplify: bad arguments", "[simplify]")

@@ -12,6 +12,7 @@
 
 #include "fidelity.h"
 #include "glyphs.h"
+#include "ts_svgpath.h"
 
 #ifndef M_PI
 #define M_PI 3.14159265358979323846
@@ -185,6 +186,33 @@ TEST_CASE("fidelity: chord of a quadratic and an open polyline", "[support][fide
     q.degree = 4;
     p.n = 2;
     CHECK_EQ(ts_hausdorff_measure(&k, 1, &p, 1, NULL, &h), TS_ERR_ARG);
+}
+
+TEST_CASE("fidelity: a curve that doubles back is measured at its near pass", "[support][fidelity]")
+{
+    /* A cubic of Font Awesome Free's d-and-d-beyond (CC BY 4.0), segment
+     * 12 of its 18th subpath: it runs left, hooks and ends going right at
+     * (264.8, 165.2). The query (a point svgsmooth wrote) lies 0.0031 from
+     * its first pass (t = 0.82) while the nearest of 64 samples lies on the
+     * hook; refining only that sample measured 0.117 (svgcheck saw 1.15
+     * times the tolerance where the output is within 0.95). */
+    static const char d[] =
+        "M234.5 176.1c1.6 1.3 2.9 2.4 2.9 6.6l0 38.8c0 4.2-.8 5.3-2.7 6.4-.1 .1-7.5 4.5-7.9 4.6l35.1 "
+        "0c10 0 17.4-1.5 26-8.6-.6-5 .2-9.5 .8-12 0-.2-1.8 1.4-2.7 3.5 0-5.7 1.6-15.4 9.6-20.5-.1 "
+        "0-3.7-.8-9 1.1 2-3.1 10-7.9 10.4-7.9-8.2-26-38-22.9-32.2-22.9-30.9 0-32.6 .3-39.9-4 .1 .8 "
+        ".5 8.2 9.6 14.9z";
+    ts_svg_subpath *sp = NULL;
+    size_t n = 0;
+    const double q[2] = {264.79851029493807, 165.08336702664158};
+    ts_curve_place w;
+    double dist;
+    REQUIRE_EQ(ts_svg_path_parse(d, sizeof d - 1, &sp, &n), TS_OK);
+    REQUIRE_EQ_U(n, 1);
+    dist = ts_dist_to_curve(&sp[0].c, 1, q, 64, &w);
+    CHECK_NEAR(dist, 0.0030503836, 1e-6);
+    CHECK_EQ_U(w.seg, 11);
+    CHECK_NEAR(w.t, 0.819753, 1e-3);
+    ts_svg_subpaths_free(sp, n);
 }
 
 TEST_CASE("fidelity: crossings", "[support][fidelity]")

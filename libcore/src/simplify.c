@@ -45,6 +45,7 @@ conica_simplify_settings conica_simplify_defaults(void)
     s.path = conica_path_defaults();
     s.max_rounds = CONICA_SIMPLIFY_DEFAULT_ROUNDS;
     s.max_work = SIMPLIFY_DEFAULT_WORK;
+    s.keep_mask = NULL;
     return s;
 }
 
@@ -55,6 +56,7 @@ typedef struct sctx {
     const conica_path_settings *ps;
     double tol;
     unsigned char *fixed;   /* corners and open ends: always kept */
+    unsigned char *forced;  /* the caller's keep_mask: always kept, no corner */
     unsigned char *kept;
     size_t *K, nk;          /* kept vertices, ascending (or, in check_near, its window) */
     size_t *Kall;           /* the array gather() fills */
@@ -410,20 +412,25 @@ conica_code conica_simplify(const double *xy, size_t n, int closed,
     u = malloc(n * sizeof *u);
     P = malloc(2 * n * sizeof *P);
     c.fixed = calloc(n, 1);
+    c.forced = calloc(n, 1);
     c.kept = calloc(n, 1);
     c.K = c.Kall = malloc(n * sizeof *c.K);
     c.kxy = malloc(2 * n * sizeof *c.kxy);
     c.pos = malloc(n * sizeof *c.pos);
     c.add = malloc(n * sizeof *c.add);
     stack = malloc((2 * n + 2) * sizeof *stack);
-    if (!u || !P || !c.fixed || !c.kept || !c.K || !c.kxy || !c.pos || !c.add || !stack) {
+    if (!u || !P || !c.fixed || !c.forced || !c.kept || !c.K || !c.kxy || !c.pos || !c.add || !stack) {
         rc = conica__fail(st, CONICA_ERR_NOMEM, 0, 0, "out of memory");
         goto done;
     }
     /* distinct consecutive vertices (as conica_path_samples() merges them) */
     for (i = 0; i < n; i++) {
-        if (m && xy[2 * i] == P[2 * (m - 1)] && xy[2 * i + 1] == P[2 * (m - 1) + 1])
+        if (m && xy[2 * i] == P[2 * (m - 1)] && xy[2 * i + 1] == P[2 * (m - 1) + 1]) {
+            if (s->keep_mask && s->keep_mask[i])
+                c.forced[m - 1] = 1; /* a repeat: its first copy */
             continue;
+        }
+        c.forced[m] = s->keep_mask && s->keep_mask[i];
         u[m] = i;
         P[2 * m] = xy[2 * i];
         P[2 * m + 1] = xy[2 * i + 1];
@@ -433,8 +440,10 @@ conica_code conica_simplify(const double *xy, size_t n, int closed,
         hi[1] = fmax(hi[1], xy[2 * i + 1]);
         m++;
     }
-    if (closed && m > 1 && P[0] == P[2 * (m - 1)] && P[1] == P[2 * (m - 1) + 1])
+    if (closed && m > 1 && P[0] == P[2 * (m - 1)] && P[1] == P[2 * (m - 1) + 1]) {
         m--;
+        c.forced[0] |= c.forced[m]; /* the closing copy of the first vertex */
+    }
     inf.tolerance = s->tolerance > 0 ? s->tolerance
                                       : s->rel_tolerance * hypot(hi[0] - lo[0], hi[1] - lo[1]);
     c.P = P;
@@ -458,6 +467,8 @@ conica_code conica_simplify(const double *xy, size_t n, int closed,
         nfixed += 2;
     }
     memcpy(c.kept, c.fixed, m);
+    for (i = 0; i < m; i++)
+        c.kept[i] |= c.forced[i];
     if (nfixed == 0) {
         /* a smooth closed curve: seeded at its first vertex and the one
          * farthest from it */
@@ -527,7 +538,7 @@ conica_code conica_simplify(const double *xy, size_t n, int closed,
          * them; then the rounds again check the whole curve */
         dropping_done = 1;
         for (i = 0; i < m && c.work < s->max_work; i++) {
-            if (!c.kept[i] || c.fixed[i])
+            if (!c.kept[i] || c.fixed[i] || c.forced[i])
                 continue;
             c.kept[i] = 0;
             c.nkept--;
@@ -562,6 +573,7 @@ done:
     free(u);
     free(P);
     free(c.fixed);
+    free(c.forced);
     free(c.kept);
     free(c.Kall);
     free(c.kxy);

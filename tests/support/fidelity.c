@@ -152,24 +152,31 @@ static double edge_d2(const double a[2], const double b[2], const double q[2], d
     return dist2(p, q);
 }
 
-/* Squared distance from q to one segment, *t the nearest parameter. */
+/* Squared distance from q to one segment, *t the nearest parameter. Every
+ * local minimum of the samples is refined, not only the least: a curve
+ * that doubles back (a hook, a cusp's overshoot) passes q twice, and the
+ * sample nearest to q may lie on the far pass. */
 static double seg_nearest(const ts_seg *s, const double q[2], size_t n, double *t)
 {
     seg_q ctx = {s, q};
-    double best = INFINITY, lo, hi, tg, fg;
-    size_t j, bj = 0;
+    double best = INFINITY, lo, hi, tg, fg, prev = INFINITY, cur, next;
+    size_t j;
     if (s->degree == 1)
         return edge_d2(s->p[0], s->p[1], q, t);
+    cur = seg_q_d2(&ctx, 0.0);
     for (j = 0; j <= n; j++) {
-        double d = seg_q_d2(&ctx, (double)j / (double)n);
-        if (d < best)
-            best = d, bj = j;
+        next = j < n ? seg_q_d2(&ctx, (double)(j + 1) / (double)n) : INFINITY;
+        if (cur <= prev && cur <= next) {
+            if (cur < best)
+                best = cur, *t = (double)j / (double)n;
+            bracket(j, n, &lo, &hi);
+            tg = golden_min(seg_q_d2, &ctx, lo, hi, &fg);
+            if (fg < best)
+                best = fg, *t = tg;
+        }
+        prev = cur;
+        cur = next;
     }
-    *t = (double)bj / (double)n;
-    bracket(bj, n, &lo, &hi);
-    tg = golden_min(seg_q_d2, &ctx, lo, hi, &fg);
-    if (fg < best)
-        best = fg, *t = tg;
     return best;
 }
 

@@ -6,12 +6,13 @@
  * worst refined by golden section).
  *
  *   svgcheck [--tol T | --rel R] [--lines-tol L] [--samples-too] [--corner DEG] IN OUT
+ *   svgcheck [OPTIONS] --list FILE
  *
  * Pairs the `d` of every <path> (and, with --samples-too, the `points` of
  * <polygon>/<polyline>: straight edges, as --flatten reads them) of IN and
  * OUT in document order, subpath by subpath, and prints one line:
  *
- *   ratio=R over=N subpaths=S starts=K corners=M/C crossings=X points=P
+ *   ratio=R over=N subpaths=S starts=K corners=M/C crossings=X self=Y points=P
  *
  * R: the largest Hausdorff distance (both ways) over the tolerance: T, or
  * R times the subpath's control-point bounding-box diagonal (svgsmooth's
@@ -23,9 +24,14 @@
  * join none or longer than the tolerance) with no output vertex within
  * 2 % of the tolerance of them (corners are vertices); X: crossings
  * between different subpaths of one element in the output beyond those of
- * the input (lines by their ends, curves sampled 64 per segment); P:
- * output vertices. Exit 0 when measured, 2 on a usage or read error (a
- * pairing mismatch is an error).
+ * the input (lines by their ends, curves sampled 64 per segment); Y: the
+ * same within single subpaths (each subpath's own crossings, output beyond
+ * input); P: output vertices. Exit 0 when measured, 2 on a usage or read
+ * error (a pairing mismatch is an error).
+ *
+ * --list FILE: many pairs in one process (no start-up per file): each line
+ * of FILE is IN, a tab, OUT; each gives one line "IN<TAB>ratio=..." or
+ * "IN<TAB>error: why" (the run goes on; exit 1 when any pair failed).
  */
 #include <math.h>
 #include <stdio.h>
@@ -190,69 +196,76 @@ static double diag(const ts_svg_subpath *s)
     return hypot(hi[0] - lo[0], hi[1] - lo[1]);
 }
 
-int main(int argc, char **argv)
+typedef struct opts {
+    double tol, rel, corner, lines_tol;
+    int samples_too;
+} opts;
+
+/* The crossings of polylines p[0..np): between different ones (*between)
+ * and within single ones (*self). */
+static int crossings(const ts_poly *p, size_t np, size_t *between, size_t *self)
 {
-    double tol = 0, rel = 1e-3, corner = 45, worst = 0, lines_tol = 0;
-    int samples_too = 0, a;
-    size_t over = 0, nsub = 0, starts = 0, ncorner = 0, missing = 0, cross = 0, points = 0;
-    size_t nin, nout, lin, lout, i;
+    size_t all = 0;
+    if (ts_poly_crossings(p, np, 0, between, NULL) != TS_OK ||
+        ts_poly_crossings(p, np, 1, &all, NULL) != TS_OK)
+        return 0;
+    *self = all - *between;
+    return 1;
+}
+
+/* Measure OUT against IN: one line on stdout (no newline); 0 when
+ * measured, else 2 with the reason in why. */
+static int check_pair(const opts *o, const char *in, const char *outp, char *why, size_t wlen)
+{
+    double worst = 0;
+    size_t over = 0, nsub = 0, starts = 0, ncorner = 0, missing = 0, cross = 0, selfx = 0;
+    size_t points = 0, nin, nout, lin, lout, i;
     char *din, *dout;
-    value *vin, *vout;
-    for (a = 1; a < argc - 2; a++) {
-        if (!strcmp(argv[a], "--tol") && a + 1 < argc - 2)
-            tol = atof(argv[++a]);
-        else if (!strcmp(argv[a], "--rel") && a + 1 < argc - 2)
-            rel = atof(argv[++a]);
-        else if (!strcmp(argv[a], "--lines-tol") && a + 1 < argc - 2)
-            lines_tol = atof(argv[++a]);
-        else if (!strcmp(argv[a], "--corner") && a + 1 < argc - 2)
-            corner = atof(argv[++a]);
-        else if (!strcmp(argv[a], "--samples-too"))
-            samples_too = 1;
-        else {
-            fprintf(stderr, "svgcheck: unknown option %s\n", argv[a]);
-            return 2;
-        }
-    }
-    if (a != argc - 2) {
-        fprintf(stderr, "usage: svgcheck [--tol T | --rel R] [--lines-tol L] [--samples-too] "
-                        "[--corner DEG] IN OUT\n");
-        return 2;
-    }
-    din = slurp(argv[a], &lin);
-    dout = slurp(argv[a + 1], &lout);
+    value *vin = NULL, *vout = NULL;
+    int rc = 0;
+    din = slurp(in, &lin);
+    dout = slurp(outp, &lout);
     if (!din || !dout) {
-        fprintf(stderr, "svgcheck: cannot read %s\n", din ? argv[a + 1] : argv[a]);
+        snprintf(why, wlen, "cannot read %s", din ? outp : in);
+        free(din);
+        free(dout);
         return 2;
     }
     nin = values(din, lin, &vin);
     nout = values(dout, lout, &vout);
     if (nin != nout) {
-        fprintf(stderr, "svgcheck: %s: %zu geometry values in, %zu out\n", argv[a], nin, nout);
-        return 2;
+        snprintf(why, wlen, "%s: %zu geometry values in, %zu out", in, nin, nout);
+        rc = 2;
+        nin = 0;
     }
-    for (i = 0; i < nin; i++) {
+    for (i = 0; i < nin && rc == 0; i++) {
         ts_svg_subpath *si = NULL, *so = NULL;
         size_t ni = 0, no = 0, k;
         ts_poly *polys, *dense;
         double **bufs;
-        size_t cin = 0, cout = 0;
-        if (vin[i].kind != 'd' && !samples_too)
+        size_t cin = 0, cout = 0, sin = 0, sout = 0;
+        if (vin[i].kind != 'd' && !o->samples_too)
             continue;
-        if (parse(&vin[i], &si, &ni) != TS_OK || parse(&vout[i], &so, &no) != TS_OK)
-            return 2;
+        if (parse(&vin[i], &si, &ni) != TS_OK || parse(&vout[i], &so, &no) != TS_OK) {
+            snprintf(why, wlen, "%s: element %zu: not parsed", in, i + 1);
+            ts_svg_subpaths_free(si, ni);
+            rc = 2;
+            break;
+        }
         if (ni != no) {
-            fprintf(stderr, "svgcheck: %s: element %zu: %zu subpaths in, %zu out\n", argv[a],
-                    i + 1, ni, no);
-            return 2;
+            snprintf(why, wlen, "%s: element %zu: %zu subpaths in, %zu out", in, i + 1, ni, no);
+            ts_svg_subpaths_free(si, ni);
+            ts_svg_subpaths_free(so, no);
+            rc = 2;
+            break;
         }
         polys = calloc(no + 1, sizeof *polys);
         dense = calloc(no + 1, sizeof *dense);
         bufs = calloc(2 * no + 1, sizeof *bufs);
         if (!polys || !dense || !bufs)
-            return 2;
-        for (k = 0; k < ni; k++) {
-            double t = tol > 0 ? tol : rel * diag(&si[k]);
+            exit(2);
+        for (k = 0; k < ni && rc == 0; k++) {
+            double t = o->tol > 0 ? o->tol : o->rel * diag(&si[k]);
             ts_hausdorff h;
             ts_sampling smp;
             ts_corner *cs = NULL;
@@ -262,12 +275,12 @@ int main(int argc, char **argv)
             if (si[k].c.n == 0)
                 continue;
             nsub++;
-            if (lines_tol > t) {
+            if (o->lines_tol > t) {
                 size_t q;
                 for (q = 0; q < si[k].c.n && si[k].c.seg[q].degree == 1; q++)
                     ;
                 if (q == si[k].c.n)
-                    t = lines_tol;
+                    t = o->lines_tol;
             }
             if (!(t > 0))
                 t = 1e-300;
@@ -275,14 +288,28 @@ int main(int argc, char **argv)
             if (polys[k].n > 2000)
                 smp.per_edge = 2; /* dense output: its edges are short */
             if (ts_hausdorff_measure(&si[k].c, 1, &polys[k], 1, &smp, &h) != TS_OK) {
-                fprintf(stderr, "svgcheck: %s: element %zu subpath %zu: not measured\n",
-                        argv[a], i + 1, k + 1);
-                return 2;
+                snprintf(why, wlen, "%s: element %zu subpath %zu: not measured", in, i + 1, k + 1);
+                rc = 2;
+                break;
             }
             if (h.max / t > worst)
                 worst = h.max / t;
-            if (h.max > t)
+            if (h.max > t) {
                 over++;
+                const double *wa = polys[k].xy + 2 * (h.poly_worst.edge % polys[k].n);
+                const double *wb = polys[k].xy + 2 * ((h.poly_worst.edge + 1) % polys[k].n);
+                double u = h.poly_worst.u;
+                if (getenv("SVGCHECK_VERBOSE"))
+                    fprintf(stderr, "element %zu subpath %zu: %g times the tolerance %g "
+                            "(written point %.17g %.17g; %s, segment %zu t %g)\n", i + 1, k + 1,
+                            h.max / t, t, wa[0] + u * (wb[0] - wa[0]), wa[1] + u * (wb[1] - wa[1]),
+                            h.curve_to_poly >= h.poly_to_curve ? "drawn to written"
+                                                               : "written to drawn",
+                            (h.curve_to_poly >= h.poly_to_curve ? h.curve_worst.seg
+                                                                : h.poly_nearest.seg) + 1,
+                            h.curve_to_poly >= h.poly_to_curve ? h.curve_worst.t
+                                                               : h.poly_nearest.t);
+            }
             {
                 const double *f = polys[k].xy, *l = polys[k].xy + 2 * (polys[k].n - 1);
                 const ts_seg *ls = &si[k].c.seg[si[k].c.n - 1];
@@ -292,7 +319,7 @@ int main(int argc, char **argv)
                     bad |= hypot(l[0] - ls->p[ls->degree][0], l[1] - ls->p[ls->degree][1]) > lim;
                 starts += (size_t)bad;
             }
-            if (ts_contour_corners(&si[k].c, corner * M_PI / 180, &cs, &nc) == TS_OK && nc) {
+            if (ts_contour_corners(&si[k].c, o->corner * M_PI / 180, &cs, &nc) == TS_OK && nc) {
                 ts_corner_check cc;
                 size_t q, kept = 0;
                 /* a join next to a segment shorter than 2T has no turn at
@@ -334,7 +361,7 @@ int main(int argc, char **argv)
                 size_t dn = 0, q, j;
                 double *dxy = malloc((64 * si[k].c.n + 1) * 2 * sizeof *dxy);
                 if (!dxy)
-                    return 2;
+                    exit(2);
                 for (q = 0; q < si[k].c.n; q++) {
                     const ts_seg *g = &si[k].c.seg[q];
                     size_t per = g->degree == 1 ? 1 : 64;
@@ -353,16 +380,17 @@ int main(int argc, char **argv)
                 dense[k].closed = si[k].c.closed;
             }
         }
-        if (no > 1) {
+        if (rc == 0) {
             size_t m = 0;
             for (k = 0; k < no; k++) /* lone moves and empty samples left out */
                 if (dense[k].n > 1 && polys[k].n > 1) {
                     dense[m] = dense[k];
                     polys[m++] = polys[k];
                 }
-            if (m > 1 && ts_poly_crossings(dense, m, 0, &cin, NULL) == TS_OK &&
-                ts_poly_crossings(polys, m, 0, &cout, NULL) == TS_OK && cout > cin)
-                cross += cout - cin;
+            if (m > 0 && crossings(dense, m, &cin, &sin) && crossings(polys, m, &cout, &sout)) {
+                cross += cout > cin ? cout - cin : 0;
+                selfx += sout > sin ? sout - sin : 0;
+            }
         }
         for (k = 0; k < 2 * no; k++)
             free(bufs[k]);
@@ -372,11 +400,88 @@ int main(int argc, char **argv)
         ts_svg_subpaths_free(si, ni);
         ts_svg_subpaths_free(so, no);
     }
-    printf("ratio=%.4f over=%zu subpaths=%zu starts=%zu corners=%zu/%zu crossings=%zu points=%zu\n",
-           worst, over, nsub, starts, missing, ncorner, cross, points);
+    if (rc == 0)
+        printf("ratio=%.4f over=%zu subpaths=%zu starts=%zu corners=%zu/%zu crossings=%zu "
+               "self=%zu points=%zu", worst, over, nsub, starts, missing, ncorner, cross, selfx,
+               points);
     free(vin);
     free(vout);
     free(din);
     free(dout);
+    return rc;
+}
+
+/* --list: "IN<TAB>OUT" per line. */
+static int check_list(const opts *o, const char *list)
+{
+    FILE *f = strcmp(list, "-") ? fopen(list, "r") : stdin;
+    char line[8192], why[512];
+    int bad = 0;
+    if (!f) {
+        fprintf(stderr, "svgcheck: cannot read %s\n", list);
+        return 2;
+    }
+    while (fgets(line, sizeof line, f)) {
+        char *tab = strchr(line, '\t'), *nl;
+        if ((nl = strchr(line, '\n')) != NULL)
+            *nl = 0;
+        if (!tab) {
+            if (line[0])
+                printf("%s\terror: no tab\n", line), bad = 1;
+            continue;
+        }
+        *tab = 0;
+        printf("%s\t", line);
+        why[0] = 0;
+        if (check_pair(o, line, tab + 1, why, sizeof why) != 0) {
+            printf("error: %s", why);
+            bad = 1;
+        }
+        printf("\n");
+        fflush(stdout);
+    }
+    if (f != stdin)
+        fclose(f);
+    return bad;
+}
+
+int main(int argc, char **argv)
+{
+    opts o = {0, 1e-3, 45, 0, 0};
+    const char *list = NULL;
+    char why[512];
+    int a, rc;
+    for (a = 1; a < argc; a++) {
+        if (!strcmp(argv[a], "--tol") && a + 1 < argc)
+            o.tol = atof(argv[++a]);
+        else if (!strcmp(argv[a], "--rel") && a + 1 < argc)
+            o.rel = atof(argv[++a]);
+        else if (!strcmp(argv[a], "--lines-tol") && a + 1 < argc)
+            o.lines_tol = atof(argv[++a]);
+        else if (!strcmp(argv[a], "--corner") && a + 1 < argc)
+            o.corner = atof(argv[++a]);
+        else if (!strcmp(argv[a], "--list") && a + 1 < argc)
+            list = argv[++a];
+        else if (!strcmp(argv[a], "--samples-too"))
+            o.samples_too = 1;
+        else if (argv[a][0] == '-' && argv[a][1] == '-') {
+            fprintf(stderr, "svgcheck: unknown option %s\n", argv[a]);
+            return 2;
+        } else
+            break;
+    }
+    if (list && a == argc)
+        return check_list(&o, list);
+    if (list || a != argc - 2) {
+        fprintf(stderr, "usage: svgcheck [--tol T | --rel R] [--lines-tol L] [--samples-too] "
+                        "[--corner DEG] (IN OUT | --list FILE)\n");
+        return 2;
+    }
+    rc = check_pair(&o, argv[a], argv[a + 1], why, sizeof why);
+    if (rc != 0) {
+        fprintf(stderr, "svgcheck: %s\n", why);
+        return rc;
+    }
+    printf("\n");
     return 0;
 }

@@ -71,6 +71,11 @@ typedef struct conica_simplify_settings {
     /** Cap on the work of the dropping pass, in vertex measurements
      *  (default 2^24): past it, what has been dropped so far stays dropped. */
     size_t max_work;
+    /** Optional, n entries (one per input vertex): a non-zero entry's vertex
+     *  is always kept, as corners are (a caller's refinement: svgsmooth
+     *  puts back the vertices at a crossing the simplified curve made).
+     *  NULL: none. A repeated vertex counts by its first copy. */
+    const unsigned char *keep_mask;
 } conica_simplify_settings;
 
 /** What conica_simplify() did (all optional reading). */
