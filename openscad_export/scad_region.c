@@ -763,6 +763,8 @@ static double ccw(double a, double b)
 static size_t separate_touching(conica__polys *r, double tol)
 {
     size_t np = r->npts, moved = 0;
+    if (np == 0) /* nothing left to separate (and no arrays to copy) */
+        return 0;
     double *key = malloc(3 * (np ? np : 1) * sizeof *key), *nxy = NULL;
     size_t *next = malloc((np ? np : 1) * sizeof *next), *prev = malloc((np ? np : 1) * sizeof *prev);
     visit *vs = NULL;

@@ -322,7 +322,9 @@ static conica_code build_path(conica_path *cp, const conica_svg_path *p, const s
     size_t i;
     for (i = 0; i < n && rc == CONICA_OK; i++) {
         const sub_plan *pl = &plans[i];
-        if (pl->how == PLAN_SAMPLES)
+        if (pl->xy && pl->sm.nkeep == 0) /* no vertex (a lone move): as drawn */
+            rc = add_drawn(cp, p, pl->a, pl->b, pl->closed, st);
+        else if (pl->how == PLAN_SAMPLES)
             rc = add_samples(cp, p, pl, st);
         else if (pl->how == PLAN_LINES)
             rc = add_simplified_lines(cp, pl, st);
