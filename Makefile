@@ -196,7 +196,8 @@ $(BUILD)/tests/%: $(BUILD)/obj/tests/%.o $(RUNNER_A) $(TS_A) $(ALL_LIBS)
 
 # Suites that modules add (binaries or scripts the test driver runs).
 TEST_BINS += $(UNIT_BINS)
-tests: all $(TEST_BINS) $(TEST_EXTRA)
+# DEMO_DEPS too: the documentation test remakes docs/ pictures with make demo's scripts.
+tests: all $(TEST_BINS) $(TEST_EXTRA) $(DEMO_DEPS)
 
 deps:
 	scripts/deps.sh test

@@ -90,10 +90,11 @@ fi
 
 begin_case "-Werror only with WERROR=1 (make test, .ci/run)"
 # A plain make as a user types it: not the WERROR=1 that `make WERROR=1
-# test` (.ci/run) passes down to every make below it through MAKEFLAGS.
-check "make -n without WERROR" env -u MAKEFLAGS -u MFLAGS -u MAKELEVEL make --no-print-directory -B -n BUILD="$tmp/wb" "$tmp/wb/obj/libcore/src/status.o"
+# test` (.ci/run) passes down to every process below it (MAKEFLAGS, and
+# the environment: make exports command-line variables).
+check "make -n without WERROR" env -u MAKEFLAGS -u MFLAGS -u MAKELEVEL -u WERROR make --no-print-directory -B -n BUILD="$tmp/wb" "$tmp/wb/obj/libcore/src/status.o"
 check_no_grep "-Werror" "$out" "no -Werror forced on a plain build"
-check "make -n WERROR=1" env -u MAKEFLAGS -u MFLAGS -u MAKELEVEL make --no-print-directory -B -n BUILD="$tmp/wb" WERROR=1 "$tmp/wb/obj/libcore/src/status.o"
+check "make -n WERROR=1" env -u MAKEFLAGS -u MFLAGS -u MAKELEVEL -u WERROR make --no-print-directory -B -n BUILD="$tmp/wb" WERROR=1 "$tmp/wb/obj/libcore/src/status.o"
 check_grep "-Werror" "$out" "WERROR=1 adds -Werror"
 check_grep "WERROR=1" .ci/run "CI builds with WERROR=1"
 
