@@ -1839,7 +1839,7 @@ typedef struct geom_progress {
 } geom_progress;
 
 /* The bytes of n's geometry data: d of a path, points of a polygon or a
- * polyline (kind as in collect(); shapes count nothing). */
+ * polyline (kind of geom_kind(); shapes count nothing). */
 static size_t geom_bytes(xmlNodePtr n, int kind)
 {
     xmlAttrPtr a;
@@ -1856,6 +1856,8 @@ static size_t geom_bytes(xmlNodePtr n, int kind)
     return len;
 }
 
+/* collect()'s kind of an element with geometry data: 0 path, 1 polygon,
+ * 2 polyline; -1 for any other (a shape is 3 only with convert_shapes). */
 static int geom_kind(xmlNodePtr n)
 {
     const char *tag = (const char *)n->name;
@@ -1918,19 +1920,14 @@ static conica_code collect(const conica_svg_doc *doc, const conica_svg_settings 
         return conica__fail(st, CONICA_ERR_NOMEM, 0, 0, "out of memory");
     while (n && rc == CONICA_OK) {
         selection_mark(&sel, n);
-        if (s->progress && is_svg_element(n))
-            gp.len = geom_bytes(n, geom_kind(n));
         if (is_svg_element(n)) {
             const char *tag = (const char *)n->name;
-            int kind = -1;
-            if (!strcmp(tag, "path"))
-                kind = 0;
-            else if (!strcmp(tag, "polygon"))
-                kind = 1;
-            else if (!strcmp(tag, "polyline"))
-                kind = 2;
-            else if (s->convert_shapes && (!strcmp(tag, "rect") || !strcmp(tag, "circle") ||
-                                           !strcmp(tag, "ellipse") || !strcmp(tag, "line")))
+            int kind = geom_kind(n);
+            if (s->progress)
+                gp.len = geom_bytes(n, kind);
+            if (kind < 0 && s->convert_shapes &&
+                (!strcmp(tag, "rect") || !strcmp(tag, "circle") || !strcmp(tag, "ellipse") ||
+                 !strcmp(tag, "line")))
                 kind = 3;
             if (kind >= 0 && selected(s, &sel, n)) {
                 char what[96];
